@@ -1,0 +1,918 @@
+/*
+ * max2code_roots.c -- smallest root in (0, tmax] of a polynomial of degree <= 8.
+ * See max2code_roots.h for the contract and the methods.
+ */
+#include "max2code_roots.h"
+
+#include <complex.h>
+#include <float.h>
+#include <limits.h>
+#include <math.h>
+#include <stddef.h>
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_poly.h>
+
+#define MAXN M2C_MAX_DEGREE
+#define UNIT_ROUNDOFF (DBL_EPSILON / 2)
+#define PI_D 3.14159265358979323846
+
+/* |x| up to 2^120: with |c_i| < 1 (normalised) and derivative coefficients
+ * at most 8! < 2^16, Horner cannot overflow (2^16 * 2^960 * 9 < DBL_MAX).
+ * Beyond it the evaluation is scaled by powers of two. */
+#define SAFE_EXPONENT 120
+
+/* Newton/bisection iteration cap: geometric bisection needs ~11 steps to
+ * reach a factor-2 bracket from the whole double range, then <= 53 more. */
+#define MAX_ITER 200
+
+/* A complex root counts as real (double, grazing) for the GSL and closed
+ * methods when |imag| <= REAL_TOL |z|: a double root perturbed by rounding
+ * splits by about sqrt(eps). */
+#define REAL_TOL 1.4901161193847656e-08 /* sqrt(DBL_EPSILON) */
+
+/* ------------------------------------------------------------------ */
+/* Validation and preparation                                           */
+/* ------------------------------------------------------------------ */
+
+static int input_is_valid(const double c[], int degree, double tmax,
+                          const double *t)
+{
+    if (c == NULL || t == NULL || degree < 0 || degree > MAXN)
+        return 0;
+    if (isnan(tmax) || tmax <= 0)
+        return 0;
+    for (int i = 0; i <= degree; i++)
+        if (!isfinite(c[i]))
+            return 0;
+    return 1;
+}
+
+/* ceil(num / den) for den > 0 and any sign of num. */
+static int ceil_div(int num, int den)
+{
+    return num >= 0 ? (num + den - 1) / den : -((-num) / den);
+}
+
+/* Fujiwara bound 2 max |c_i/c_n|^(1/(n-i)), each ratio rounded up to a power
+ * of two using exponents only (no overflow, no logs): every root z has
+ * |z| < the result.  c[n] != 0.  Returns 0 when all c_i (i < n) are 0. */
+static double root_bound(const double c[], int n)
+{
+    int en = ilogb(c[n]);
+    int best = INT_MIN;
+    for (int i = 0; i < n; i++) {
+        if (c[i] == 0)
+            continue;
+        /* |c_i / c_n| < 2^(ilogb(c_i) + 1 - en) */
+        int e = ceil_div(ilogb(c[i]) + 1 - en, n - i);
+        if (e > best)
+            best = e;
+    }
+    if (best == INT_MIN)
+        return 0;
+    if (best + 1 >= DBL_MAX_EXP)
+        return DBL_MAX;
+    return ldexp(1.0, best + 1);
+}
+
+/* Is the leading term negligible over [0, T] (see header)?  Compared term by
+ * term as |c_n| T^(n-i) <= k |c_i|, which overflows/underflows harmlessly. */
+static int leading_negligible(const double c[], int n, double tmax)
+{
+    double T = tmax;
+    if (isinf(T)) {
+        int m = n - 1;
+        while (m > 0 && c[m] == 0)
+            m--;
+        if (m == 0)
+            return 0; /* the rest is a constant: no scale to compare with */
+        T = root_bound(c, m);
+    }
+    double k = 4.0 * n * DBL_EPSILON;
+    double Tp = 1.0;
+    for (int i = n - 1; i >= 0; i--) {
+        Tp *= T; /* T^(n-i) */
+        if (c[i] != 0 && fabs(c[n]) * Tp <= k * fabs(c[i]))
+            return 1;
+    }
+    return 0;
+}
+
+/* Drop zero/negligible leading terms and factors of t; returns the degree
+ * left, or -1 for the zero polynomial.  c is modified in place. */
+static int reduce(double c[], int n, double tmax)
+{
+    for (;;) {
+        while (n > 0 && c[n] == 0)
+            n--;
+        if (n == 0)
+            return c[0] == 0 ? -1 : 0;
+        if (c[0] == 0) { /* touching now: divide by t */
+            for (int i = 0; i < n; i++)
+                c[i] = c[i + 1];
+            c[n] = 0;
+            n--;
+            continue;
+        }
+        if (leading_negligible(c, n, tmax)) {
+            c[n] = 0;
+            n--;
+            continue;
+        }
+        return n;
+    }
+}
+
+/* Scale by a power of two (exact) so that max |c_i| is in [1/2, 1). */
+static void normalise(double c[], int n)
+{
+    double m = 0;
+    for (int i = 0; i <= n; i++)
+        if (fabs(c[i]) > m)
+            m = fabs(c[i]);
+    if (m == 0)
+        return;
+    int e = ilogb(m) + 1;
+    for (int i = 0; i <= n; i++)
+        c[i] = ldexp(c[i], -e);
+}
+
+/* ------------------------------------------------------------------ */
+/* Evaluation                                                           */
+/* ------------------------------------------------------------------ */
+
+/* Exponent k such that evaluating at x / 2^k cannot overflow. */
+static int scale_exponent(double x)
+{
+    return fabs(x) <= 0x1p120 ? 0 : ilogb(x) + 1;
+}
+
+/* p(x) / 2^(k n) by Horner with FMA (one rounding per step).  With k != 0 the
+ * argument and the coefficients are scaled by exact powers of two, so huge
+ * x (roots near 1e154 and beyond) evaluate without overflow. */
+static double horner(const double c[], int n, double x, int k)
+{
+    double acc = c[n];
+    if (k == 0) {
+        for (int i = n - 1; i >= 0; i--)
+            acc = fma(acc, x, c[i]);
+        return acc;
+    }
+    double xs = ldexp(x, -k), f = ldexp(1.0, -k), fi = 1.0;
+    for (int i = n - 1; i >= 0; i--) {
+        fi *= f;
+        acc = fma(acc, xs, c[i] * fi);
+    }
+    return acc;
+}
+
+/* sum |c_i| |x|^i / 2^(k n): the scale of the Horner rounding error. */
+static double horner_abs(const double c[], int n, double x, int k)
+{
+    double ax = fabs(x), acc = fabs(c[n]);
+    double xs = k ? ldexp(ax, -k) : ax, f = ldexp(1.0, -k), fi = 1.0;
+    for (int i = n - 1; i >= 0; i--) {
+        fi *= f;
+        acc = acc * xs + fabs(c[i]) * fi;
+    }
+    return acc;
+}
+
+/* Is |p(x)| within the rounding noise of its evaluation at x?
+ * Bound: 2 gamma_{2n} sum |c_i| |x|^i (see header). */
+static int within_noise(const double c[], int n, double x)
+{
+    int k = scale_exponent(x);
+    double g = 2.0 * n * UNIT_ROUNDOFF / (1.0 - 2.0 * n * UNIT_ROUNDOFF);
+    return fabs(horner(c, n, x, k)) <= 2.0 * g * horner_abs(c, n, x, k);
+}
+
+/* Sign of p(x) as -1, 0, 1 (scaling does not change it). */
+static int sign_at(const double c[], int n, double x)
+{
+    double v = horner(c, n, x, scale_exponent(x));
+    return (v > 0) - (v < 0);
+}
+
+/* ------------------------------------------------------------------ */
+/* Quadratic                                                            */
+/* ------------------------------------------------------------------ */
+
+/* Real roots of a x^2 + b x + c (a != 0), ascending, in r[0..1]; returns 2,
+ * or 0 when the discriminant is negative.  *disc gets the discriminant's
+ * sign information (0 exactly for a double root).
+ * Written with h = -b/2: roots (h +- sqrt(h^2 - a c)) / a.  h^2 - a c is
+ * computed as (p - q) + (dp - dq) where dp, dq are the exact rounding errors
+ * of p = h*h and q = a*c (FMA): when p and q nearly cancel, p - q is exact
+ * (Sterbenz) and the corrections carry the digits (Kahan's case).  The
+ * coefficients are first scaled by a power of two so h*h cannot overflow;
+ * the larger root comes from h + sign(h) sqrt(.) (no cancellation) and the
+ * other from the product of the roots c / a. */
+static int quad_roots(double a, double b, double c, double r[2], double *disc)
+{
+    double m = fmax(fabs(a), fmax(fabs(b), fabs(c)));
+    int e = ilogb(m);
+    a = ldexp(a, -e);
+    b = ldexp(b, -e);
+    c = ldexp(c, -e);
+    double h = -0.5 * b;
+    double p = h * h, q = a * c;
+    double dp = fma(h, h, -p), dq = fma(a, c, -q);
+    double d = (p - q) + (dp - dq);
+    *disc = d;
+    if (d < 0)
+        return 0;
+    double w = h + copysign(sqrt(d), h);
+    double r1, r2;
+    if (w == 0) { /* h == 0 and d == 0, so c == 0: double root at 0 */
+        r1 = r2 = 0;
+    } else {
+        r1 = w / a;
+        r2 = c / w;
+    }
+    r[0] = fmin(r1, r2);
+    r[1] = fmax(r1, r2);
+    return 2;
+}
+
+/* First root in (0, tmax] of c0 + c1 t + c2 t^2 (c2 != 0). */
+static int first_root_quadratic(const double c[3], double tmax, int graze_check,
+                                double *t, int *graze)
+{
+    double r[2], disc;
+    if (quad_roots(c[2], c[1], c[0], r, &disc) == 2) {
+        for (int i = 0; i < 2; i++) {
+            if (r[i] > 0 && r[i] <= tmax) {
+                *t = r[i];
+                *graze = disc == 0;
+                return 1;
+            }
+        }
+        return 0;
+    }
+    if (!graze_check)
+        return 0;
+    /* No real root: does the parabola touch 0 within rounding at its vertex? */
+    double x = -c[1] / (2 * c[2]);
+    if (x > 0 && x <= tmax && within_noise(c, 2, x)) {
+        *t = x;
+        *graze = 1;
+        return 1;
+    }
+    return 0;
+}
+
+/* ------------------------------------------------------------------ */
+/* Safeguarded Newton on a monotone bracket                            */
+/* ------------------------------------------------------------------ */
+
+/* Bisection point of [lo, hi] (0 <= lo < hi): geometric when the bracket
+ * spans more than a factor 8, so roots near 0 (1e-12) are reached in a few
+ * dozen steps and to relative, not absolute, accuracy. */
+static double split_point(double lo, double hi)
+{
+    if (lo == 0)
+        return hi * 0x1p-10;
+    if (hi > 8 * lo)
+        return sqrt(lo) * sqrt(hi);
+    return lo + 0.5 * (hi - lo);
+}
+
+/* Root of P (degree m, derivative D) in (lo, hi), where P changes sign
+ * between lo and hi (slo = sign of P(lo), nonzero) and is monotone. */
+static double refine_root(const double P[], const double D[], int m,
+                          double lo, double hi, int slo)
+{
+    double x = split_point(lo, hi);
+    double step = hi - lo, step_old = step;
+    for (int it = 0; it < MAX_ITER; it++) {
+        int k = scale_exponent(x);
+        double f = horner(P, m, x, k);
+        if (f == 0)
+            return x;
+        if ((f > 0) == (slo > 0))
+            lo = x;
+        else
+            hi = x;
+        if (hi - lo <= 2 * DBL_EPSILON * hi)
+            return x;
+        double df = horner(D, m - 1, x, k);
+        double xn = x - ldexp(f / df, k);
+        double s = x - xn;
+        /* Newton must stay inside the bracket and at least halve the step
+         * before last; otherwise bisect (rtsafe's rule). */
+        if (!(xn > lo && xn < hi) || fabs(s) > 0.5 * fabs(step_old)) {
+            xn = split_point(lo, hi);
+            s = x - xn;
+        }
+        step_old = step;
+        step = s;
+        if (fabs(s) <= 2 * UNIT_ROUNDOFF * fabs(xn))
+            return xn; /* converged to about an ulp */
+        x = xn;
+    }
+    return x;
+}
+
+/* ------------------------------------------------------------------ */
+/* Interval solver                                                      */
+/* ------------------------------------------------------------------ */
+
+/* All derivatives: d[m] is the derivative of order n-m, of degree m. */
+static void derivative_chain(const double c[], int n,
+                             double d[MAXN + 1][MAXN + 1])
+{
+    for (int i = 0; i <= n; i++)
+        d[n][i] = c[i];
+    for (int m = n; m > 1; m--)
+        for (int i = 0; i < m; i++)
+            d[m - 1][i] = (i + 1) * d[m][i + 1];
+}
+
+/* Roots in (0, T) of the polynomial P of degree m whose derivative's roots
+ * in (0, T) are crit[0..ncrit-1] (ascending): P is monotone between them.
+ * Writes them ascending to out and returns their count. */
+static int roots_in_pieces(const double P[], const double D[], int m,
+                           const double crit[], int ncrit, double T,
+                           double out[])
+{
+    int count = 0;
+    double a = 0;
+    int sa = sign_at(P, m, 0);
+    for (int j = 0; j <= ncrit; j++) {
+        double b = j < ncrit ? crit[j] : T;
+        int sb = sign_at(P, m, b);
+        if (sb == 0) {
+            if (j < ncrit)
+                out[count++] = b;
+        } else if (sa != 0 && sa != sb) {
+            out[count++] = refine_root(P, D, m, a, b, sa);
+        }
+        a = b;
+        sa = sb;
+    }
+    return count;
+}
+
+/* Roots in (0, T) of the first derivative of d[n], found level by level
+ * from the quadratic derivative upwards. */
+static int critical_points(double d[MAXN + 1][MAXN + 1], int n, double T,
+                           double crit[])
+{
+    double r[2], disc, level[MAXN];
+    int nl = 0;
+    if (quad_roots(d[2][2], d[2][1], d[2][0], r, &disc) == 2)
+        for (int i = 0; i < 2; i++)
+            if (r[i] > 0 && r[i] < T && (nl == 0 || r[i] > level[nl - 1]))
+                level[nl++] = r[i];
+    for (int m = 3; m < n; m++) {
+        double next[MAXN];
+        nl = roots_in_pieces(d[m], d[m - 1], m, level, nl, T, next);
+        for (int i = 0; i < nl; i++)
+            level[i] = next[i];
+    }
+    for (int i = 0; i < nl; i++)
+        crit[i] = level[i];
+    return nl;
+}
+
+/* First root in (0, T] of c (degree n >= 3, normalised, c[0] != 0). */
+static int first_root_interval(const double c[], int n, double T,
+                               int graze_check, double *t, int *graze)
+{
+    double d[MAXN + 1][MAXN + 1], crit[MAXN];
+    derivative_chain(c, n, d);
+    int nc = critical_points(d, n, T, crit);
+    double a = 0;
+    int sa = c[0] > 0 ? 1 : -1;
+    int sb = 0, sb_known = 0;
+    for (int j = 0; j <= nc; j++) {
+        double b = j < nc ? crit[j] : T;
+        if (!sb_known)
+            sb = sign_at(c, n, b);
+        sb_known = 0;
+        if (sb == 0) { /* exact zero: at a critical point it is a double root */
+            *t = b;
+            *graze = j < nc;
+            return 1;
+        }
+        if (sb != sa) {
+            *t = refine_root(c, d[n - 1], n, a, b, sa);
+            *graze = 0;
+            return 1;
+        }
+        if (graze_check && j < nc && within_noise(c, n, b)) {
+            /* touch or cross?  Look at the far end of the next piece. */
+            double b2 = j + 1 < nc ? crit[j + 1] : T;
+            sb = sign_at(c, n, b2);
+            sb_known = 1;
+            if (sb == sa) {
+                *t = b;
+                *graze = 1;
+                return 1;
+            }
+        }
+        a = b;
+    }
+    return 0;
+}
+
+/* ------------------------------------------------------------------ */
+/* Choosing among complex roots (GSL and closed methods)              */
+/* ------------------------------------------------------------------ */
+
+static int pick_first_real(const double zr[], const double zi[], int m,
+                           double tmax, double *t, int *graze)
+{
+    int found = 0;
+    double best = 0;
+    int best_graze = 0;
+    for (int i = 0; i < m; i++) {
+        double x = zr[i], y = zi[i];
+        if (!isfinite(x) || !isfinite(y))
+            continue;
+        if (fabs(y) > REAL_TOL * hypot(x, y))
+            continue;
+        if (!(x > 0 && x <= tmax))
+            continue;
+        if (!found || x < best) {
+            found = 1;
+            best = x;
+            best_graze = y != 0;
+        }
+    }
+    if (found) {
+        *t = best;
+        *graze = best_graze;
+    }
+    return found;
+}
+
+/* ------------------------------------------------------------------ */
+/* GSL companion-matrix method                                          */
+/* ------------------------------------------------------------------ */
+
+static int first_root_gsl(const double c[], int n, double tmax, double *t,
+                          int *graze)
+{
+    double z[2 * MAXN], zr[MAXN], zi[MAXN];
+    gsl_poly_complex_workspace *w = gsl_poly_complex_workspace_alloc((size_t)n + 1);
+    if (w == NULL)
+        return 0;
+    /* GSL aborts on failures by default; a library must not do that. */
+    gsl_error_handler_t *old = gsl_set_error_handler_off();
+    int st = gsl_poly_complex_solve(c, (size_t)n + 1, w, z);
+    gsl_set_error_handler(old);
+    gsl_poly_complex_workspace_free(w);
+    if (st != GSL_SUCCESS)
+        return 0;
+    for (int i = 0; i < n; i++) {
+        zr[i] = z[2 * i];
+        zi[i] = z[2 * i + 1];
+    }
+    return pick_first_real(zr, zi, n, tmax, t, graze);
+}
+
+/* ------------------------------------------------------------------ */
+/* Closed-form quartic (Orellana & De Michele, ACM TOMS Algorithm 1010) */
+/* ------------------------------------------------------------------ */
+
+/* Rescaling factors for over/underflowing quartics: DBL_MAX^(1/3) / phi and
+ * DBL_MAX^(1/4) / phi (phi the golden ratio), as in the paper. */
+#define CUBIC_RESCALE 3.488062113727083e+102
+#define QUARTIC_RESCALE 7.156344627944542e+76
+
+/* Largest-magnitude real root of x^3 + g x + h, written with Q = -g/3,
+ * R = h/2 and the discriminant R^2 - Q^3 carried as a scaled K so that huge
+ * g, h do not overflow. */
+static double cubic_dominant_scaled(double g, double h)
+{
+    double Q = -g / 3, R = 0.5 * h, K;
+    if (R == 0)
+        return g <= 0 ? sqrt(-g) : 0;
+    if (fabs(Q) < fabs(R)) {
+        double qr = Q / R;
+        K = 1 - Q * qr * qr; /* (R^2 - Q^3) / R^2 */
+    } else {
+        double rq = R / Q;
+        K = copysign(1.0, Q) * (rq * rq / Q - 1); /* (R^2 - Q^3) / |Q|^3 */
+    }
+    if (K < 0) { /* three real roots (Q > 0): trigonometric form */
+        double sq = sqrt(Q);
+        double theta = acos((R / fabs(Q)) / sq);
+        return theta < PI_D / 2 ? -2 * sq * cos(theta / 3)
+                                : -2 * sq * cos((theta + 2 * PI_D) / 3);
+    }
+    double A = fabs(Q) < fabs(R)
+                   ? -copysign(cbrt(fabs(R) * (1 + sqrt(K))), R)
+                   : -copysign(cbrt(fabs(R) + sqrt(fabs(Q)) * fabs(Q) * sqrt(K)), R);
+    return A + (A == 0 ? 0 : Q / A);
+}
+
+/* Same root, Cardano/trigonometric form for moderate coefficients. */
+static double cubic_dominant(double g, double h)
+{
+    double Q = -g / 3, R = 0.5 * h;
+    if (fabs(Q) > 1e102 || fabs(R) > 1e154)
+        return cubic_dominant_scaled(g, h);
+    double Q3 = Q * Q * Q, R2 = R * R;
+    if (R2 < Q3) {
+        double theta = acos(R / sqrt(Q3)), s = -2 * sqrt(Q);
+        return theta < PI_D / 2 ? s * cos(theta / 3)
+                                : s * cos((theta + 2 * PI_D) / 3);
+    }
+    double A = -copysign(cbrt(fabs(R) + sqrt(R2 - Q3)), R);
+    return A + (A == 0 ? 0 : Q / A);
+}
+
+/* phi0: dominant root of the resolvent cubic of the monic quartic
+ * x^4 + a x^3 + b x^2 + c x + d, computed on the quartic shifted to its
+ * inflection point (the resolvent variable is shift invariant), then
+ * polished by Newton while the residual decreases. */
+static double resolvent_phi0(double a, double b, double c, double d, int scaled)
+{
+    double disc = 9 * a * a - 24 * b, s;
+    if (disc > 0) {
+        disc = sqrt(disc);
+        s = a > 0 ? -2 * b / (3 * a + disc) : -2 * b / (3 * a - disc);
+    } else {
+        s = -a / 4;
+    }
+    double as = a + 4 * s;
+    double bs = b + 3 * s * (a + 2 * s);
+    double cs = c + s * (2 * b + s * (3 * a + 4 * s));
+    double ds = d + s * (c + s * (b + s * (a + s)));
+    double gg = bs * bs / 9, hh = as * cs;
+    double g = hh - 4 * ds - 3 * gg;
+    double h = (8 * ds + hh - 2 * gg) * bs / 3 - cs * cs - ds * as * as;
+    double x = cubic_dominant(g, h);
+    if (!isfinite(x)) {
+        x = cubic_dominant_scaled(g, h);
+        if (!isfinite(x) && scaled) {
+            /* rescale the depressed cubic too */
+            double r = CUBIC_RESCALE, r2 = r * r;
+            double a2 = as / r, b2 = bs / r, c2 = cs / r;
+            double gg2 = b2 * b2 / 9, hh2 = a2 * c2, d2 = ds / r2;
+            g = hh2 - 4 * d2 - 3 * gg2;
+            h = (8 * d2 + hh2 - 2 * gg2) * b2 / 3 - c2 * (c2 / r) - (ds / r) * a2 * a2;
+            x = cubic_dominant(g, h);
+            if (!isfinite(x))
+                x = cubic_dominant_scaled(g, h);
+            x *= r;
+        }
+    }
+    double f = x * (x * x + g) + h;
+    double scale = fmax(fabs(x * x * x), fmax(fabs(g * x), fabs(h)));
+    if (!(fabs(f) > DBL_EPSILON * scale))
+        return x;
+    for (int it = 0; it < 8; it++) {
+        double df = 3 * x * x + g;
+        if (df == 0)
+            break;
+        double xn = x - f / df;
+        double fn = xn * (xn * xn + g) + h;
+        if (fn == 0)
+            return xn;
+        if (!(fabs(fn) < fabs(f)))
+            break;
+        x = xn;
+        f = fn;
+    }
+    return x;
+}
+
+/* Relative residual of a candidate factorisation (x^2 + p x + q)(x^2 + r x + s)
+ * of x^4 + a x^3 + b x^2 + c x + d; include_d selects whether the constant
+ * term is measured too. */
+static double rel_err(double v, double ref)
+{
+    return ref == 0 ? fabs(v) : fabs((v - ref) / ref);
+}
+
+static double factor_error(double a, double b, double c, double d, double p,
+                           double q, double r, double s, int include_d)
+{
+    double e = rel_err(q * r + p * s, c) + rel_err(q + p * r + s, b) +
+               rel_err(p + r, a);
+    return include_d ? e + rel_err(q * s, d) : e;
+}
+
+static double cfactor_error(double a, double b, double c, double d,
+                            double complex p, double complex q,
+                            double complex r, double complex s)
+{
+    double e = 0;
+    e += d == 0 ? cabs(q * s) : cabs((q * s - d) / d);
+    e += c == 0 ? cabs(q * r + p * s) : cabs((q * r + p * s - c) / c);
+    e += b == 0 ? cabs(q + p * r + s) : cabs((q + p * r + s - b) / b);
+    e += a == 0 ? cabs(p + r) : cabs((p + r - a) / a);
+    return e;
+}
+
+/* Residual of the LDL^T decomposition parameters (paper eqs. 29-30). */
+static double ldlt_error(double b, double c, double d, double d2, double l1,
+                         double l2, double l3)
+{
+    return rel_err(d2 + l1 * l1 + 2 * l3, b) +
+           rel_err(2 * d2 * l2 + 2 * l1 * l3, c) +
+           rel_err(d2 * l2 * l2 + l3 * l3, d);
+}
+
+/* Newton on the four factor coefficients (p, q, r, s), x = (p,q,r,s), against
+ * the residual of  q s = d,  q r + p s = c,  q + p r + s = b,  p + r = a;
+ * stops when the summed relative residual stops decreasing. */
+static void refine_factors(double a, double b, double c, double d, double x[4])
+{
+    const double ref[4] = {d, c, b, a};
+    double fv[4], err = 0;
+#define RESIDUALS()                                              \
+    do {                                                         \
+        fv[0] = x[1] * x[3] - d;                                 \
+        fv[1] = x[1] * x[2] + x[0] * x[3] - c;                   \
+        fv[2] = x[1] + x[0] * x[2] + x[3] - b;                   \
+        fv[3] = x[0] + x[2] - a;                                 \
+        err = 0;                                                 \
+        for (int i = 0; i < 4; i++)                              \
+            err += ref[i] == 0 ? fabs(fv[i]) : fabs(fv[i] / ref[i]); \
+    } while (0)
+    RESIDUALS();
+    for (int it = 0; it < 8; it++) {
+        double pr = x[0] - x[2];
+        double det = x[1] * x[1] + x[1] * (-x[2] * pr - 2 * x[3]) +
+                     x[3] * (x[0] * pr + x[3]);
+        if (det == 0)
+            break;
+        /* adjugate of the Jacobian (rows: unknowns, columns: residuals) */
+        double J[4][4];
+        J[0][0] = pr;
+        J[0][1] = x[3] - x[1];
+        J[0][2] = x[1] * x[2] - x[0] * x[3];
+        J[0][3] = -x[1] * J[0][1] - x[0] * J[0][2];
+        J[1][0] = x[0] * J[0][0] + J[0][1];
+        J[1][1] = -x[1] * J[0][0];
+        J[1][2] = -x[1] * J[0][1];
+        J[1][3] = -x[1] * J[0][2];
+        J[2][0] = -J[0][0];
+        J[2][1] = -J[0][1];
+        J[2][2] = -J[0][2];
+        J[2][3] = J[0][2] * x[2] + J[0][1] * x[3];
+        J[3][0] = -x[2] * J[0][0] - J[0][1];
+        J[3][1] = J[0][0] * x[3];
+        J[3][2] = x[3] * J[0][1];
+        J[3][3] = x[3] * J[0][2];
+        double old[4], old_err = err;
+        for (int i = 0; i < 4; i++) {
+            double dx = 0;
+            for (int j = 0; j < 4; j++)
+                dx += J[i][j] * fv[j];
+            old[i] = x[i];
+            x[i] -= dx / det;
+        }
+        RESIDUALS();
+        if (err == 0)
+            break;
+        if (err >= old_err) {
+            for (int i = 0; i < 4; i++)
+                x[i] = old[i];
+            break;
+        }
+    }
+#undef RESIDUALS
+}
+
+/* Roots of x^2 + p x + q (real p, q) as complex pairs. */
+static void monic_quadratic_roots(double p, double q, double zr[2], double zi[2])
+{
+    double disc = p * p - 4 * q;
+    if (disc >= 0) {
+        double big = 0.5 * (p >= 0 ? -p - sqrt(disc) : -p + sqrt(disc));
+        zr[0] = big;
+        zr[1] = big == 0 ? 0 : q / big;
+        zi[0] = zi[1] = 0;
+    } else {
+        zr[0] = zr[1] = -0.5 * p;
+        zi[0] = 0.5 * sqrt(-disc);
+        zi[1] = -zi[0];
+    }
+}
+
+/* Given d2 < 0, the real factorisation (Case I of the paper), then the
+ * coefficient of the smaller-|.| linear term recomputed from whichever of
+ * the three equations fits best. */
+static void real_factors(double a, double b, double c, double d, double l1,
+                         double l2, double l3, double d2, double x[4])
+{
+    double gamma = sqrt(-d2);
+    double p = l1 + gamma, q = l3 + gamma * l2;
+    double r = l1 - gamma, s = l3 - gamma * l2;
+    if (fabs(s) < fabs(q))
+        s = d / q;
+    else if (fabs(s) > fabs(q))
+        q = d / s;
+    double cand[3], best_err = INFINITY;
+    int nc = 0;
+    if (fabs(p) < fabs(r)) {
+        if (s != 0) cand[nc++] = (c - q * r) / s;
+        if (r != 0) cand[nc++] = (b - s - q) / r;
+        cand[nc++] = a - r;
+        for (int i = 0; i < nc; i++) {
+            double e = factor_error(a, b, c, d, cand[i], q, r, s, 0);
+            if (i == 0 || e < best_err) { best_err = e; p = cand[i]; }
+        }
+    } else {
+        if (q != 0) cand[nc++] = (c - p * s) / q;
+        if (p != 0) cand[nc++] = (b - q - s) / p;
+        cand[nc++] = a - p;
+        double r0 = r;
+        for (int i = 0; i < nc; i++) {
+            double e = factor_error(a, b, c, d, p, q, cand[i], s, 0);
+            if (i == 0 || e < best_err) { best_err = e; r0 = cand[i]; }
+        }
+        r = r0;
+    }
+    x[0] = p; x[1] = q; x[2] = r; x[3] = s;
+}
+
+/* The four roots of c[4] x^4 + ... + c[0] (c[4] != 0), as (zr, zi). */
+static void quartic_roots(const double cf[5], double zr[4], double zi[4])
+{
+    double a = cf[3] / cf[4], b = cf[2] / cf[4];
+    double c = cf[1] / cf[4], d = cf[0] / cf[4];
+    double rescale = 1;
+    double phi0 = resolvent_phi0(a, b, c, d, 0);
+    if (!isfinite(phi0)) {
+        rescale = QUARTIC_RESCALE;
+        double r2 = rescale * rescale;
+        a /= rescale;
+        b /= r2;
+        c /= r2 * rescale;
+        d /= r2 * r2;
+        phi0 = resolvent_phi0(a, b, c, d, 1);
+    }
+    double l1 = a / 2, l3 = b / 6 + phi0 / 2;
+    double del2 = c - a * l3;
+    double d2_direct = 2 * b / 3 - phi0 - l1 * l1;
+    double d3 = d - l3 * l3;
+
+    /* Candidates for (d2, l2); keep the one with the least residual. */
+    double d2c[3], l2c[3];
+    int nc = 0;
+    if (d2_direct != 0) {
+        d2c[nc] = d2_direct;
+        l2c[nc++] = del2 / (2 * d2_direct);
+    }
+    if (del2 != 0) {
+        double l2 = 2 * d3 / del2;
+        if (l2 != 0) {
+            d2c[nc] = del2 / (2 * l2);
+            l2c[nc++] = l2;
+        }
+        d2c[nc] = d2_direct;
+        l2c[nc++] = l2;
+    }
+    double d2 = 0, l2 = 0, best = INFINITY;
+    for (int i = 0; i < nc; i++) {
+        double e = ldlt_error(b, c, d, d2c[i], l1, l2c[i], l3);
+        if (i == 0 || e < best) { best = e; d2 = d2c[i]; l2 = l2c[i]; }
+    }
+
+    /* kind: 1 real factors, 0 complex-conjugate factors, -1 undecided */
+    int kind;
+    double x[4] = {0, 0, 0, 0};
+    double complex cp = 0, cq = 0;
+    if (d2 < 0) {
+        real_factors(a, b, c, d, l1, l2, l3, d2, x);
+        kind = 1;
+    } else if (d2 > 0) {
+        double gamma = sqrt(d2);
+        cp = CMPLX(l1, gamma);
+        cq = CMPLX(l3, gamma * l2);
+        kind = 0;
+    } else {
+        kind = -1;
+    }
+    /* Case III: d2 (nearly) 0 -- compare with the d2 = 0 factorisation. */
+    double tiny = DBL_EPSILON * fmax(fabs(2 * b / 3), fmax(fabs(phi0), l1 * l1));
+    if (kind == -1 || fabs(d2) <= tiny) {
+        double err0 = INFINITY;
+        if (kind == 1)
+            err0 = factor_error(a, b, c, d, x[0], x[1], x[2], x[3], 1);
+        else if (kind == 0)
+            err0 = cfactor_error(a, b, c, d, cp, cq, conj(cp), conj(cq));
+        if (d3 <= 0) {
+            double y[4] = {l1, l3 + sqrt(-d3), l1, l3 - sqrt(-d3)};
+            if (fabs(y[3]) < fabs(y[1]))
+                y[3] = d / y[1];
+            else if (fabs(y[3]) > fabs(y[1]))
+                y[1] = d / y[3];
+            double err1 = factor_error(a, b, c, d, y[0], y[1], y[2], y[3], 1);
+            if (kind == -1 || err1 < err0) {
+                for (int i = 0; i < 4; i++)
+                    x[i] = y[i];
+                kind = 1;
+            }
+        } else {
+            double complex p1 = l1, q1 = CMPLX(l3, sqrt(d3));
+            double err1 = cfactor_error(a, b, c, d, p1, q1, conj(p1), conj(q1));
+            if (kind == -1 || err1 < err0) {
+                cp = p1;
+                cq = q1;
+                kind = 0;
+            }
+        }
+    }
+    if (kind == 1) {
+        refine_factors(a, b, c, d, x);
+        monic_quadratic_roots(x[0], x[1], zr, zi);
+        monic_quadratic_roots(x[2], x[3], zr + 2, zi + 2);
+    } else {
+        /* (x^2 + cp x + cq)(x^2 + conj(cp) x + conj(cq)): roots pair up as
+         * conjugates; the small one from the product of the roots. */
+        double complex disc = csqrt(cp * cp / 4 - cq);
+        double complex z1 = -cp / 2 + disc, z2 = -cp / 2 - disc;
+        double complex zmax = cabs(z1) > cabs(z2) ? z1 : z2;
+        double complex zmin = cq / zmax;
+        zr[0] = creal(zmin); zi[0] = cimag(zmin);
+        zr[1] = creal(zmin); zi[1] = -cimag(zmin);
+        zr[2] = creal(zmax); zi[2] = cimag(zmax);
+        zr[3] = creal(zmax); zi[3] = -cimag(zmax);
+    }
+    for (int i = 0; i < 4; i++) {
+        zr[i] *= rescale;
+        zi[i] *= rescale;
+    }
+}
+
+/* Closed method for degree 3..4 (cubic as t * p(t), see header). */
+static int first_root_closed(const double c[], int n, double tmax, double *t,
+                             int *graze)
+{
+    double q[5], zr[4], zi[4];
+    if (n == 3) {
+        q[0] = 0;
+        for (int i = 0; i <= 3; i++)
+            q[i + 1] = c[i];
+    } else {
+        for (int i = 0; i <= 4; i++)
+            q[i] = c[i];
+    }
+    quartic_roots(q, zr, zi);
+    return pick_first_real(zr, zi, 4, tmax, t, graze);
+}
+
+/* ------------------------------------------------------------------ */
+/* Entry points                                                         */
+/* ------------------------------------------------------------------ */
+
+int m2c_first_root_ex(const double c_in[], int degree, double tmax, double *t,
+                      int method, int *graze)
+{
+    if (!input_is_valid(c_in, degree, tmax, t))
+        return -1;
+    if (method < M2C_METHOD_INTERVAL || method > M2C_METHOD_CLOSED)
+        return -1;
+    double c[MAXN + 1];
+    for (int i = 0; i <= degree; i++)
+        c[i] = c_in[i];
+    int n = reduce(c, degree, tmax);
+    if (n <= 0)
+        return 0;
+    normalise(c, n);
+
+    int g = 0, found = 0;
+    double root = 0;
+    int graze_check = method != M2C_METHOD_INTERVAL_NOGRAZE;
+    if (n == 1) {
+        root = -c[0] / c[1];
+        found = root > 0 && root <= tmax;
+    } else if (n == 2) {
+        found = first_root_quadratic(c, tmax, graze_check, &root, &g);
+    } else if (method == M2C_METHOD_GSL) {
+        found = first_root_gsl(c, n, tmax, &root, &g);
+    } else if (method == M2C_METHOD_CLOSED && n <= 4) {
+        found = first_root_closed(c, n, tmax, &root, &g);
+    } else {
+        /* all roots lie below the bound: a smaller window, fewer steps */
+        double T = fmin(tmax, root_bound(c, n));
+        if (T > 0)
+            found = first_root_interval(c, n, T, graze_check, &root, &g);
+    }
+    if (!found)
+        return 0;
+    *t = root;
+    if (graze != NULL)
+        *graze = g;
+    return 1;
+}
+
+int m2c_first_root_method(const double c[], int degree, double tmax, double *t,
+                          int method)
+{
+    return m2c_first_root_ex(c, degree, tmax, t, method, NULL);
+}
+
+int m2c_first_root(const double c[], int degree, double tmax, double *t)
+{
+    return m2c_first_root_ex(c, degree, tmax, t, M2C_METHOD_INTERVAL, NULL);
+}

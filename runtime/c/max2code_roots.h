@@ -1,0 +1,96 @@
+/*
+ * max2code_roots.h -- time of next collision: the smallest root in (0, tmax]
+ * of a real polynomial  c[0] + c[1] t + ... + c[degree] t^degree,  degree <= 8.
+ *
+ * Plain C11 functions with int/double/pointer arguments only, so that the
+ * header works from generated `static` C code and from Modula-2 through a
+ * DEFINITION MODULE FOR "C".  A program compiles runtime/c/max2code_roots.c and
+ * links -lgsl -lgslcblas -lm (GSL is used only by M2C_METHOD_GSL).
+ *
+ * Contract (all functions)
+ *   return  1  a root was found: 0 < *t <= tmax, *t set;
+ *           0  no root in (0, tmax];
+ *          -1  invalid input: a NaN/Inf coefficient, degree outside 0..8,
+ *              tmax NaN or <= 0, or a NULL pointer.
+ *   *t (and *graze) are written only when 1 is returned.
+ *   tmax may be +INFINITY: no upper limit.
+ *   An identically zero polynomial (bodies touching forever) gives 0.
+ *
+ * Preparation shared by every method
+ *   1. Leading coefficients that are exactly 0 are dropped.
+ *   2. If c[0] == 0 exactly (the bodies touch now), the polynomial is divided
+ *      by t: we want the next root strictly after 0.
+ *   3. A leading coefficient is dropped when it is negligible over the
+ *      window [0, T]:  |c_n| T^n <= 4 n DBL_EPSILON max_{i<n} |c_i| T^i,
+ *      with T = tmax when tmax is finite, and otherwise T = a Fujiwara bound
+ *      on the roots of the remaining polynomial c_0..c_{n-1}
+ *      (2 max_i |c_i / c_m|^(1/(m-i)), rounded up to a power of two).  So with
+ *      tmax = +INFINITY a root that only exists because of a term that is
+ *      negligible wherever the other roots live (|t| ~ 1/(4 n eps) times
+ *      their scale and beyond) is treated as "no root".  There is no absolute
+ *      threshold anywhere.
+ *   Steps 1-3 repeat until nothing changes; then the coefficients are scaled
+ *   by a power of two (exact) so that the largest has magnitude in [1/2, 1).
+ *
+ * Methods
+ *   M2C_METHOD_INTERVAL (default)  Yuksel (HPG 2022) style interval solver:
+ *     the roots of the derivatives, found recursively, split the window into
+ *     monotone pieces; the first piece whose ends change sign is polished by
+ *     safeguarded Newton (bisection -- geometric when the bracket spans
+ *     decades -- whenever Newton leaves the bracket or stalls) to full
+ *     relative double accuracy.  Graze check: at each critical point x
+ *     before the first sign change, if |p(x)| <= 2 gamma_{2n} sum |c_i||x|^i
+ *     (the standard Horner rounding bound, gamma_k = k u / (1 - k u),
+ *     u = 2^-53, times a safety factor 2) and p has the same sign on both
+ *     neighbouring pieces, x is reported as a touching (double) root with
+ *     *graze = 1.  Degree 1 and 2 use closed forms; the quadratic uses an
+ *     FMA-corrected discriminant (Kahan) and the cancellation-free formula;
+ *     its graze check is the same bound at the vertex.  An exactly zero
+ *     discriminant is always reported as a graze.
+ *     With tmax = +INFINITY the window is (0, B] with B the Fujiwara bound.
+ *   M2C_METHOD_INTERVAL_NOGRAZE  the same without the graze check (benchmark
+ *     baseline: misses double roots, as plain interval solvers do).
+ *   M2C_METHOD_GSL  what the original tool did: gsl_poly_complex_solve
+ *     (companion matrix) with GSL's error handler switched off for the call
+ *     (and restored), smallest root in (0, tmax] whose imaginary part is at
+ *     most sqrt(DBL_EPSILON) times its modulus; such a root with nonzero
+ *     imaginary part is reported as a graze.  Closed forms for degree <= 2.
+ *   M2C_METHOD_CLOSED  closed forms: the quadratic above for degree <= 2; for
+ *     degree 3 and 4 the quartic solver of Orellana & De Michele (ACM TOMS
+ *     Algorithm 1010: LDL^T factoring into two quadratics, refined by
+ *     Newton on the factor coefficients), a cubic being solved as the quartic
+ *     t * p(t) whose extra root 0 lies outside (0, tmax].  Real roots are
+ *     chosen as for GSL.  Degree > 4 falls back to M2C_METHOD_INTERVAL.
+ */
+#ifndef MAX2CODE_ROOTS_H
+#define MAX2CODE_ROOTS_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define M2C_MAX_DEGREE 8
+
+#define M2C_METHOD_INTERVAL 0
+#define M2C_METHOD_INTERVAL_NOGRAZE 1
+#define M2C_METHOD_GSL 2
+#define M2C_METHOD_CLOSED 3
+
+/* Default method (interval solver with graze check). */
+int m2c_first_root(const double c[], int degree, double tmax, double *t);
+
+/* Any method; an unknown method number is invalid input (-1). */
+int m2c_first_root_method(const double c[], int degree, double tmax, double *t,
+                          int method);
+
+/* Like m2c_first_root_method; also sets *graze (when 1 is returned) to 1 if
+ * the reported root is a touch (double root without sign change), else 0.
+ * graze may be NULL. */
+int m2c_first_root_ex(const double c[], int degree, double tmax, double *t,
+                      int method, int *graze);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* MAX2CODE_ROOTS_H */
