@@ -1,0 +1,58 @@
+"""Command line: `max2code --lang=X FILE.mxm -o OUT`, and `max2code build` for the main job."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from . import __version__, maxima
+from .diagnostics import Max2CodeError
+from .generate import generate, load
+from .languages import LANGUAGES
+from .output import write_if_changed
+
+
+def _parser() -> argparse.ArgumentParser:
+    ap = argparse.ArgumentParser(
+        prog="max2code",
+        description="Turn a Maxima collision equation (.mxm) into C, Python, ... code. "
+                    "Subcommands: 'max2code build --help'.")
+    ap.add_argument("--version", action="version", version=f"max2code {__version__}")
+    ap.add_argument("--lang", choices=sorted(LANGUAGES), required=True,
+                    help="target language")
+    ap.add_argument("-o", "--output", default="-", metavar="FILE",
+                    help="output file ('-' for standard output, the default)")
+    ap.add_argument("--emit", choices=["auto", "fragment", "module"], default="auto",
+                    help="fragment: the paper's initialise/terms/finalise text; module: the "
+                         "functions of the generated-code contract; auto (default): fragment if "
+                         "the .mxm has term blocks, else module")
+    ap.add_argument("--timeout", type=float, default=maxima.DEFAULT_TIMEOUT, metavar="SECONDS",
+                    help=f"limit on one Maxima run (default {maxima.DEFAULT_TIMEOUT:g})")
+    ap.add_argument("input", metavar="FILE.mxm")
+    return ap
+
+
+def report(exc: Max2CodeError) -> int:
+    for diag in exc.diagnostics:
+        print(diag, file=sys.stderr)
+    return 1
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = list(sys.argv[1:] if argv is None else argv)
+    if args and args[0] == "build":
+        from .build import main as build_main
+        return build_main(args[1:])
+    opts = _parser().parse_args(args)
+    try:
+        spec, poly = load(opts.input, opts.timeout)
+        out_name = "<stdout>" if opts.output == "-" else opts.output
+        result = generate(spec, poly, LANGUAGES[opts.lang], opts.emit, out_name)
+        for warning in result.warnings:
+            print(warning, file=sys.stderr)
+        write_if_changed(opts.output, result.text)
+    except Max2CodeError as exc:
+        return report(exc)
+    except KeyboardInterrupt:
+        return 130
+    return 0

@@ -1,0 +1,151 @@
+"""What every language printer shares: precedence-driven printing of expression trees.
+
+A language subclasses `Language` and states its rules (literals, powers, functions, keywords,
+line directives, terminators); the templates hold the layout. Nothing here names a language.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from fractions import Fraction
+
+from ..diagnostics import Pos
+from ..expr import Add, Call, Div, Expr, Float, Mul, Neg, Num, Pow, Sym
+
+# Binding strength, loosest first.
+P_ADD, P_MUL, P_NEG, P_POW, P_ATOM = 1, 2, 3, 4, 5
+
+CONSTANT_VALUES = {"%pi": math.pi, "%e": math.e}
+
+
+@dataclass(frozen=True)
+class Language:
+    """A target language's printing rules. Subclasses override the hooks below."""
+
+    name: str = ""
+    extension: str = ""
+    keywords: frozenset[str] = frozenset()
+    # Largest integer exponent written as repeated multiplication.
+    max_inline_power: int = 8
+    functions: tuple[tuple[str, str], ...] = ()
+    terminator: str = ";"
+
+    # ---- hooks a language overrides -------------------------------------------------------
+    def float_literal(self, value: float) -> str:
+        text = repr(float(value))
+        if text in ("inf", "-inf", "nan"):
+            raise ValueError(f"non-finite constant {text} in an expression")
+        return text if any(ch in text for ch in ".e") else text + ".0"
+
+    def power_call(self, base: str, exponent: str) -> str:
+        raise NotImplementedError
+
+    def line_directive(self, pos: Pos) -> str:
+        """A line that points a debugger (or a reader) at `pos` in the .mxm source."""
+        raise NotImplementedError
+
+    def resume_directive(self, line: int, file: str) -> str | None:
+        """A line saying the next line is `line` of the generated `file`; None if not needed."""
+        return None
+
+    def comment(self, text: str) -> str:
+        raise NotImplementedError
+
+    # ---- shared rules ---------------------------------------------------------------------
+    def identifier(self, name: str) -> str:
+        """A parameter name made safe: keywords and our own reserved names get a trailing '_'."""
+        out = name.replace("%", "_")
+        while out in self.keywords or out.startswith("m2c_"):
+            out += "_"
+        return out
+
+    def number(self, value: Fraction) -> str:
+        if value.denominator == 1:
+            return self.float_literal(float(value.numerator))
+        return f"({self.float_literal(float(value.numerator))}/{self.float_literal(float(value.denominator))})"
+
+    def expr(self, e: Expr) -> str:
+        return self._print(e)[0]
+
+    def _print(self, e: Expr) -> tuple[str, int]:
+        """Text and binding strength of `e`."""
+        if isinstance(e, Num):
+            text = self.number(abs(e.value))
+            return ("-" + text, P_NEG) if e.value < 0 else (text, P_ATOM)
+        if isinstance(e, Float):
+            text = self.float_literal(abs(e.value))
+            return ("-" + text, P_NEG) if e.value < 0 else (text, P_ATOM)
+        if isinstance(e, Sym):
+            if e.name in CONSTANT_VALUES:
+                return self.float_literal(CONSTANT_VALUES[e.name]), P_ATOM
+            return self.identifier(e.name), P_ATOM
+        if isinstance(e, Neg):
+            # Negation is exact, so -(a*b) may print as -a*b: a sign never changes a rounding.
+            return "-" + self._wrap(e.arg, P_NEG + 1 if isinstance(e.arg, Neg) else P_MUL), P_NEG
+        if isinstance(e, Add):
+            parts = [self._wrap(e.args[0], P_ADD)]
+            for arg in e.args[1:]:
+                if isinstance(arg, Neg):
+                    parts.append(" - " + self._wrap(arg.arg, P_ADD + 1))
+                elif isinstance(arg, Num) and arg.value < 0:
+                    parts.append(" - " + self.number(-arg.value))
+                else:
+                    parts.append(" + " + self._wrap(arg, P_ADD))
+            return "".join(parts), P_ADD
+        if isinstance(e, Mul):
+            return self._mul(e)
+        if isinstance(e, Div):
+            return f"{self._wrap(e.num, P_MUL)}/{self._wrap(e.den, P_MUL + 1)}", P_MUL
+        if isinstance(e, Pow):
+            return self._pow(e)
+        if isinstance(e, Call):
+            return self._call(e), P_ATOM
+        raise TypeError(f"cannot print {e!r}")
+
+    def _wrap(self, e: Expr, at_least: int) -> str:
+        text, prec = self._print(e)
+        return text if prec >= at_least else f"({text})"
+
+    def _mul(self, e: Mul) -> tuple[str, int]:
+        """Signs are pulled to the front so `a*(-b)` prints as `-(a*b)`'s plain form `-a*b`."""
+        negative = False
+        factors: list[Expr] = []
+        for f in e.args:
+            if isinstance(f, Neg):
+                negative, f = not negative, f.arg
+            elif isinstance(f, Num) and f.value < 0:
+                negative, f = not negative, Num(-f.value)
+            if isinstance(f, Num) and f.value == 1:
+                continue
+            factors.append(f)
+        if not factors:
+            text, prec = self.number(Fraction(1)), P_ATOM
+        else:
+            text = "*".join(self._wrap(f, P_MUL if i == 0 else P_MUL + 1) for i, f in enumerate(factors))
+            prec = P_MUL if len(factors) > 1 else self._print(factors[0])[1]
+        if negative:
+            return "-" + (text if prec >= P_MUL else f"({text})"), P_NEG
+        return text, prec
+
+    def _pow(self, e: Pow) -> tuple[str, int]:
+        exp = e.exp
+        if isinstance(exp, Num) and exp.value.denominator == 1:
+            n = exp.value.numerator
+            if n == 0:
+                return self.number(Fraction(1)), P_ATOM
+            if 1 <= abs(n) <= self.max_inline_power:
+                base = self._wrap(e.base, P_ATOM)
+                text = "*".join([base] * abs(n))
+                if n > 0:
+                    return text, (P_MUL if n > 1 else P_ATOM)
+                return f"{self.number(Fraction(1))}/{text if n == -1 else f'({text})'}", P_MUL
+        if isinstance(exp, Num) and exp.value == Fraction(1, 2):
+            return self._call(Call("sqrt", (e.base,))), P_ATOM
+        return self.power_call(self.expr(e.base), self.expr(exp)), P_ATOM
+
+    def _call(self, e: Call) -> str:
+        names = dict(self.functions)
+        if e.name not in names:
+            raise ValueError(f"function '{e.name}' has no equivalent in {self.name}")
+        return f"{names[e.name]}({', '.join(self.expr(a) for a in e.args)})"

@@ -1,0 +1,44 @@
+"""C (C11): `#line` directives, `pow` from <math.h>, and C's keywords avoided."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from ..diagnostics import Pos
+from .base import Language
+
+C_KEYWORDS = frozenset("""
+auto break case char const continue default do double else enum extern float for goto if inline
+int long register restrict return short signed sizeof static struct switch typedef union unsigned
+void volatile while _Alignas _Alignof _Atomic _Bool _Complex _Generic _Imaginary _Noreturn
+_Static_assert _Thread_local bool true false NULL main
+sin cos tan sqrt exp log pow fabs atan atan2 asin acos sinh cosh tanh floor ceil fmod
+""".split())
+
+
+def c_string(text: str) -> str:
+    return '"' + text.replace("\\", "\\\\").replace('"', '\\"') + '"'
+
+
+@dataclass(frozen=True)
+class C(Language):
+    name: str = "c"
+    extension: str = ".h"
+    keywords: frozenset[str] = C_KEYWORDS
+    functions: tuple[tuple[str, str], ...] = (
+        ("sin", "sin"), ("cos", "cos"), ("tan", "tan"), ("sqrt", "sqrt"), ("exp", "exp"),
+        ("log", "log"), ("abs", "fabs"), ("atan", "atan"), ("atan2", "atan2"),
+        ("asin", "asin"), ("acos", "acos"), ("sinh", "sinh"), ("cosh", "cosh"), ("tanh", "tanh"),
+    )
+
+    def power_call(self, base: str, exponent: str) -> str:
+        return f"pow({base}, {exponent})"
+
+    def line_directive(self, pos: Pos) -> str:
+        return f"#line {pos.line} {c_string(pos.file)}"
+
+    def resume_directive(self, line: int, file: str) -> str | None:
+        return f"#line {line} {c_string(file)}"
+
+    def comment(self, text: str) -> str:
+        return "/* " + text.replace("*/", "* /") + " */"

@@ -1,0 +1,35 @@
+"""Python: `# file.mxm:LINE` comments instead of line directives, `math` functions."""
+
+from __future__ import annotations
+
+import keyword
+from dataclasses import dataclass
+
+from ..diagnostics import Pos
+from .base import Language
+
+PY_KEYWORDS = frozenset(keyword.kwlist) | frozenset(keyword.softkwlist) | frozenset(
+    {"math", "p", "coefficients", "first_root", "PARAMS", "DEGREE", "NAME"})
+
+
+@dataclass(frozen=True)
+class Python(Language):
+    name: str = "python"
+    extension: str = ".py"
+    keywords: frozenset[str] = PY_KEYWORDS
+    terminator: str = ""
+    functions: tuple[tuple[str, str], ...] = (
+        ("sin", "math.sin"), ("cos", "math.cos"), ("tan", "math.tan"), ("sqrt", "math.sqrt"),
+        ("exp", "math.exp"), ("log", "math.log"), ("abs", "abs"), ("atan", "math.atan"),
+        ("atan2", "math.atan2"), ("asin", "math.asin"), ("acos", "math.acos"),
+        ("sinh", "math.sinh"), ("cosh", "math.cosh"), ("tanh", "math.tanh"),
+    )
+
+    def power_call(self, base: str, exponent: str) -> str:
+        return f"({base})**({exponent})"
+
+    def line_directive(self, pos: Pos) -> str:
+        return f"# {pos.file}:{pos.line}"
+
+    def comment(self, text: str) -> str:
+        return "# " + text

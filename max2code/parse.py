@@ -1,0 +1,196 @@
+"""Lark tree -> Spec, with `file:line:col` diagnostics for everything a user can get wrong."""
+
+from __future__ import annotations
+
+from functools import lru_cache
+from importlib import resources
+
+from lark import Lark, Token, Tree
+from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
+
+from .diagnostics import Max2CodeError, Pos, error
+from .maxima_text import split_statements
+from .spec import CodeBlock, Declared, Program, Spec, Term
+
+
+@lru_cache(maxsize=1)
+def _parser() -> Lark:
+    grammar = resources.files(__package__).joinpath("mxm.lark").read_text(encoding="utf-8")
+    return Lark(grammar, parser="lalr", regex=True, propagate_positions=True, maybe_placeholders=False)
+
+
+def read_source(path: str) -> str:
+    """Read an .mxm file as text; CRLF and CR endings become LF so positions are plain lines."""
+    try:
+        data = open(path, "rb").read()
+    except FileNotFoundError:
+        raise error(Pos(path, 1, 1), "no such file") from None
+    except IsADirectoryError:
+        raise error(Pos(path, 1, 1), "is a directory, not an .mxm file") from None
+    except OSError as exc:
+        raise error(Pos(path, 1, 1), f"cannot read: {exc.strerror}") from None
+    if b"\0" in data:
+        line = data[: data.index(b"\0")].count(b"\n") + 1
+        raise error(Pos(path, line, 1), "binary data (NUL byte): not an .mxm text file")
+    try:
+        text = data.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        line = data[: exc.start].count(b"\n") + 1
+        raise error(Pos(path, line, 1), f"not UTF-8 text (invalid byte at offset {exc.start})") from None
+    return text.replace("\r\n", "\n").replace("\r", "\n")
+
+
+def parse_file(path: str) -> Spec:
+    return parse_text(read_source(path), path)
+
+
+def parse_text(text: str, path: str) -> Spec:
+    if not text.strip():
+        raise error(Pos(path, 1, 1), "empty file: expected .mxm sections and a Maxima program")
+    try:
+        tree = _parser().parse(text)
+    except UnexpectedInput as exc:
+        raise _syntax_error(exc, text, path) from None
+    return _Builder(path).build(tree)
+
+
+def _syntax_error(exc: UnexpectedInput, text: str, path: str) -> Max2CodeError:
+    if isinstance(exc, UnexpectedEOF):
+        line = text.count("\n") + 1
+        col = len(text) - text.rfind("\n")
+        return error(Pos(path, line, col), "unexpected end of file: expected the Maxima program "
+                     "(begin ... end, or a { ... } block)")
+    pos = Pos(path, exc.line, exc.column)
+    if isinstance(exc, UnexpectedCharacters):
+        ch = text[exc.pos_in_stream] if exc.pos_in_stream < len(text) else ""
+        if ch == "{":
+            return error(pos, "unterminated block: this '{' has no matching '}'")
+        if ch == "}":
+            return error(pos, "'}' without a matching '{'")
+        if text.startswith("begin", exc.pos_in_stream):
+            return error(pos, "unterminated 'begin': no line starting with 'end' follows")
+        return error(pos, f"unexpected character {ch!r}")
+    if isinstance(exc, UnexpectedToken):
+        tok = exc.token
+        if tok.type == "$END":
+            return error(pos, "unexpected end of file: expected the Maxima program "
+                         "(begin ... end, or a { ... } block)")
+        expected = ", ".join(sorted(_describe(t) for t in exc.expected))
+        return error(pos, f"unexpected {_describe(tok.type)} {str(tok)[:20]!r}; expected {expected}")
+    return error(pos, str(exc).splitlines()[0])
+
+
+def _describe(terminal: str) -> str:
+    names = {"BRACED": "'{ ... }' block", "BEGIN_END": "'begin ... end'", "INT": "number",
+             "NAME": "name", "COMMA": "','", "$END": "end of file"}
+    return names.get(terminal, terminal.lower().strip("_"))
+
+
+class _Builder:
+    """Walks the Lark tree once, checking what the grammar alone cannot."""
+
+    def __init__(self, path: str) -> None:
+        self.path = path
+
+    def pos(self, node: Tree | Token) -> Pos:
+        if isinstance(node, Token):
+            return Pos(self.path, node.line or 1, node.column or 1)
+        return Pos(self.path, node.meta.line, node.meta.column)
+
+    def block(self, tok: Token, lang: str | None) -> CodeBlock:
+        """The text inside the braces; its position is that of the first character after '{'."""
+        return CodeBlock(str(tok)[1:-1], Pos(self.path, tok.line or 1, (tok.column or 1) + 1), lang)
+
+    def build(self, tree: Tree) -> Spec:
+        fields: dict[str, object] = {}
+        initialise: list[CodeBlock] = []
+        finalise: list[CodeBlock] = []
+        terms: list[Term] = []
+        program: Program | None = None
+        seen: dict[str, Pos] = {}
+        for node in tree.children:
+            kind = node.data
+            if kind in ("terms_decl", "function_decl", "parameters_decl", "variable_decl"):
+                if kind in seen:
+                    raise error(self.pos(node), f"duplicate '{_keyword(kind)}' declaration "
+                                f"(first at line {seen[kind].line})")
+                seen[kind] = self.pos(node)
+            if kind == "terms_decl":
+                count = int(node.children[0])
+                if count < 1:
+                    raise error(self.pos(node.children[0]), "'polynomial terms' must be at least 1")
+                fields["terms_declared"] = Declared(count, self.pos(node))
+            elif kind == "function_decl":
+                fields["function"] = Declared(str(node.children[0]), self.pos(node.children[0]))
+            elif kind == "parameters_decl":
+                names = [str(c) for c in node.children]
+                dup = sorted({n for n in names if names.count(n) > 1})
+                if dup:
+                    raise error(self.pos(node), f"parameter {dup[0]!r} is listed twice")
+                fields["parameters"] = Declared(tuple(names), self.pos(node))
+            elif kind == "variable_decl":
+                fields["variable"] = str(node.children[0])
+            elif kind in ("initialise", "finalise"):
+                lang, tok = self.tagged(node.children)
+                target = initialise if kind == "initialise" else finalise
+                self.check_unique(target, lang, kind, node)
+                target.append(self.block(tok, lang))
+            elif kind == "term":
+                index = int(node.children[0])
+                lang, tok = self.tagged(node.children[1:])
+                terms.append(Term(index, self.block(tok, lang), self.pos(node)))
+            elif kind == "program":
+                program = self.program(node.children[0])
+        assert program is not None  # the grammar requires it
+        self.check_terms(terms, fields.get("terms_declared"))  # type: ignore[arg-type]
+        return Spec(path=self.path, program=program, initialise=tuple(initialise),
+                    terms=tuple(terms), finalise=tuple(finalise), **fields)  # type: ignore[arg-type]
+
+    def tagged(self, children: list) -> tuple[str | None, Token]:
+        if len(children) == 2:
+            return str(children[0].children[0]), children[1]
+        return None, children[0]
+
+    def check_unique(self, blocks: list[CodeBlock], lang: str | None, kind: str, node: Tree) -> None:
+        for b in blocks:
+            if b.lang == lang:
+                what = f"'{kind} {lang}'" if lang else f"'{kind}'"
+                raise error(self.pos(node), f"duplicate {what} block (first at line {b.pos.line})")
+
+    def check_terms(self, terms: list[Term], declared: Declared | None) -> None:
+        """Per language tag, terms must run 0, 1, 2, ... once each, within the declared count."""
+        by_lang: dict[str | None, list[Term]] = {}
+        for term in terms:
+            by_lang.setdefault(term.prefix.lang, []).append(term)
+        for group in by_lang.values():
+            for expected, term in enumerate(group):
+                if term.index == expected:
+                    continue
+                earlier = [t for t in group[:expected] if t.index == term.index]
+                if earlier:
+                    raise error(term.pos, f"duplicate 'term {term.index}' (first at line "
+                                f"{earlier[0].pos.line})")
+                if term.index < expected:
+                    raise error(term.pos, f"'term {term.index}' is out of order: terms must be "
+                                f"given as 0, 1, 2, ...; expected 'term {expected}' here")
+                raise error(term.pos, f"'term {expected}' is missing before 'term {term.index}'")
+            if declared is not None and len(group) > int(declared.value):  # type: ignore[arg-type]
+                extra = group[int(declared.value)]  # type: ignore[arg-type]
+                raise error(extra.pos, f"'term {extra.index}' is beyond 'polynomial terms "
+                            f"{declared.value}' (line {declared.pos.line})")
+
+    def program(self, tok: Token) -> Program:
+        raw = str(tok)
+        if tok.type == "BEGIN_END":
+            body = raw[len("begin"):]
+            body = body[: body.rstrip().rfind("\n") + 1] if "\n" in body.rstrip() else ""
+            offset = len("begin")
+        else:
+            body, offset = raw[1:-1], 1
+        start = Pos(self.path, tok.line or 1, (tok.column or 1) + offset)
+        return Program(split_statements(body, start), self.pos(tok))
+
+
+def _keyword(kind: str) -> str:
+    return {"terms_decl": "polynomial terms", "function_decl": "function",
+            "parameters_decl": "parameters", "variable_decl": "variable"}[kind]
