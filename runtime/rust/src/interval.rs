@@ -138,7 +138,9 @@ pub(crate) fn all_roots(c: &[f64; 9], n: usize, hi: f64, out: &mut [f64; 8]) -> 
 
 /// First root in `(0, hi]` of the degree-n (n >= 3) polynomial `c` with `c[0] != 0`.
 /// Returns `(root, graze)`.  With `graze_test`, a critical point where `|p|` is within the
-/// rounding-error bound and `p` keeps its sign on both sides is reported as a graze.
+/// rounding-error bound and `p` keeps its sign on both sides is reported as a graze.  An
+/// exact zero at a critical point is reported by both variants (graze unless p changes
+/// sign across it).
 pub(crate) fn first_root(c: &[f64; 9], n: usize, hi: f64, graze_test: bool) -> Option<(f64, bool)> {
     let d = derivative(c, n);
     let mut crit = [0.0; 8];
@@ -163,15 +165,9 @@ pub(crate) fn first_root(c: &[f64; 9], n: usize, hi: f64, graze_test: bool) -> O
             let f_next = eval(c, n, point(j + 1));
             lookahead = Some(f_next);
             if f == 0.0 {
-                if opposite(f_prev, f_next) {
-                    // crossing exactly through zero (odd multiplicity)
-                    return Some((x, false));
-                }
-                if graze_test {
-                    return Some((x, true));
-                }
-                // IntervalNoGraze: an exact touching point is skipped; keep f_prev
-                continue;
+                // An exact zero is a root for every method (the no-graze method skips only
+                // the rounding-error test); it is a touch unless p crosses through it.
+                return Some((x, !opposite(f_prev, f_next)));
             }
             if !opposite(f, f_next) {
                 return Some((x, true));

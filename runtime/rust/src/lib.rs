@@ -10,8 +10,9 @@
 //!    that is NaN or `<= 0` gives [`Status::Invalid`].  `tmax = f64::INFINITY` means no upper
 //!    limit.  An empty slice or all-zero coefficients give [`Status::NoRoot`].
 //! 2. **Degree drop.**  Leading coefficients are dropped while they are exactly zero or
-//!    negligible over the window: with `T = tmax` if finite, else the Fujiwara bound of the
-//!    remaining coefficients `c[0..n]` on the magnitude of their roots, `c[n]` is dropped
+//!    negligible over the window: with `T = tmax` if finite, else a Fujiwara bound of the
+//!    remaining coefficients `c[0..n]` on the magnitude of their roots
+//!    (`2 max_i |c_i/c_m|^(1/(m-i))`, rounded up to a power of two), `c[n]` is dropped
 //!    while `|c[n]| T^n <= 4 n eps max_{i<n} |c[i]| T^i` (`eps = f64::EPSILON`).  The test is
 //!    relative — there is no absolute threshold — and a polynomial whose other coefficients
 //!    are all zero never loses its leading term.  (When `tmax` is infinite a tiny leading
@@ -40,8 +41,13 @@
 //! change where `|p(x)| <= 2 gamma_{2n} sum |c_i| x^i` (the Horner rounding-error bound with
 //! safety factor 2, `gamma_k = k u / (1 - k u)`, `u = 2^-53`) and where `p` has the same sign
 //! on both sides is reported as `Root { t: x, graze: true }`.  For a quadratic the critical
-//! point is the vertex `-b/2a` when the discriminant is negative (or exactly zero).
-//! [`Method::IntervalNoGraze`] reports sign changes only (it never returns `graze: true`).
+//! point is the vertex `-b/2a` when the discriminant is negative.
+//! [`Method::IntervalNoGraze`] skips this rounding-error test, so it misses double roots
+//! that rounding turned into a complex pair.  Every method reports an *exact* zero at a
+//! critical point (and an exactly zero quadratic discriminant) as a root, flagged as a graze
+//! unless `p` changes sign across it (the C runtime flags these as grazes unconditionally;
+//! the difference only shows for a crossing of odd multiplicity >= 3 that rounds to an exact
+//! zero).
 //!
 //! # Guarantees
 //!
@@ -146,7 +152,7 @@ fn quadratic_first(c: &[f64; 9], hi: f64, graze: bool) -> Option<(f64, bool)> {
                 None
             }
         }
-        Quad::Double(x) => (graze && inside(x)).then_some((x, true)),
+        Quad::Double(x) => inside(x).then_some((x, true)),
         Quad::Complex(x) => (graze
             && inside(x)
             && fp::eval(c, 2, x).abs() <= fp::graze_bound(c, 2, x))
@@ -163,20 +169,28 @@ struct Prepared {
     hi: f64,
 }
 
-/// Fujiwara's bound on the magnitude of the roots of `c[0..=m]` (`c[m] != 0`, `m >= 1`):
-/// `2 max(|c[m-1]/c[m]|, |c[m-2]/c[m]|^(1/2), ..., |c[0]/(2 c[m])|^(1/m))`.
-fn fujiwara(c: &[f64], m: usize) -> f64 {
-    let lead = c[m].abs();
-    let mut b: f64 = 0.0;
-    for (i, ci) in c[..m].iter().enumerate() {
-        let mut r = ci.abs() / lead;
-        if i == 0 {
-            r *= 0.5;
-        }
-        let k = (m - i) as f64;
-        b = b.max(if m - i == 1 { r } else { r.powf(1.0 / k) });
+/// Fujiwara-type bound on the magnitude of the roots of `c[0..=m]` (`c[m] != 0`, `m >= 1`):
+/// `2 max_i |c[i]/c[m]|^(1/(m-i))`, each ratio rounded up to a power of two from the
+/// exponents alone (no overflow, no logarithms), so the result is a power of two (or
+/// `f64::MAX`) and every root `z` has `|z| <` it.  Same formula as the C runtime.
+fn root_bound(c: &[f64], m: usize) -> f64 {
+    let em = ilogb(c[m]) as i64;
+    let best = c[..m]
+        .iter()
+        .enumerate()
+        .filter(|(_, v)| **v != 0.0)
+        .map(|(i, v)| {
+            // |c_i / c_m| < 2^r; ceil(r / (m - i))
+            let r = ilogb(*v) as i64 + 1 - em;
+            let k = (m - i) as i64;
+            r.div_euclid(k) + i64::from(r.rem_euclid(k) != 0)
+        })
+        .max();
+    match best {
+        None => 0.0,
+        Some(b) if b + 1 > 1023 => f64::MAX,
+        Some(b) => ldexp(1.0, b + 1),
     }
-    2.0 * b
 }
 
 /// Is the leading coefficient `c[n]` negligible over `(0, T]` (see the crate docs)?
@@ -191,7 +205,7 @@ fn negligible_lead(c: &[f64], n: usize, tmax: f64) -> bool {
         if m == 0 {
             return false; // remaining polynomial is a constant: c[n] decides the roots
         }
-        fujiwara(c, m)
+        root_bound(c, m)
     };
     let k = 4.0 * n as f64 * f64::EPSILON;
     let lead = c[n].abs();

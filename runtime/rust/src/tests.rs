@@ -184,7 +184,13 @@ fn exact_double_root_quadratic() {
     // (t - 1)^2: exact zero discriminant
     assert_eq!(first_root_status(&[1.0, -2.0, 1.0], INF, Method::Interval), Status::Root { t: 1.0, graze: true });
     assert_eq!(first_root_status(&[1.0, -2.0, 1.0], INF, Method::Closed), Status::Root { t: 1.0, graze: true });
-    assert_eq!(first_root_status(&[1.0, -2.0, 1.0], INF, Method::IntervalNoGraze), Status::NoRoot);
+    // an exact zero is a root for every method
+    assert_eq!(first_root_status(&[1.0, -2.0, 1.0], INF, Method::IntervalNoGraze), Status::Root { t: 1.0, graze: true });
+    // exact double root at a critical point of a cubic: (t - 1)^2 (t - 4)
+    let c = from_roots(&[1.0, 1.0, 4.0], &[]);
+    for m in ALL {
+        assert_eq!(first_root_status(&c, INF, m), Status::Root { t: 1.0, graze: true }, "{m:?}");
+    }
     // (t - 0.1)^2 + tiny: negative discriminant within rounding -> graze at the vertex
     let c = [0.01 + 1e-18, -0.2, 1.0];
     let (t, g) = root(&c, INF, Method::Interval);
