@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 
 from . import __version__, maxima
@@ -39,6 +40,22 @@ def report(exc: Max2CodeError) -> int:
 
 
 def main(argv: list[str] | None = None) -> int:
+    """Entry point; an unexpected failure is reported in one line, not as a traceback."""
+    try:
+        return _main(argv)
+    except Max2CodeError as exc:
+        return report(exc)
+    except KeyboardInterrupt:
+        return 130
+    except Exception as exc:  # noqa: BLE001 - the last line of defence for build logs
+        if os.environ.get("MAX2CODE_DEBUG"):
+            raise
+        print(f"max2code: internal error: {type(exc).__name__}: {exc} "
+              f"(set MAX2CODE_DEBUG=1 for a traceback, and please report it)", file=sys.stderr)
+        return 2
+
+
+def _main(argv: list[str] | None) -> int:
     args = list(sys.argv[1:] if argv is None else argv)
     if args and args[0] == "build":
         from .build import main as build_main
@@ -50,6 +67,8 @@ def main(argv: list[str] | None = None) -> int:
         result = generate(spec, poly, LANGUAGES[opts.lang], opts.emit, out_name)
         for warning in result.warnings:
             print(warning, file=sys.stderr)
+        for path, text in result.companions:  # first: a definition precedes its implementation
+            write_if_changed(path, text)
         write_if_changed(opts.output, result.text)
     except Max2CodeError as exc:
         return report(exc)

@@ -141,6 +141,22 @@ def render(spec: Spec, poly: Polynomial, lang: Language, form: str, out_name: st
     return _resume_lines(text, lang, out_name)
 
 
+def render_companions(spec: Spec, poly: Polynomial, lang: Language, form: str,
+                      out_name: str) -> tuple[tuple[str, str], ...]:
+    """The files `lang` writes beside a module, as (path, text): `out_name` with each companion's
+    extension (or '-' when the module goes to standard output). Empty for a fragment."""
+    if form != "module" or not lang.companions:
+        return ()
+    ctx = context(spec, poly, lang)
+    out = []
+    for extension, stem in lang.companions:
+        path = "-" if out_name in ("-", "<stdout>") else str(Path(out_name).with_suffix(extension))
+        template = _environment(str(templates_dir() / lang.name)).get_template(f"{stem}.j2")
+        text = template.render(ctx=ctx)
+        out.append((path, _resume_lines(text, lang, path)))
+    return tuple(out)
+
+
 def _resume_lines(text: str, lang: Language, out_name: str) -> str:
     out: list[str] = []
     for line in text.split("\n"):

@@ -6,7 +6,7 @@ from dataclasses import dataclass
 
 from . import maxima
 from .diagnostics import Diagnostic, error
-from .emit import render
+from .emit import render, render_companions
 from .languages import LANGUAGES, Language
 from .parse import parse_file
 from .poly import Polynomial, check_declared_terms, polynomial
@@ -20,6 +20,8 @@ class Generated:
     text: str
     form: str
     warnings: tuple[Diagnostic, ...]
+    # Files written beside the output, as (path, text); e.g. a Modula-2 NAME.def beside NAME.mod.
+    companions: tuple[tuple[str, str], ...] = ()
 
 
 def check_tags(spec: Spec) -> None:
@@ -52,4 +54,5 @@ def generate(spec: Spec, poly: Polynomial, lang: Language, form: str, out_name: 
             raise error(mismatch.pos, mismatch.message)
         warnings.append(mismatch)
     text = render(spec, poly, lang, form, out_name)
-    return Generated(spec, poly, text, form, tuple(warnings))
+    companions = render_companions(spec, poly, lang, form, out_name)
+    return Generated(spec, poly, text, form, tuple(warnings), companions)

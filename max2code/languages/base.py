@@ -30,6 +30,9 @@ class Language:
     max_inline_power: int = 8
     functions: tuple[tuple[str, str], ...] = ()
     terminator: str = ";"
+    # Files the module form writes beside its output, as (extension, template stem) pairs:
+    # e.g. a definition module beside an implementation module. Rendered from the same context.
+    companions: tuple[tuple[str, str], ...] = ()
 
     # ---- hooks a language overrides -------------------------------------------------------
     def float_literal(self, value: float) -> str:

@@ -1,0 +1,107 @@
+"""Modula-2 (ISO, as GNU Modula-2 compiles it): `#line` for gm2 -fcpp, REAL literals, signs.
+
+Three Modula-2 rules shape the printing:
+
+* A real literal needs a digit on both sides of the point and an upper-case scale factor:
+  `2.0`, `1.0E-05`.
+* A sign may only begin a simple expression: `a*-b` and `a + -b` are syntax errors, so a signed
+  operand is parenthesised (`a*(-b)`) and a signed addend becomes a subtraction (`a - b`).
+* gm2 12 with `-fcpp` maps `#line N` to line N-1 (gcc maps it to N), and without a directive of
+  ours it numbers the whole preprocessed file one line low as well. Every directive is therefore
+  written as N+1, so gdb and DWARF land on line N. (Measured with `objdump --dwarf=decodedline`
+  and gdb; tests/test_line_directives.py checks it.)
+
+REAL, not LONGREAL: in gm2 on x86-64 SIZE(REAL) = 8 is C's double and SIZE(LONGREAL) = 16 is
+C's long double, so REAL is the type that matches the C runtime and the other three languages.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from ..diagnostics import Pos
+from ..expr import Add, Expr, Neg, Num
+from .base import P_ADD, P_NEG, Language
+from .c import c_string
+
+# Reserved words and pervasive identifiers of ISO Modula-2 and GNU Modula-2 (case-sensitive:
+# `TYPE` is a keyword, `type` is an ordinary name), the library modules the generated code
+# names, and the procedures and constants of the generated module itself.
+M2_KEYWORDS = frozenset("""
+AND ARRAY BEGIN BY CASE CONST DEFINITION DIV DO ELSE ELSIF END EXCEPT EXIT EXPORT FINALLY FOR
+FORWARD FROM IF IMPLEMENTATION IMPORT IN LOOP MOD MODULE NOT OF OR PACKEDSET POINTER PROCEDURE
+QUALIFIED RECORD REM REPEAT RETRY RETURN SET THEN TO TYPE UNTIL VAR WHILE WITH UNQUALIFIED ASM
+VOLATILE
+ABS BITSET BOOLEAN CAP CARDINAL CHAR CHR CMPLX COMPLEX DEC DISPOSE EXCL FALSE FLOAT HALT HIGH
+IM INC INCL INT INTEGER INTERRUPTIBLE LENGTH LFLOAT LONGCOMPLEX LONGREAL MAX MIN NEW NIL ODD ORD
+PROC PROTECTION RE REAL SIZE TRUE TRUNC UNINTERRUPTIBLE VAL LONGINT LONGCARD SHORTINT SHORTCARD
+SHORTREAL SHORTCOMPLEX LOC BYTE WORD ADDRESS ADR TSIZE SYSTEM CAST
+RealMath Max2codeRoots NParams Degree Coefficients FirstRoot ParamName
+""".split())
+
+
+@dataclass(frozen=True)
+class Modula2(Language):
+    name: str = "m2"
+    extension: str = ".mod"
+    keywords: frozenset[str] = M2_KEYWORDS
+    terminator: str = " ;"
+    functions: tuple[tuple[str, str], ...] = (
+        ("sin", "RealMath.sin"), ("cos", "RealMath.cos"), ("tan", "RealMath.tan"),
+        ("sqrt", "RealMath.sqrt"), ("exp", "RealMath.exp"), ("log", "RealMath.ln"),
+        ("abs", "ABS"), ("atan", "RealMath.arctan"), ("asin", "RealMath.arcsin"),
+        ("acos", "RealMath.arccos"),
+    )
+    # The DEFINITION MODULE is written beside the IMPLEMENTATION MODULE: NAME.mod -> NAME.def.
+    companions: tuple[tuple[str, str], ...] = ((".def", "definition"),)
+    # gm2 12 -fcpp puts `#line N` on line N-1; see the module docstring.
+    line_offset: int = 1
+
+    def float_literal(self, value: float) -> str:
+        text = super().float_literal(value)
+        mantissa, _, exponent = text.partition("e")
+        if "." not in mantissa:
+            mantissa += ".0"
+        return mantissa + ("E" + exponent if exponent else "")
+
+    def power_call(self, base: str, exponent: str) -> str:
+        return f"RealMath.power({base}, {exponent})"
+
+    def line_directive(self, pos: Pos) -> str:
+        return f"#line {pos.line + self.line_offset} {c_string(pos.file)}"
+
+    def resume_directive(self, line: int, file: str) -> str | None:
+        return f"#line {line + self.line_offset} {c_string(file)}"
+
+    def comment(self, text: str) -> str:
+        return "(* " + text.replace("*)", "* )").replace("(*", "( *") + " *)"
+
+    # ---- signs ----------------------------------------------------------------------------
+    def _print(self, e: Expr) -> tuple[str, int]:
+        """A signed operand binds like a sum in Modula-2: wherever a term is needed, it gets
+        parentheses."""
+        text, prec = self._signed(e)
+        return (text, P_ADD) if prec == P_NEG else (text, prec)
+
+    def _signed(self, e: Expr) -> tuple[str, int]:
+        """Like the shared printer, but a sum's later addends are never signed: `a + -b*c` is
+        written `a - b*c` (the same number: negation is exact)."""
+        if not isinstance(e, Add):
+            return super()._print(e)
+        parts = [self._wrap(e.args[0], P_ADD)]
+        for arg in e.args[1:]:
+            if isinstance(arg, Neg):
+                text, prec = self._signed(arg.arg)
+                parts.append(" - " + (text if prec > P_ADD and prec != P_NEG else f"({text})"))
+                continue
+            if isinstance(arg, Num) and arg.value < 0:
+                parts.append(" - " + self.number(-arg.value))
+                continue
+            text, prec = self._signed(arg)
+            if prec == P_NEG:  # always "-" followed by a term
+                parts.append(" - " + text[1:])
+            elif prec > P_ADD:
+                parts.append(" + " + text)
+            else:
+                parts.append(f" + ({text})")
+        return "".join(parts), P_ADD
