@@ -55,11 +55,10 @@ def parse_text(text: str, path: str) -> Spec:
 
 
 def _syntax_error(exc: UnexpectedInput, text: str, path: str) -> Max2CodeError:
+    end = Pos(path, text.count("\n") + 1, len(text) - text.rfind("\n"))
+    eof_message = "unexpected end of file: expected the Maxima program (begin ... end, or a { ... } block)"
     if isinstance(exc, UnexpectedEOF):
-        line = text.count("\n") + 1
-        col = len(text) - text.rfind("\n")
-        return error(Pos(path, line, col), "unexpected end of file: expected the Maxima program "
-                     "(begin ... end, or a { ... } block)")
+        return error(end, eof_message)
     pos = Pos(path, exc.line, exc.column)
     if isinstance(exc, UnexpectedCharacters):
         ch = text[exc.pos_in_stream] if exc.pos_in_stream < len(text) else ""
@@ -73,8 +72,7 @@ def _syntax_error(exc: UnexpectedInput, text: str, path: str) -> Max2CodeError:
     if isinstance(exc, UnexpectedToken):
         tok = exc.token
         if tok.type == "$END":
-            return error(pos, "unexpected end of file: expected the Maxima program "
-                         "(begin ... end, or a { ... } block)")
+            return error(end, eof_message)
         expected = ", ".join(sorted(_describe(t) for t in exc.expected))
         return error(pos, f"unexpected {_describe(tok.type)} {str(tok)[:20]!r}; expected {expected}")
     return error(pos, str(exc).splitlines()[0])
