@@ -1,0 +1,98 @@
+"""The pure-Python runtime (runtime/python/max2code_runtime) against the
+shared hard cases and random polynomials -- the same judge and the same
+bounds as the C runtime, except that Python has no GSL method."""
+from __future__ import annotations
+
+import math
+import os
+import sys
+from pathlib import Path
+from typing import Iterator, Sequence
+
+import pytest
+
+from . import cases
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "runtime" / "python"))
+import max2code_runtime as rt  # noqa: E402
+
+RANDOM_COUNT = int(os.environ.get("M2C_RANDOM_CASES", "3000"))
+ALL = cases.all_cases()
+PY_METHODS = list(rt.METHODS)
+
+Result = tuple[int, float, bool]
+
+
+@pytest.mark.parametrize("method", PY_METHODS)
+@pytest.mark.parametrize("case", ALL, ids=[c.name for c in ALL])
+def test_case(case: cases.Case, method: str) -> None:
+    st, t, g = rt.first_root_status(case.coeffs, case.tmax, method)
+    why = cases.judge(case, method, st, t, g)
+    assert why is None, f"{case.name} [{method}]: {why}"
+
+
+def test_first_root_contract() -> None:
+    assert rt.first_root(cases.KAHAN) == 1.0
+    assert rt.first_root([1.0, math.nan]) is None  # invalid -> None
+    assert rt.first_root([1.0, 1.0]) is None  # root -1: none
+    assert rt.first_root([-1.0, 1.0], tmax=0.5) is None
+    assert rt.first_root([-1.0, 1.0], tmax=1.0) == 1.0
+    assert rt.first_root_status([1.0] * 10) == (-1, pytest.approx(math.nan, nan_ok=True), False)
+    assert rt.first_root_status([], 1.0)[0] == -1
+    assert rt.first_root_status([-1.0, 1.0], 1.0, method="gsl")[0] == -1  # no GSL in Python
+    assert rt.first_root_status(["x"], 1.0)[0] == -1
+
+
+def test_graze_flag_and_nograze() -> None:
+    """A touch is reported flagged; without the check it is skipped."""
+    c = cases.poly_from_roots(["1", "1", "5"], [("0", "1")])
+    c = (c[0] * (1 + 2.0**-52),) + c[1:]  # no exact zero at the touch
+    st, t, g = rt.first_root_status(c)
+    assert st == 1 and g and abs(t - 1) < 1e-7
+    st, t, g = rt.first_root_status(c, method="interval-nograze")
+    assert st == 1 and abs(t - 5) < 1e-12 and not g
+
+
+def test_python_matches_c_algorithm_on_kahan_discriminant() -> None:
+    """Dekker's two-product gives the exact error fma would: the corrected
+    discriminant of Kahan's quadratic is exactly h^2 - a c = 1 (scaled)."""
+    from max2code_runtime.roots import quad_roots
+
+    roots, disc = quad_roots(94906266.375, -2 * 94906267.375, 94906268.375)
+    assert roots[0] == 1.0
+    assert roots[1] == pytest.approx(1.0000000210734243, rel=4e-16)
+    assert disc > 0
+
+
+# Same kappa-relative bounds as for C (see test_c_runtime.random_bound).
+RANDOM_BOUND = {"interval": 8.0, "interval-nograze": 8.0, "closed": 64.0}
+
+
+def random_bound(method: str, degree: int, kappa: float) -> float:
+    k = RANDOM_BOUND["interval"] if method == "closed" and degree > 4 else RANDOM_BOUND[method]
+    return k * cases.U * max(1.0, degree * kappa)
+
+
+def _random_failures(rc: Sequence[cases.RandomCase]) -> Iterator[str]:
+    for case in rc:
+        o = cases.oracle(case.coeffs, case.tmax)
+        for method in PY_METHODS:
+            st, t, g = rt.first_root_status(case.coeffs, case.tmax, method)
+            if st not in (0, 1):
+                yield f"{case}: [{method}] status {st}"
+                continue
+            if o.kind != "simple" or o.touches:
+                continue
+            bound = random_bound(method, len(case.coeffs) - 1, o.kappa)
+            if o.root is None:
+                if st != 0:
+                    yield f"{case}: [{method}] spurious root {t!r}"
+            elif st != 1:
+                yield f"{case}: [{method}] missed {float(o.root)!r}"
+            elif cases.rel_error(t, o.root) > bound:
+                yield f"{case}: [{method}] rel err {cases.rel_error(t, o.root):.3g} > {bound:.3g}"
+
+
+def test_random() -> None:
+    bad = list(_random_failures(cases.random_cases(RANDOM_COUNT)))
+    assert not bad, f"{len(bad)} failures, first: " + "\n".join(bad[:10])
