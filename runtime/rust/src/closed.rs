@@ -9,25 +9,28 @@
 //!
 //! Complex pairs close to the real axis are tested for a graze at their real part (refined
 //! to the nearby critical point of p), with the same rounding-error bound as the interval
-//! method.  Any non-finite intermediate makes the caller fall back to the interval method.
+//! method.  Any non-finite intermediate, a root in the window whose residual exceeds
+//! `32 gamma_{2n} sum |c_i| |x|^i`, or a root just beyond the window end makes the caller
+//! fall back to the interval method.
 
-use crate::fp::{eval, eval_d, graze_bound, quadratic, Quad};
+use crate::fp::{eval, eval_abs, eval_k, eval_newton, gamma, graze_bound, quadratic, scale_k, Quad};
 
 const POLISH_ITER: usize = 8;
 
 /// Newton polishing of an approximate root of `c`; steps are kept only while |p| decreases.
 fn polish(c: &[f64], n: usize, mut x: f64) -> f64 {
-    let mut fx = eval(c, n, x).abs();
+    let k = scale_k(x); // one scale for the whole loop, so |p| values compare
+    let mut fx = eval_k(c, n, x, k).abs();
     for _ in 0..POLISH_ITER {
         if fx == 0.0 {
             break;
         }
-        let (f, df) = eval_d(c, n, x);
-        let xn = x - f / df;
-        if !xn.is_finite() {
+        let (_, step) = eval_newton(c, n, x);
+        let xn = x - step;
+        if !xn.is_finite() || xn == x {
             break;
         }
-        let fxn = eval(c, n, xn).abs();
+        let fxn = eval_k(c, n, xn, k).abs();
         if fxn >= fx {
             break;
         }
@@ -44,8 +47,8 @@ fn refine_critical(c: &[f64], n: usize, mut x: f64) -> f64 {
         d[i] = (i + 1) as f64 * c[i + 1];
     }
     for _ in 0..4 {
-        let (g, dg) = eval_d(&d, n - 1, x);
-        let xn = x - g / dg;
+        let (_, step) = eval_newton(&d, n - 1, x);
+        let xn = x - step;
         if !xn.is_finite() || xn == x {
             break;
         }
@@ -53,6 +56,15 @@ fn refine_critical(c: &[f64], n: usize, mut x: f64) -> f64 {
     }
     x
 }
+
+/// A polished closed-form root must leave a residual of the order of the evaluation
+/// rounding error; this factor (times `gamma_{2n} sum |c_i| |x|^i`) separates genuine roots
+/// from spurious ones (a factorisation that converged to the wrong pairing).
+const RESIDUAL_FACTOR: f64 = 32.0;
+
+/// Relative distance beyond the window end within which a closed-form root is ambiguous
+/// (it may be the window end itself, displaced by rounding).
+const EDGE: f64 = 1e-9;
 
 /// Real roots of the monic cubic `x^3 + a x^2 + b x + c` (unpolished).  Returns the roots
 /// and, when only one is real, the real part of the other two (a complex pair, or a double
@@ -86,15 +98,18 @@ fn cubic_monic(a: f64, b: f64, c: f64, out: &mut [f64; 3]) -> (usize, Option<f64
 }
 
 /// Candidate collector: smallest root in (0, hi], roots preferred over grazes on ties.
+/// `doubtful` is set when a root in the window fails the residual test, or a root lies just
+/// beyond the window end: the caller then falls back to the interval method.
 struct Best {
     t: f64,
     graze: bool,
     found: bool,
+    doubtful: bool,
 }
 
 impl Best {
     fn new() -> Self {
-        Best { t: f64::INFINITY, graze: false, found: false }
+        Best { t: f64::INFINITY, graze: false, found: false, doubtful: false }
     }
     fn offer(&mut self, t: f64, graze: bool, hi: f64) {
         if t > 0.0 && t <= hi && (t < self.t || (t == self.t && !graze)) {
@@ -102,6 +117,23 @@ impl Best {
             self.graze = graze;
             self.found = true;
         }
+    }
+    fn offer_root(&mut self, c: &[f64], n: usize, x: f64, hi: f64) {
+        if !x.is_finite() {
+            self.doubtful = true;
+            return;
+        }
+        let t = polish(c, n, x);
+        if t > hi && t <= hi * (1.0 + EDGE) {
+            self.doubtful = true;
+        }
+        if t > 0.0 && t <= hi && t < self.t {
+            let ok = eval(c, n, t).abs() <= RESIDUAL_FACTOR * gamma(2 * n) * eval_abs(c, n, t);
+            if !ok {
+                self.doubtful = true;
+            }
+        }
+        self.offer(t, false, hi);
     }
     fn offer_graze(&mut self, c: &[f64], n: usize, x: f64, hi: f64) {
         if !(x > 0.0 && x < hi) || x >= self.t {
@@ -118,6 +150,9 @@ impl Best {
 pub(crate) type Closed = Result<Option<(f64, bool)>, ()>;
 
 fn finish(best: Best) -> Closed {
+    if best.doubtful {
+        return Err(());
+    }
     if best.found {
         if best.t.is_finite() {
             Ok(Some((best.t, best.graze)))
@@ -139,10 +174,7 @@ pub(crate) fn cubic_first(c: &[f64; 9], hi: f64) -> Closed {
     let (k, pair) = cubic_monic(a, b, cc, &mut r);
     let mut best = Best::new();
     for &x in &r[..k] {
-        if !x.is_finite() {
-            return Err(());
-        }
-        best.offer(polish(c, 3, x), false, hi);
+        best.offer_root(c, 3, x, hi);
     }
     if let Some(re) = pair {
         if !re.is_finite() {
@@ -294,8 +326,8 @@ pub(crate) fn quartic_first(c: &[f64; 9], hi: f64) -> Closed {
         }
         match quadratic(1.0, p, q) {
             Quad::Real(r1, r2) => {
-                best.offer(polish(c, 4, r1), false, hi);
-                best.offer(polish(c, 4, r2), false, hi);
+                best.offer_root(c, 4, r1, hi);
+                best.offer_root(c, 4, r2, hi);
             }
             Quad::Double(re) | Quad::Complex(re) => {
                 if !re.is_finite() {

@@ -81,47 +81,94 @@ pub(crate) fn ldexp(x: f64, k: i64) -> f64 {
     }
 }
 
-/// Horner evaluation of `sum c[i] x^i`, `i = 0..=n` (plain multiply-add, no FMA, so the
-/// result is the same in every language and the bound `gamma_{2n}` applies).
+/// Evaluations at |x| above this are scaled (see [`scale_k`]).
+const SCALE_LIMIT: f64 = 1.329_227_995_784_916e36; // 2^120
+
+/// Exponent k such that evaluating at `x / 2^k` cannot overflow: 0 for |x| <= 2^120.
+/// (Coefficients are normalised to at most 2 in magnitude and n <= 8.)
+#[inline]
+pub(crate) fn scale_k(x: f64) -> i32 {
+    if x.abs() <= SCALE_LIMIT {
+        0
+    } else {
+        ilogb(x) + 1
+    }
+}
+
+/// Horner evaluation of `p(x) / 2^(k n)` (plain multiply-add, no FMA, so that the result
+/// is the same in every language without FMA and the bound `gamma_{2n}` applies).  With
+/// `k != 0` the argument and the coefficients are scaled by exact powers of two, so roots
+/// near 1e154 and beyond evaluate without overflow; the sign is that of `p(x)`.
+#[inline]
+pub(crate) fn eval_k(c: &[f64], n: usize, x: f64, k: i32) -> f64 {
+    let mut p = c[n];
+    let mut i = n;
+    if k == 0 {
+        while i > 0 {
+            i -= 1;
+            p = p * x + c[i];
+        }
+    } else {
+        let xs = ldexp(x, -(k as i64));
+        let f = ldexp(1.0, -(k as i64));
+        let mut fi = 1.0;
+        while i > 0 {
+            i -= 1;
+            fi *= f;
+            p = p * xs + c[i] * fi;
+        }
+    }
+    p
+}
+
+/// `p(x)`, scaled by `2^-(k n)` with `k = scale_k(x)` (only for |x| > 2^120).
 #[inline]
 pub(crate) fn eval(c: &[f64], n: usize, x: f64) -> f64 {
-    let mut p = c[n];
-    let mut i = n;
-    while i > 0 {
-        i -= 1;
-        p = p * x + c[i];
-    }
-    p
+    eval_k(c, n, x, scale_k(x))
 }
 
-/// Horner evaluation of p(x) and p'(x) together.
+/// `(p(x) / 2^(k n), p(x) / p'(x))`: the (scaled) value and the Newton step.
 #[inline]
-pub(crate) fn eval_d(c: &[f64], n: usize, x: f64) -> (f64, f64) {
+pub(crate) fn eval_newton(c: &[f64], n: usize, x: f64) -> (f64, f64) {
+    let k = scale_k(x);
+    let (xs, f) = if k == 0 { (x, 1.0) } else { (ldexp(x, -(k as i64)), ldexp(1.0, -(k as i64))) };
     let mut p = c[n];
     let mut d = 0.0;
+    let mut fi = 1.0;
     let mut i = n;
     while i > 0 {
         i -= 1;
-        d = d * x + p;
-        p = p * x + c[i];
+        fi *= f;
+        d = d * xs + p;
+        p = p * xs + c[i] * fi;
     }
-    (p, d)
+    // p = P(x)/2^(kn), d = P'(x)/2^(k(n-1)): P/P' = (p/d) 2^k
+    let step = p / d;
+    (p, if k == 0 { step } else { ldexp(step, k as i64) })
 }
 
-/// `sum |c_i| |x|^i`, the scale of the rounding error of `eval` at x.
+/// `sum |c_i| |x|^i`, scaled like [`eval`] at the same x: the scale of its rounding error.
 #[inline]
 pub(crate) fn eval_abs(c: &[f64], n: usize, x: f64) -> f64 {
-    let ax = x.abs();
+    let k = scale_k(x);
+    let (ax, f) = if k == 0 {
+        (x.abs(), 1.0)
+    } else {
+        (ldexp(x.abs(), -(k as i64)), ldexp(1.0, -(k as i64)))
+    };
     let mut p = c[n].abs();
+    let mut fi = 1.0;
     let mut i = n;
     while i > 0 {
         i -= 1;
-        p = p * ax + c[i].abs();
+        fi *= f;
+        p = p * ax + c[i].abs() * fi;
     }
     p
 }
 
-/// Graze threshold at x for a degree-n polynomial: `GRAZE_SAFETY * gamma_{2n} * sum|c_i||x|^i`.
+/// Graze threshold at x for a degree-n polynomial: `GRAZE_SAFETY * gamma_{2n} * sum|c_i||x|^i`
+/// (scaled like [`eval`] at the same x, so the two compare directly).
 #[inline]
 pub(crate) fn graze_bound(c: &[f64], n: usize, x: f64) -> f64 {
     GRAZE_SAFETY * gamma(2 * n) * eval_abs(c, n, x)

@@ -5,7 +5,7 @@
 //! Everything here works on the scaled polynomial (see `lib.rs`): the window is `(0, hi]`
 //! with `hi <= 1`, and the largest coefficient is in `[1, 2)`, so nothing overflows.
 
-use crate::fp::{derivative, eval, eval_d, graze_bound, opposite, quadratic, Quad, U};
+use crate::fp::{derivative, eval, eval_newton, graze_bound, opposite, quadratic, Quad, U};
 
 /// Iteration cap of the safeguarded Newton solve.  Bisection is on the bit patterns of the
 /// (non-negative) doubles, so it alone reaches adjacent doubles in at most 64 steps; the cap
@@ -44,7 +44,7 @@ pub(crate) fn solve_bracket(c: &[f64], n: usize, a: f64, b: f64, fa: f64, fb: f6
     let mut dx_old = b - a;
     let mut dx = dx_old;
     for _ in 0..MAX_ITER {
-        let (f, df) = eval_d(c, n, x);
+        let (f, step) = eval_newton(c, n, x);
         if f == 0.0 {
             return x;
         }
@@ -55,9 +55,8 @@ pub(crate) fn solve_bracket(c: &[f64], n: usize, a: f64, b: f64, fa: f64, fb: f6
             hi = x;
             fhi = f;
         }
-        let newton = x - f / df;
-        let use_newton =
-            newton > lo && newton < hi && (2.0 * f).abs() <= (dx_old * df).abs();
+        let newton = x - step;
+        let use_newton = newton > lo && newton < hi && 2.0 * step.abs() <= dx_old.abs();
         let xn = if use_newton { newton } else { midpoint(lo, hi) };
         dx_old = dx;
         dx = xn - x;

@@ -22,12 +22,11 @@
 //!    the negligibility test, so that a root at exactly 0 cannot make the bound `T` vanish.)
 //! 4. **No positive root.**  If no coefficient has the sign opposite to the leading one,
 //!    `p(t)` keeps its sign for all `t > 0` (Descartes) and the answer is `NoRoot`.
-//! 5. **Scaling.**  The window is `(0, W]` with `W = min(tmax, B)`, `B` a power of two
-//!    strictly above Kioustelidis' bound on the positive roots.  The polynomial is rewritten
-//!    in `tau = t / 2^e` (with `2^(e-1) < W <= 2^e`) and multiplied by a power of two so that
-//!    its largest coefficient lies in `[1, 2)`.  Power-of-two scaling is exact (barring
-//!    subnormal coefficients), so every rounding is the same as unscaled; it only removes
-//!    overflow and underflow (coefficients or roots of magnitude 1e154 and beyond).
+//! 5. **Window and scale.**  The coefficients are multiplied by a power of two (exact) so
+//!    that the largest lies in `[1, 2)`.  The window is `(0, W]` with `W = min(tmax, B)`, `B`
+//!    a power of two strictly above Kioustelidis' bound on the positive roots.  Evaluations
+//!    at `|t| > 2^120` scale `t` and the coefficients by exact powers of two, so roots of
+//!    magnitude 1e154 and beyond evaluate without overflow.
 //! 6. **Solve.**  Degree 1: `-c0/c1`.  Degree 2: robust quadratic with the FMA-corrected
 //!    discriminant.  Degree >= 3: [`Method::Interval`] (critical points by recursion on the
 //!    derivatives, safeguarded Newton in the first monotone piece with a sign change) or
@@ -127,9 +126,8 @@ pub fn first_root_status(c: &[f64], tmax: f64, method: Method) -> Status {
         _ => interval::first_root(&p.c, p.n, p.hi, graze),
     };
     match hit {
-        Some((tau, g)) => {
-            let t = ldexp(tau, p.e).min(tmax);
-            if t > 0.0 && t.is_finite() {
+        Some((t, g)) => {
+            if t > 0.0 && t <= tmax && t.is_finite() {
                 Status::Root { t, graze: g }
             } else {
                 Status::NoRoot
@@ -160,12 +158,11 @@ fn quadratic_first(c: &[f64; 9], hi: f64, graze: bool) -> Option<(f64, bool)> {
     }
 }
 
-/// The polynomial after degree reduction and scaling: `n >= 1`, `c[0] != 0`, `c[n] != 0`,
-/// variable `tau = t / 2^e`, window `(0, hi]` with `hi <= 1`.
+/// The polynomial after degree reduction and normalisation: `n >= 1`, `c[0] != 0`,
+/// `c[n] != 0`, largest coefficient in `[1, 2)`, window `(0, hi]`.
 struct Prepared {
     c: [f64; 9],
     n: usize,
-    e: i64,
     hi: f64,
 }
 
@@ -265,35 +262,9 @@ fn prepare(coef: &[f64], tmax: f64) -> Option<Prepared> {
                 eb = eb.max(r.div_euclid(k) + i64::from(r.rem_euclid(k) != 0) + 1);
             }
         }
-        // Window (0, W], W = min(tmax, 2^eb); scale by 2^e with 2^(e-1) < W <= 2^e.
-        let (e, hi) = if tmax.is_finite() && (ilogb(tmax) as i64) < eb {
-            let e = ilogb(tmax) as i64 + 1;
-            (e, ldexp(tmax, -e))
-        } else {
-            (eb, 1.0)
-        };
-        // c_i 2^(i e), renormalised so that the largest is in [1, 2).
-        let mut top = i64::MIN;
-        for (i, v) in c[..=n].iter().enumerate() {
-            if *v != 0.0 {
-                top = top.max(ilogb(*v) as i64 + i as i64 * e);
-            }
-        }
-        let mut s = c;
-        for (i, v) in s[..=n].iter_mut().enumerate() {
-            *v = ldexp(*v, i as i64 * e - top);
-        }
-        // A coefficient below 2^-1074 of the largest term over the whole window is zero for
-        // all purposes: drop it (c[n]) or divide by t (c[0]) and start again.
-        if s[n] == 0.0 {
-            c[n] = 0.0;
-            continue;
-        }
-        if s[0] == 0.0 {
-            shift_down(&mut c, &mut n);
-            continue;
-        }
-        return Some(Prepared { c: s, n, e, hi });
+        // Window (0, W], W = min(tmax, 2^eb).
+        let bound = if eb > 1023 { f64::MAX } else { ldexp(1.0, eb) };
+        return Some(Prepared { c, n, hi: tmax.min(bound) });
     }
 }
 
