@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import importlib
 import os
 import sys
 
@@ -11,6 +12,12 @@ from .diagnostics import Max2CodeError
 from .generate import generate, load
 from .languages import LANGUAGES
 from .output import write_if_changed
+
+
+# `max2code NAME ...` runs the module's main(argv); one line per subcommand.
+SUBCOMMANDS = {
+    "build": "build",
+}
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -57,9 +64,9 @@ def main(argv: list[str] | None = None) -> int:
 
 def _main(argv: list[str] | None) -> int:
     args = list(sys.argv[1:] if argv is None else argv)
-    if args and args[0] == "build":
-        from .build import main as build_main
-        return build_main(args[1:])
+    if args and args[0] in SUBCOMMANDS:
+        module = importlib.import_module(f".{SUBCOMMANDS[args[0]]}", __package__)
+        return int(module.main(args[1:]))
     opts = _parser().parse_args(args)
     try:
         spec, poly = load(opts.input, opts.timeout)
