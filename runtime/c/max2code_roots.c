@@ -500,7 +500,7 @@ static double cubic_dominant_scaled(double g, double h)
     }
     if (K < 0) { /* three real roots (Q > 0): trigonometric form */
         double sq = sqrt(Q);
-        double theta = acos((R / fabs(Q)) / sq);
+        double theta = acos(fmax(-1.0, fmin(1.0, (R / fabs(Q)) / sq)));
         return theta < PI_D / 2 ? -2 * sq * cos(theta / 3)
                                 : -2 * sq * cos((theta + 2 * PI_D) / 3);
     }
@@ -518,7 +518,7 @@ static double cubic_dominant(double g, double h)
         return cubic_dominant_scaled(g, h);
     double Q3 = Q * Q * Q, R2 = R * R;
     if (R2 < Q3) {
-        double theta = acos(R / sqrt(Q3)), s = -2 * sqrt(Q);
+        double theta = acos(fmax(-1.0, fmin(1.0, R / sqrt(Q3)))), s = -2 * sqrt(Q);
         return theta < PI_D / 2 ? s * cos(theta / 3)
                                 : s * cos((theta + 2 * PI_D) / 3);
     }

@@ -664,3 +664,37 @@ def judge(case: Case, method: str, status: int, t: float, graze: bool) -> str | 
     if err > bound:
         return f"t={t!r} vs {float(target)!r}: rel err {err:.3g} > {bound:.3g}"
     return None
+
+
+# ---------------------------------------------------------------------------
+# Measuring
+# ---------------------------------------------------------------------------
+
+
+def worst_errors(results: Mapping[tuple[str, str], tuple[int, float, bool]]) -> dict[tuple[str, str], float]:
+    """Worst relative error of the first root per (family, method) over the
+    cases with a root (or a graze) that the method reported; a missed root
+    counts as inf.  results maps (case name, method) -> (status, t, graze)."""
+    by_name = {c.name: c for c in all_cases()}
+    worst: dict[tuple[str, str], float] = {}
+    for (name, method), (st, t, _g) in results.items():
+        case = by_name[name]
+        if case.expect not in ("root", "graze"):
+            continue
+        o = oracle(case.coeffs, case.tmax)
+        target = o.touches[0] if case.expect == "graze" and o.touches else o.root
+        err = rel_error(t, target) if st == 1 else math.inf
+        if st == 1 and o.touches and _near_any(t, o.touches, 1e-6):
+            err = min(err, min(rel_error(t, x) for x in o.touches))
+        key = (case.family, method)
+        worst[key] = max(worst.get(key, 0.0), err)
+    return worst
+
+
+def format_worst(worst: Mapping[tuple[str, str], float], title: str) -> str:
+    methods = sorted({m for _, m in worst}, key=lambda m: METHODS.index(m))
+    families = sorted({f for f, _ in worst})
+    lines = [title, f"{'family':12s} " + " ".join(f"{m:>17s}" for m in methods)]
+    for f in families:
+        lines.append(f"{f:12s} " + " ".join(f"{worst.get((f, m), math.nan):17.2e}" for m in methods))
+    return "\n".join(lines)

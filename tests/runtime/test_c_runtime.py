@@ -141,14 +141,15 @@ def test_header_usable_from_static_code(tmp_path: Path, driver: Path) -> None:
 # Bounds relative to the root's condition number kappa (see cases.Oracle):
 # a backward-stable evaluation (error gamma_n sum|c_i| r^i) places the root
 # within about n u kappa.  The constant covers Newton stopping at an ulp.
-RANDOM_BOUND = {"interval": 8.0, "interval-nograze": 8.0, "closed": 64.0}
+# Measured worst (3000 cases, seed in cases.random_cases): 2.4 for ours.
+# GSL's error follows the scale of the largest root rather than kappa
+# (measured worst 1.3e4, i.e. 1.3e-10 relative), hence its own constant.
+RANDOM_BOUND = {"interval": 8.0, "interval-nograze": 8.0, "closed": 64.0, "gsl": 1e5}
 
 
-def random_bound(method: str, degree: int, kappa: float) -> float | None:
-    k = RANDOM_BOUND.get(method)
-    if k is None or (method == "closed" and degree > 4):
-        k = RANDOM_BOUND["interval"] if method == "closed" else None
-    return None if k is None else k * cases.U * max(1.0, degree * kappa)
+def random_bound(method: str, degree: int, kappa: float) -> float:
+    k = RANDOM_BOUND["interval"] if method == "closed" and degree > 4 else RANDOM_BOUND[method]
+    return k * cases.U * max(1.0, degree * kappa)
 
 
 @pytest.fixture(scope="module")
@@ -171,8 +172,6 @@ def _random_failures(results: Sequence[tuple[cases.RandomCase, str, Result]]) ->
         if o.kind != "simple" or o.touches:
             continue  # near-double: the families above test those
         bound = random_bound(method, len(case.coeffs) - 1, o.kappa)
-        if bound is None:
-            continue
         if o.root is None:
             if st != 0:
                 yield f"{case}: [{method}] spurious root {t!r}"
@@ -185,3 +184,12 @@ def _random_failures(results: Sequence[tuple[cases.RandomCase, str, Result]]) ->
 def test_random(random_results: list[tuple[cases.RandomCase, str, Result]]) -> None:
     bad = list(_random_failures(random_results))
     assert not bad, f"{len(bad)} failures, first: " + "\n".join(bad[:10])
+
+
+def test_report_worst_errors(case_results: dict[tuple[str, str], Result], capsys: pytest.CaptureFixture[str]) -> None:
+    """Prints the worst relative error per family and method (run with -s).
+    inf = at least one root of the family missed (expected for GSL and the
+    no-graze method where the cases say so)."""
+    table = cases.format_worst(cases.worst_errors(case_results), "C runtime: worst relative error")
+    with capsys.disabled():
+        print("\n" + table)

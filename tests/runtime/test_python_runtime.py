@@ -96,3 +96,11 @@ def _random_failures(rc: Sequence[cases.RandomCase]) -> Iterator[str]:
 def test_random() -> None:
     bad = list(_random_failures(cases.random_cases(RANDOM_COUNT)))
     assert not bad, f"{len(bad)} failures, first: " + "\n".join(bad[:10])
+
+
+def test_report_worst_errors(capsys: pytest.CaptureFixture[str]) -> None:
+    """Prints the worst relative error per family and method (run with -s)."""
+    results = {(c.name, m): rt.first_root_status(c.coeffs, c.tmax, m) for c in ALL for m in PY_METHODS}
+    table = cases.format_worst(cases.worst_errors(results), "Python runtime: worst relative error")
+    with capsys.disabled():
+        print("\n" + table)
