@@ -18,6 +18,7 @@ import tempfile
 import time
 from dataclasses import dataclass
 
+from . import cache, depfile
 from .diagnostics import Pos, error
 from .spec import Statement
 
@@ -42,12 +43,13 @@ class Session:
 
     output: str
     seconds: float
+    cached: bool = False
 
 
-def maxima_executable() -> str:
+def maxima_executable(where: Pos | None = None) -> str:
     exe = os.environ.get("MAXIMA") or shutil.which("maxima")
     if not exe:
-        raise error(Pos("max2code", 0, 0), f"'maxima' not found on PATH; {_INSTALL_HINT}")
+        raise error(where or Pos("max2code", 1, 1), f"'maxima' not found on PATH; {_INSTALL_HINT}")
     return exe
 
 
@@ -58,7 +60,7 @@ def marker(tag: str, arg: object = "") -> str:
 
 def program_script(statements: tuple[Statement, ...]) -> str:
     """The user's statements, each announced by a marker naming its index."""
-    parts = ["display2d:false$\nlinel:1000000$\n"]
+    parts = ["display2d:false$\nlinel:1000000$\n", search_path(statements)]
     for index, stmt in enumerate(statements):
         parts.append(marker("STMT", index))
         parts.append(stmt.text + "\n")
@@ -66,10 +68,36 @@ def program_script(statements: tuple[Statement, ...]) -> str:
     return "".join(parts)
 
 
+def search_path(statements: tuple[Statement, ...]) -> str:
+    """Let `load("x.mac")` find files beside the .mxm: Maxima runs in a private folder.
+
+    Added only when the program loads something, so other scripts (and their cache keys) do not
+    depend on where the .mxm lies.
+    """
+    folder = depfile.source_folder(statements)
+    if folder is None or not any(depfile.ANY_LOAD.search(s.text) for s in statements):
+        return ""
+    if any(c in folder for c in '{}#"\\'):
+        return ""  # would be read as a pattern; such loads need an absolute path
+    return (f'file_search_maxima: append(["{folder}/###", "{folder}/###.{{mac,mc,wxm}}"], '
+            f'file_search_maxima)$\n'
+            f'file_search_lisp: append(["{folder}/###", "{folder}/###.{{lisp,lsp}}"], '
+            f'file_search_lisp)$\n')
+
+
 def run(script: str, statements: tuple[Statement, ...], where: Pos,
         timeout: float = DEFAULT_TIMEOUT) -> Session:
-    """Run a script; raise a diagnostic at the offending statement if Maxima reports an error."""
-    exe = maxima_executable()
+    """Run a script; raise a diagnostic at the offending statement if Maxima reports an error.
+
+    A successful run's output is cached (see cache.py) under a hash of the script, the files it
+    loads, Maxima's identity and max2code's version; a hit skips Maxima altogether.
+    """
+    exe = maxima_executable(where)
+    key = cache.key(script, exe, depfile.loaded_files(statements))
+    hit = cache.get(key)
+    if hit is not None:
+        _check(hit.output, statements, where, None, timeout)
+        return Session(hit.output, hit.seconds, cached=True)
     with tempfile.TemporaryDirectory(prefix="max2code-") as tmp:
         path = os.path.join(tmp, "job.mac")
         with open(path, "w", encoding="utf-8") as f:
@@ -86,11 +114,20 @@ def run(script: str, statements: tuple[Statement, ...], where: Pos,
             except OSError as exc:
                 raise error(where, f"cannot run Maxima ({exe}): {exc.strerror}; {_INSTALL_HINT}") from None
             reason = _wait(proc, out_path, timeout)
+            status = proc.returncode
         seconds = time.monotonic() - start
         with open(out_path, "rb") as f:
             text = f.read(OUTPUT_CAP).decode("utf-8", errors="replace")
     _check(text, statements, where, reason, timeout)
+    if reason is None and status == 0 and _reached_end(script, text):
+        cache.put(key, cache.Entry(text, seconds))
     return Session(text, seconds)
+
+
+def _reached_end(script: str, text: str) -> bool:
+    """Whether the run printed the script's last marker: it ran to the end, so it may be cached."""
+    tags = re.findall(rf"{MARK}-([A-Z0-9-]+)", script)
+    return not tags or re.search(rf"^{MARK}-{re.escape(tags[-1])}\b", text, re.M) is not None
 
 
 def _wait(proc: subprocess.Popen[bytes], out_path: str, timeout: float) -> str | None:

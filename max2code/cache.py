@@ -1,0 +1,132 @@
+"""A cache of Maxima results, so that a rebuild that changes nothing does not run Maxima again.
+
+An entry is keyed by a SHA-256 of everything that affects Maxima's output: the exact script
+sent to Maxima, the contents of the files that script loads, the identity of the Maxima
+executable (its resolved path, size and modification time: cheap, and changed by an upgrade)
+and the max2code version. Entries live in
+
+    $MAX2CODE_CACHE, else $XDG_CACHE_HOME/max2code, else ~/.cache/max2code
+
+as `v1/<2 hex>/<64 hex>`. Each entry starts with a line holding a checksum of the rest, so a
+truncated or corrupted entry is detected, ignored and rewritten by the next successful run.
+Writers write a temporary file in the same folder and `os.replace` it: concurrent writers of
+the same entry each leave a whole entry behind, never a mixture. Only successful runs are
+stored (the caller decides); any failure to read or write the cache is silent, since the cache
+is an optimisation, never a reason for a build to fail. `--no-cache` (or MAX2CODE_NO_CACHE=1)
+bypasses it.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+
+from . import __version__
+
+FORMAT = "max2code-cache-v1"
+_enabled = True
+
+
+def disable() -> None:
+    """Bypass the cache for the rest of this process (the CLI's --no-cache)."""
+    global _enabled
+    _enabled = False
+
+
+def enabled() -> bool:
+    return _enabled and os.environ.get("MAX2CODE_NO_CACHE", "") in ("", "0")
+
+
+def directory() -> Path:
+    """The cache folder, as documented above (not created here)."""
+    explicit = os.environ.get("MAX2CODE_CACHE")
+    if explicit:
+        return Path(explicit)
+    xdg = os.environ.get("XDG_CACHE_HOME")
+    if xdg:
+        return Path(xdg) / "max2code"
+    return Path.home() / ".cache" / "max2code"
+
+
+def executable_identity(exe: str) -> str:
+    """Resolved path, size and mtime of the Maxima executable: changes when Maxima changes."""
+    try:
+        real = os.path.realpath(exe)
+        st = os.stat(real)
+        return f"{real}\0{st.st_size}\0{st.st_mtime_ns}"
+    except OSError:
+        return exe
+
+
+def key(script: str, exe: str, inputs: tuple[str, ...] = ()) -> str:
+    """The entry key: a hash of the script, the loaded files' contents, Maxima and max2code."""
+    h = hashlib.sha256()
+    for part in (FORMAT, __version__, executable_identity(exe), script):
+        h.update(part.encode("utf-8", "surrogatepass"))
+        h.update(b"\0\1")
+    for path in inputs:
+        h.update(path.encode("utf-8", "surrogatepass") + b"\0")
+        try:
+            with open(path, "rb") as f:
+                h.update(hashlib.sha256(f.read()).digest())
+        except OSError:
+            h.update(b"<missing>")
+        h.update(b"\0\1")
+    return h.hexdigest()
+
+
+def _entry_path(k: str) -> Path:
+    return directory() / "v1" / k[:2] / k
+
+
+@dataclass(frozen=True)
+class Entry:
+    output: str
+    seconds: float
+
+
+def get(k: str) -> Entry | None:
+    """The stored result for key `k`, or None when absent, corrupt or the cache is off."""
+    if not enabled():
+        return None
+    try:
+        data = _entry_path(k).read_bytes()
+        head, _, body = data.partition(b"\n")
+        if head != (FORMAT + " " + hashlib.sha256(body).hexdigest()).encode():
+            return None
+        obj = json.loads(body.decode("utf-8"))
+        if obj.get("key") != k:
+            return None
+        return Entry(str(obj["output"]), float(obj["seconds"]))
+    except (OSError, ValueError, KeyError, TypeError, AttributeError):
+        return None
+
+
+def put(k: str, entry: Entry) -> None:
+    """Store a result atomically; silently do nothing if the cache cannot be written."""
+    if not enabled():
+        return
+    path = _entry_path(k)
+    body = json.dumps({"key": k, "seconds": entry.seconds, "output": entry.output},
+                      ensure_ascii=False).encode("utf-8")
+    data = (FORMAT + " " + hashlib.sha256(body).hexdigest()).encode() + b"\n" + body
+    tmp = None
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(prefix=".tmp-", dir=path.parent)
+        with os.fdopen(fd, "wb") as f:
+            f.write(data)
+        os.replace(tmp, path)
+        tmp = None
+    except OSError:
+        pass
+    finally:
+        if tmp is not None:
+            try:
+                os.unlink(tmp)
+            except OSError:
+                pass

@@ -1,0 +1,103 @@
+"""Dependency files for Make and Ninja, and the files a Maxima program loads.
+
+A generated file depends on its .mxm and on whatever the .mxm's Maxima program loads with a
+literal file name: `load("x.mac")`, `batchload("x.mac")`, `batch("x.mac")`, found (as Maxima
+will find them, see maxima.program_script) relative to the .mxm's folder, with Maxima's usual
+extensions tried when the name has none. Loaded Maxima files are scanned for their own loads.
+Package loads by symbol (`load(format)`) name Maxima's own library and are not dependencies.
+
+The depfile has the gcc form, `target [target2]: dep dep ...`, with Make's escapes (which Ninja
+reads too). A Modula-2 module has two outputs (NAME.mod and NAME.def); Make takes both as
+targets of one rule, and so does Ninja from version 1.10 on when both are outputs of the edge.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+
+from .spec import Statement
+
+LOAD_CALL = re.compile(r"\b(?:load|batchload|batch)\s*\(\s*\"((?:[^\"\\]|\\.)*)\"")
+ANY_LOAD = re.compile(r"\b(?:load|batchload|batch)\s*\(")
+MAXIMA_EXTENSIONS = (".mac", ".mc", ".wxm")
+LISP_EXTENSIONS = (".lisp", ".lsp")
+_TEXT_EXTENSIONS = MAXIMA_EXTENSIONS + ("",)
+_MAX_FILES = 1000
+
+
+def source_folder(statements: tuple[Statement, ...]) -> str | None:
+    """The folder of the .mxm the statements come from (absolute), or None."""
+    if not statements:
+        return None
+    return os.path.dirname(os.path.abspath(statements[0].pos.file))
+
+
+def _resolve(name: str, folder: str) -> str | None:
+    name = name.replace('\\"', '"').replace("\\\\", "\\")
+    base = name if os.path.isabs(name) else os.path.join(folder, name)
+    candidates = [base]
+    if not os.path.splitext(name)[1]:
+        candidates += [base + ext for ext in MAXIMA_EXTENSIONS + LISP_EXTENSIONS]
+    for candidate in candidates:
+        if os.path.isfile(candidate):
+            return candidate
+    return None
+
+
+def loaded_files(statements: tuple[Statement, ...]) -> tuple[str, ...]:
+    """Files the program loads by literal name, transitively, in first-seen order.
+
+    Paths are as the user would write them: joined to the .mxm's folder as given (relative
+    when the .mxm path is relative). Names that resolve to nothing are left to Maxima to report.
+    """
+    if not statements:
+        return ()
+    mxm = statements[0].pos.file
+    folder = os.path.dirname(mxm)
+    found: list[str] = []
+    seen: set[str] = set()
+    texts = [(s.text, folder) for s in statements]
+    while texts and len(found) < _MAX_FILES:
+        text, where = texts.pop(0)
+        for m in LOAD_CALL.finditer(text):
+            path = _resolve(m.group(1), where or ".")
+            if path is None:
+                continue
+            path = os.path.normpath(path)
+            real = os.path.realpath(path)
+            if real in seen:
+                continue
+            seen.add(real)
+            found.append(path)
+            if os.path.splitext(path)[1].lower() in _TEXT_EXTENSIONS:
+                try:
+                    with open(path, encoding="utf-8", errors="replace") as f:
+                        texts.append((f.read(), os.path.dirname(path)))
+                except OSError:
+                    pass
+    return tuple(found)
+
+
+def escape(path: str) -> str:
+    """A path as a Make (and Ninja) depfile word."""
+    out = path.replace("$", "$$")
+    out = re.sub(r"(\\*)([ \t])", lambda m: m.group(1) * 2 + "\\" + m.group(2), out)
+    return out.replace("#", "\\#")
+
+
+def text(targets: list[str], deps: list[str], phony: bool = False) -> str:
+    """A depfile: `targets: deps`, with `dep:` lines for each dependency when `phony` (gcc -MP),
+    so that Make does not fail when a dependency is deleted."""
+    line = " ".join(escape(t) for t in targets) + ":"
+    for dep in deps:
+        line += " \\\n  " + escape(dep)
+    out = line + "\n"
+    if phony:
+        out += "".join(f"\n{escape(d)}:\n" for d in deps[1:])
+    return out
+
+
+def default_name(output: str) -> str:
+    """`-MD` names the depfile after the output: OUTPUT.d (circles.h -> circles.h.d)."""
+    return output + ".d"
