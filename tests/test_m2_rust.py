@@ -1,0 +1,541 @@
+"""Generated Modula-2 and Rust, compiled and run, against Maxima evaluating the original equation.
+
+For every shipped equation (equations/*.mxm): 120 random parameter sets (the same as
+tests/test_generated.py draws for C and Python); the generated module's coefficients and first
+root are compared with the exact coefficients (Maxima, rational arithmetic, the user's program as
+written: tests/oracle.py) and the exact first root (mpmath, 60 digits).
+
+Numbers cross the language boundary as IEEE bit patterns, so nothing is lost in decimal.
+* Modula-2: gm2 -fiso -fcpp; the driver embeds the samples as pairs of 32-bit halves.
+* Rust: one crate (all equations as modules, plus the keyword equation) depending on
+  runtime/rust by path, built once per session with `-D warnings` and checked with
+  `cargo clippy -- -D warnings`. CARGO_TARGET_DIR is build/test-cargo-target (gitignored), so
+  a second run only rebuilds what changed.
+
+Also: an equation whose parameters are keywords somewhere (type, match, self, VAR, TYPE, int,
+char, BEGIN) compiles and computes the right coefficients in all four languages, and the
+paper's Modula-2 fragment use (initialise / terms / finalise) compiles.
+
+Tools: gm2, gcc, cargo. Under CI (CI set) a missing tool fails; elsewhere the test skips.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import math
+import os
+import shutil
+import struct
+import subprocess
+import zlib
+from pathlib import Path
+
+import pytest
+
+from conftest import ROOT, require
+from oracle import Exact, exact_coefficients, random_samples
+
+from max2code.emit import module_name
+from max2code.generate import generate, load
+from max2code.languages import LANGUAGES
+
+EQUATIONS = sorted((ROOT / "equations").glob("*.mxm"))
+SAMPLES = 120
+TMAX = 10.0
+COEF_TOL = 1e-13  # relative to the largest exact coefficient of the sample (as for C/Python)
+ROOT_REL = 1e-10
+CARGO_TARGET = ROOT / "build" / "test-cargo-target"
+C_RUNTIME = ROOT / "runtime" / "c"
+M2_RUNTIME = ROOT / "runtime" / "m2"
+RUST_RUNTIME = ROOT / "runtime" / "rust"
+
+KEYWORDS_MXM = """\
+// Parameter names that are keywords in some target language: each printer mangles its own.
+function keywords
+parameters type, match, self, VAR, TYPE, int, char, BEGIN
+
+begin
+(type + match*t + self*t^2)*VAR - TYPE*int*t + char*BEGIN*t^3 - 1;
+end
+"""
+KEYWORD_PARAMS = (0.75, -1.5, 2.25, 3.0, -0.5, 1.25, 4.5, -0.125)
+
+
+def keyword_coefficients(p: tuple[float, ...]) -> list[float]:
+    type_, match, self_, var, type_uc, int_, char, begin = p
+    return [var * type_ - 1.0, var * match - type_uc * int_, var * self_, begin * char]
+
+
+# ---------------------------------------------------------------------------------------------
+# Tools
+# ---------------------------------------------------------------------------------------------
+
+def gm2_link_flags(gm2: str) -> list[str]:
+    iso = subprocess.run([gm2, "-print-file-name=m2/m2iso"], capture_output=True, text=True,
+                         check=True).stdout.strip()
+    return [f"-L{iso}", "-lm2iso", "-lpthread", "-lgsl", "-lgslcblas", "-lm"]
+
+
+def cargo_exe() -> str:
+    found = shutil.which("cargo")
+    home = Path.home() / ".cargo" / "bin" / "cargo"
+    if found is None and home.exists():
+        return str(home)
+    return require("cargo")
+
+
+def run(cmd: list[str], **kw: object) -> subprocess.CompletedProcess[str]:
+    """Run a build step; on failure show its output in the assertion message."""
+    proc = subprocess.run(cmd, capture_output=True, text=True, **kw)  # type: ignore[call-overload]
+    assert proc.returncode == 0, f"{' '.join(map(str, cmd))}\n{proc.stdout}\n{proc.stderr}"
+    return proc
+
+
+def bits(x: float) -> tuple[int, int]:
+    """The low and high 32-bit halves of a double (x86-64 is little-endian)."""
+    return struct.unpack("<II", struct.pack("<d", x))
+
+
+def from_halves(lo: str, hi: str) -> float:
+    return struct.unpack("<d", struct.pack("<II", int(lo), int(hi)))[0]
+
+
+@pytest.fixture(scope="session")
+def c_runtime_object(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    gcc = require("gcc")
+    obj = tmp_path_factory.mktemp("c-runtime") / "max2code_roots.o"
+    run([gcc, "-std=c11", "-O2", "-g", f"-I{C_RUNTIME}", "-c", str(C_RUNTIME / "max2code_roots.c"),
+         "-o", str(obj)])
+    return obj
+
+
+# ---------------------------------------------------------------------------------------------
+# The oracle, per equation
+# ---------------------------------------------------------------------------------------------
+
+@pytest.fixture(scope="module", params=EQUATIONS, ids=lambda p: p.stem)
+def equation(request: pytest.FixtureRequest, maxima_exe: str) -> tuple[Path, object, list[Exact]]:
+    path = request.param
+    spec, poly = load(str(path))
+    samples = random_samples(poly.parameters, SAMPLES, seed=zlib.crc32(path.stem.encode()))
+    exact = exact_coefficients(path, poly.parameters, samples)
+    hits = sum(1 for e in exact if e.first_root(TMAX)[0] is not None)
+    assert 20 <= hits <= SAMPLES - 20, f"{hits} of {SAMPLES} samples collide: too one-sided a test"
+    return path, (spec, poly), exact
+
+
+def check_sample(exact: Exact, coefs: list[float], root: float | None, label: str) -> None:
+    """Coefficients within COEF_TOL of the exact ones; the root within what that allows."""
+    scale = max(abs(float(c)) for c in exact.coefficients)
+    # The generated code emits every coefficient up to the general degree; the exact polynomial
+    # of a sample may be shorter only if its top coefficients vanish.
+    assert len(coefs) >= len(exact.coefficients), f"{label}: degree differs"
+    padded = list(exact.coefficients) + [0] * (len(coefs) - len(exact.coefficients))
+    for k, (got, want) in enumerate(zip(coefs, padded)):
+        assert abs(got - float(want)) <= COEF_TOL * scale, (
+            f"{label}: c[{k}] = {got!r}, exact {float(want)!r}")
+    want_root, slope = exact.first_root(TMAX)
+    if want_root is None:
+        assert root is None, f"{label}: found {root!r}, exact polynomial has no root in (0, {TMAX}]"
+        return
+    spread = COEF_TOL * scale * sum(want_root ** k for k in range(len(coefs)))
+    tol = ROOT_REL * want_root + (spread / slope if slope > 0 else math.inf)
+    if root is None:
+        # Only a root within rounding of the window's end, or of a double root, may be missed.
+        assert TMAX - want_root <= tol or slope * want_root <= spread * 1e3, (
+            f"{label}: missed root {want_root!r}")
+        return
+    assert abs(root - want_root) <= tol, f"{label}: root {root!r}, exact {want_root!r}"
+
+
+# ---------------------------------------------------------------------------------------------
+# Modula-2
+# ---------------------------------------------------------------------------------------------
+
+M2_DRIVER = """\
+MODULE Driver ;
+(* Runs {name} on samples embedded as IEEE bit patterns; prints bit patterns back. *)
+FROM SYSTEM IMPORT CAST ;
+FROM STextIO IMPORT WriteString, WriteLn ;
+FROM SWholeIO IMPORT WriteCard ;
+FROM {name} IMPORT Coefficients, FirstRoot, ParamName, NParams, Degree ;
+
+TYPE
+   Halves = ARRAY [0..1] OF CARDINAL ;
+
+VAR
+   p: ARRAY [0..NParams-1] OF REAL ;
+
+PROCEDURE Bits (lo, hi: CARDINAL) : REAL ;
+VAR
+   h: Halves ;
+BEGIN
+   h[0] := lo ; h[1] := hi ;
+   RETURN CAST(REAL, h)
+END Bits ;
+
+PROCEDURE Put (x: REAL) ;
+VAR
+   h: Halves ;
+BEGIN
+   h := CAST(Halves, x) ;
+   WriteString(" ") ; WriteCard(h[0], 0) ; WriteString(" ") ; WriteCard(h[1], 0)
+END Put ;
+
+PROCEDURE Meta ;
+VAR
+   i: CARDINAL ;
+   name: ARRAY [0..63] OF CHAR ;
+BEGIN
+   WriteCard(NParams, 0) ; WriteString(" ") ; WriteCard(Degree, 0) ;
+   FOR i := 0 TO NParams-1 DO
+      ParamName(i, name) ; WriteString(" ") ; WriteString(name)
+   END ;
+   WriteLn
+END Meta ;
+
+PROCEDURE Sample ;
+VAR
+   c: ARRAY [0..Degree] OF REAL ;
+   i, degree: CARDINAL ;
+   t: REAL ;
+BEGIN
+   degree := Coefficients(p, c) ;
+   WriteCard(degree, 0) ;
+   FOR i := 0 TO degree DO Put(c[i]) END ;
+   t := 0.0 ;
+   IF FirstRoot(p, {tmax}, t) THEN WriteString(" | 1") ELSE WriteString(" | 0") END ;
+   Put(t) ;
+   WriteLn
+END Sample ;
+
+BEGIN
+   Meta ;
+{samples}
+END Driver.
+"""
+
+
+def build_m2(mxm: Path, workdir: Path, samples: list[tuple[float, ...]], runtime_obj: Path,
+             tmax: float = TMAX) -> list[str]:
+    """Generate NAME.mod + NAME.def, compile them and a driver with gm2, run; output lines."""
+    gm2 = require("gm2")
+    spec, poly = load(str(mxm))
+    name = module_name(spec)
+    out = workdir / f"{name}.mod"
+    result = generate(spec, poly, LANGUAGES["m2"], "module", str(out))
+    out.write_text(result.text)
+    assert [Path(p).name for p, _ in result.companions] == [f"{name}.def"]
+    for path, text in result.companions:
+        Path(path).write_text(text)
+    shutil.copy(M2_RUNTIME / "Max2codeRoots.def", workdir)
+    lines = []
+    for sample in samples:
+        for k, v in enumerate(sample):
+            lo, hi = bits(v)
+            lines.append(f"   p[{k}] := Bits({lo}, {hi}) ;")
+        lines.append("   Sample ;")
+    driver = workdir / "Driver.mod"
+    driver.write_text(M2_DRIVER.format(name=name, tmax=LANGUAGES["m2"].float_literal(tmax),
+                                       samples="\n".join(lines)))
+    run([gm2, "-fiso", "-fcpp", "-g", "-Wall", "-c", out.name, "-o", f"{name}.o"], cwd=workdir)
+    run([gm2, "-fiso", "-g", "Driver.mod", f"{name}.o", str(runtime_obj), "-o", "driver",
+         *gm2_link_flags(gm2)], cwd=workdir)
+    return run([str(workdir / "driver")], cwd=workdir).stdout.splitlines()
+
+
+def parse_m2(line: str) -> tuple[list[float], float | None]:
+    left, right = line.split(" | ")
+    fields = left.split()
+    degree = int(fields[0])
+    coefs = [from_halves(fields[1 + 2 * i], fields[2 + 2 * i]) for i in range(degree + 1)]
+    status, lo, hi = right.split()
+    return coefs, (from_halves(lo, hi) if status == "1" else None)
+
+
+def test_m2_module_matches_oracle(equation, tmp_path: Path, c_runtime_object: Path) -> None:
+    path, (spec, poly), exact = equation
+    lines = build_m2(path, tmp_path, [e.params for e in exact], c_runtime_object)
+    meta = lines[0].split()
+    assert int(meta[0]) == len(poly.parameters) and int(meta[1]) == poly.degree
+    assert tuple(meta[2:]) == poly.parameters
+    assert len(lines) == 1 + len(exact)
+    for i, (line, e) in enumerate(zip(lines[1:], exact)):
+        coefs, root = parse_m2(line)
+        assert len(coefs) == poly.degree + 1
+        check_sample(e, coefs, root, f"Modula-2 sample {i}")
+
+
+# ---------------------------------------------------------------------------------------------
+# Rust: one crate with every equation, built once
+# ---------------------------------------------------------------------------------------------
+
+RUST_MAIN = """\
+// Test driver: lines "NAME TMAX p0 p1 ..." (f64 bit patterns in hex) on stdin; for each, prints
+// "degree c0 .. cn | 1 t" or "... | 0", bit patterns in hex. "meta NAME" prints NAME, K, N, PARAMS.
+{mods}
+
+use std::io::{{BufRead, Write}};
+
+fn parse(s: &str) -> f64 {{
+    f64::from_bits(u64::from_str_radix(s, 16).expect("hex bit pattern"))
+}}
+
+fn sample<const K: usize, const M: usize>(
+    p: &[f64],
+    tmax: f64,
+    coefficients_degree: fn(&[f64; K]) -> (usize, [f64; M]),
+    coefficients: fn(&[f64; K]) -> [f64; M],
+    first_root: fn(&[f64; K], f64) -> Option<f64>,
+) -> String {{
+    let p: [f64; K] = p.try_into().expect("parameter count");
+    let (degree, c) = coefficients_degree(&p);
+    assert_eq!(coefficients(&p), c);
+    let mut out = degree.to_string();
+    for x in &c[..=degree] {{
+        out += &format!(" {{:016x}}", x.to_bits());
+    }}
+    match first_root(&p, tmax) {{
+        Some(t) => out + &format!(" | 1 {{:016x}}", t.to_bits()),
+        None => out + " | 0",
+    }}
+}}
+
+fn main() {{
+    let stdout = std::io::stdout();
+    let mut out = stdout.lock();
+    for line in std::io::stdin().lock().lines() {{
+        let line = line.expect("stdin");
+        let mut words = line.split_whitespace();
+        let name = words.next().expect("a name");
+        if name == "meta" {{
+            let text = match words.next().expect("a name") {{
+{metas}
+                other => panic!("unknown equation {{other}}"),
+            }};
+            writeln!(out, "{{text}}").expect("stdout");
+            continue;
+        }}
+        let tmax = parse(words.next().expect("tmax"));
+        let p: Vec<f64> = words.map(parse).collect();
+        let text = match name {{
+{samples}
+            other => panic!("unknown equation {{other}}"),
+        }};
+        writeln!(out, "{{text}}").expect("stdout");
+    }}
+}}
+"""
+
+
+@pytest.fixture(scope="session")
+def rust_crate(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, Path]:
+    """(crate folder, built binary) for all shipped equations plus the keyword equation."""
+    cargo = cargo_exe()
+    crate = tmp_path_factory.mktemp("rust-crate")
+    src = crate / "src"
+    src.mkdir()
+    keywords = crate / "keywords.mxm"
+    keywords.write_text(KEYWORDS_MXM)
+    names = []
+    for mxm in [*EQUATIONS, keywords]:
+        spec, poly = load(str(mxm))
+        name = module_name(spec)
+        out = src / f"{name}.rs"
+        out.write_text(generate(spec, poly, LANGUAGES["rust"], "module", str(out)).text)
+        names.append(name)
+    (crate / "Cargo.toml").write_text(
+        '[package]\nname = "max2code-generated-test"\nversion = "0.0.0"\nedition = "2021"\n'
+        'publish = false\n\n[dependencies]\n'
+        f'max2code-runtime = {{ path = "{RUST_RUNTIME.as_posix()}" }}\n')
+    (src / "main.rs").write_text(RUST_MAIN.format(
+        mods="\n".join(f"mod {n};" for n in names),
+        metas="\n".join(f'                "{n}" => format!("{{}} {{}} {{}} {{}}", {n}::NAME, '
+                        f'{n}::PARAMS.len(), {n}::DEGREE, {n}::PARAMS.join(" ")),'
+                        for n in names),
+        samples="\n".join(f'            "{n}" => sample(&p, tmax, {n}::coefficients_degree, '
+                          f'{n}::coefficients, {n}::first_root),' for n in names)))
+    env = {**os.environ, "CARGO_TARGET_DIR": str(CARGO_TARGET), "RUSTFLAGS": "-D warnings"}
+    run([cargo, "build", "--release", "--quiet"], cwd=crate, env=env)
+    binary = CARGO_TARGET / "release" / "max2code-generated-test"
+    return crate, binary
+
+
+def run_rust(binary: Path, lines: list[str]) -> list[str]:
+    return run([str(binary)], input="\n".join(lines) + "\n").stdout.splitlines()
+
+
+def rust_line(name: str, tmax: float, params: tuple[float, ...]) -> str:
+    return " ".join([name, *(f"{struct.unpack('<Q', struct.pack('<d', v))[0]:016x}"
+                             for v in (tmax, *params))])
+
+
+def parse_rust(line: str) -> tuple[list[float], float | None]:
+    left, right = line.split(" | ")
+    fields = left.split()
+    coefs = [struct.unpack("<d", struct.pack("<Q", int(x, 16)))[0] for x in fields[1:]]
+    assert int(fields[0]) == len(coefs) - 1
+    parts = right.split()
+    root = struct.unpack("<d", struct.pack("<Q", int(parts[1], 16)))[0] if parts[0] == "1" else None
+    return coefs, root
+
+
+def test_rust_module_matches_oracle(equation, rust_crate: tuple[Path, Path]) -> None:
+    path, (spec, poly), exact = equation
+    name = module_name(spec)
+    _, binary = rust_crate
+    out = run_rust(binary, [f"meta {name}"] + [rust_line(name, TMAX, e.params) for e in exact])
+    meta = out[0].split()
+    assert meta[0] == name
+    assert int(meta[1]) == len(poly.parameters) and int(meta[2]) == poly.degree
+    assert tuple(meta[3:]) == poly.parameters
+    assert len(out) == 1 + len(exact)
+    for i, (line, e) in enumerate(zip(out[1:], exact)):
+        coefs, root = parse_rust(line)
+        assert len(coefs) == poly.degree + 1
+        check_sample(e, coefs, root, f"Rust sample {i}")
+
+
+def test_rust_modules_are_clippy_clean(rust_crate: tuple[Path, Path]) -> None:
+    crate, _ = rust_crate
+    env = {**os.environ, "CARGO_TARGET_DIR": str(CARGO_TARGET)}
+    proc = subprocess.run([cargo_exe(), "clippy", "--quiet", "--", "-D", "warnings"], cwd=crate,
+                          env=env, capture_output=True, text=True)
+    if proc.returncode != 0 and "no such command" in proc.stderr:
+        if os.environ.get("CI"):
+            pytest.fail("cargo clippy is not installed -- required in CI")
+        pytest.skip("cargo clippy is not installed (rustup component add clippy)")
+    assert proc.returncode == 0, proc.stderr
+
+
+def test_rust_module_can_be_included(rust_crate: tuple[Path, Path], tmp_path: Path) -> None:
+    """The other documented use: `include!("NAME.rs")` inside a module of one's own."""
+    crate, _ = rust_crate
+    src = tmp_path / "src"
+    src.mkdir()
+    shutil.copy(crate / "src" / "circles_accel.rs", src)
+    (src / "main.rs").write_text(
+        '#[allow(dead_code)] // this program does not use NAME; a binary warns about that\n'
+        'mod collide {\n    include!("circles_accel.rs");\n}\n\nfn main() {\n'
+        '    let mut p = [0.0; collide::PARAMS.len()];\n'
+        '    p[2] = 1.0; // vx1\n    p[6] = 0.5; // r1\n    p[7] = 3.0; // x2\n'
+        '    p[13] = 0.5; // r2\n'
+        '    assert_eq!(collide::DEGREE, 4);\n'
+        '    println!("{:?} {:?}", collide::coefficients(&p), collide::first_root(&p, 10.0));\n'
+        '}\n')
+    (tmp_path / "Cargo.toml").write_text(  # its own name: the session's binary stays in place
+        (crate / "Cargo.toml").read_text().replace("max2code-generated-test",
+                                                   "max2code-include-test"))
+    env = {**os.environ, "CARGO_TARGET_DIR": str(CARGO_TARGET), "RUSTFLAGS": "-D warnings"}
+    out = run([cargo_exe(), "run", "--release", "--quiet"], cwd=tmp_path, env=env).stdout
+    assert out.strip() == "[8.0, -6.0, 1.0, 0.0, 0.0] Some(2.0)"
+
+
+# ---------------------------------------------------------------------------------------------
+# Keywords as parameter names, in all four languages
+# ---------------------------------------------------------------------------------------------
+
+@pytest.fixture
+def keywords_mxm(tmp_path: Path) -> Path:
+    path = tmp_path / "keywords.mxm"
+    path.write_text(KEYWORDS_MXM)
+    return path
+
+
+def assert_close(got: list[float], want: list[float], label: str) -> None:
+    assert len(got) == len(want), label
+    for k, (g, w) in enumerate(zip(got, want)):
+        assert abs(g - w) <= 1e-15 * max(1.0, abs(w)), f"{label}: c[{k}] = {g!r}, want {w!r}"
+
+
+def test_keywords_c(keywords_mxm: Path, tmp_path: Path, c_runtime_object: Path) -> None:
+    gcc = require("gcc")
+    spec, poly = load(str(keywords_mxm))
+    header = tmp_path / "keywords.h"
+    header.write_text(generate(spec, poly, LANGUAGES["c"], "module", str(header)).text)
+    (tmp_path / "main.c").write_text(
+        '#include <stdio.h>\n#include "keywords.h"\nint main(void) {\n'
+        f'    const double p[keywords_NPARAMS] = {{{", ".join(map(repr, KEYWORD_PARAMS))}}};\n'
+        '    double c[keywords_DEGREE + 1];\n    int n = keywords_coefficients(p, c);\n'
+        '    for (int i = 0; i <= n; i++) printf("%a\\n", c[i]);\n    return 0;\n}\n')
+    run([gcc, "-std=c11", "-Wall", "-Wextra", "-Werror", "-pedantic", f"-I{C_RUNTIME}",
+         f"-I{tmp_path}", str(tmp_path / "main.c"), str(c_runtime_object), "-o",
+         str(tmp_path / "kw"), "-lgsl", "-lgslcblas", "-lm"])
+    out = run([str(tmp_path / "kw")]).stdout.split()
+    assert_close([float.fromhex(x) for x in out], keyword_coefficients(KEYWORD_PARAMS), "C")
+
+
+def test_keywords_python(keywords_mxm: Path, tmp_path: Path) -> None:
+    spec, poly = load(str(keywords_mxm))
+    out = tmp_path / "keywords_py.py"
+    out.write_text(generate(spec, poly, LANGUAGES["python"], "module", str(out)).text)
+    module_spec = importlib.util.spec_from_file_location("keywords_py", out)
+    assert module_spec and module_spec.loader
+    module = importlib.util.module_from_spec(module_spec)
+    module_spec.loader.exec_module(module)
+    assert tuple(module.PARAMS) == ("type", "match", "self", "VAR", "TYPE", "int", "char", "BEGIN")
+    assert_close(module.coefficients(KEYWORD_PARAMS), keyword_coefficients(KEYWORD_PARAMS),
+                 "Python")
+
+
+def test_keywords_m2(keywords_mxm: Path, tmp_path: Path, c_runtime_object: Path) -> None:
+    lines = build_m2(keywords_mxm, tmp_path, [KEYWORD_PARAMS], c_runtime_object)
+    assert lines[0].split()[2:] == ["type", "match", "self", "VAR", "TYPE", "int", "char", "BEGIN"]
+    text = (tmp_path / "keywords.mod").read_text()
+    for mangled in ("VAR_ := p[3]", "TYPE_ := p[4]", "BEGIN_ := p[7]", "type := p[0]"):
+        assert mangled in text
+    coefs, _ = parse_m2(lines[1])
+    assert_close(coefs, keyword_coefficients(KEYWORD_PARAMS), "Modula-2")
+
+
+def test_keywords_rust(rust_crate: tuple[Path, Path]) -> None:
+    crate, binary = rust_crate
+    text = (crate / "src" / "keywords.rs").read_text()
+    assert "let [type_, match_, self_, VAR, TYPE, int, char_, BEGIN] = *p;" in text
+    out = run_rust(binary, ["meta keywords", rust_line("keywords", TMAX, KEYWORD_PARAMS)])
+    assert out[0].split()[3:] == ["type", "match", "self", "VAR", "TYPE", "int", "char", "BEGIN"]
+    coefs, _ = parse_rust(out[1])
+    assert_close(coefs, keyword_coefficients(KEYWORD_PARAMS), "Rust")
+
+
+# ---------------------------------------------------------------------------------------------
+# The paper's use: a Modula-2 fragment pasted into a procedure
+# ---------------------------------------------------------------------------------------------
+
+def corrected_paper_point_line(folder: Path) -> Path:
+    """equations/paper/point-line.mxm with the declared term count fixed (5 coefficients, not
+    4) and the coefficient array renamed from `a`, which is also a parameter of the equation."""
+    text = (ROOT / "equations" / "paper" / "point-line.mxm").read_text()
+    text = text.replace("polynomial terms 4", "polynomial terms 5")
+    text = text.replace("a: ARRAY [0..3] OF REAL", "coef: ARRAY [0..4] OF REAL")
+    text = text.replace("term 3 { a[3] := }", "term 3 { a[3] := }\nterm 4 { a[4] := }")
+    for k in range(5):
+        text = text.replace(f"{{ a[{k}] := }}", f"{{ coef[{k}] := }}")
+    text = text.replace("findSmallestPositiveRoot(a)", "findSmallestPositiveRoot(coef)")
+    assert text.count("coef[") == 5
+    out = folder / "point-line.mxm"
+    out.write_text(text)
+    return out
+
+
+def test_m2_fragment_compiles_as_the_paper_used_it(tmp_path: Path) -> None:
+    gm2 = require("gm2")
+    mxm = corrected_paper_point_line(tmp_path)
+    spec, poly = load(str(mxm))
+    fragment = tmp_path / "fragment.inc"
+    result = generate(spec, poly, LANGUAGES["m2"], "fragment", str(fragment))
+    assert result.companions == ()
+    fragment.write_text(result.text + "\n")
+    body = result.text
+    assert "VAR\n    t: REAL ;" in body and "t := findSmallestPositiveRoot(coef)" in body
+    assert [ln.split(" :=")[0] for ln in body.splitlines() if ln.startswith("coef[")] == [
+        f"coef[{k}]" for k in range(5)]
+    assert all(ln.endswith(" ;") for ln in body.splitlines() if ln.startswith("coef["))
+    params = ", ".join(poly.parameters)
+    (tmp_path / "Paper.mod").write_text(
+        "MODULE Paper ;\n\nVAR\n   " + params + ": REAL ;\n\n"
+        "PROCEDURE findSmallestPositiveRoot (VAR c: ARRAY OF REAL) : REAL ;\n"
+        "BEGIN\n   RETURN c[0]\nEND findSmallestPositiveRoot ;\n\n"
+        "PROCEDURE Predict ;\n#include \"fragment.inc\"\nEND Predict ;\n\n"
+        "BEGIN\n   Predict\nEND Paper.\n")
+    run([gm2, "-fiso", "-fcpp", "-g", "-Wall", "-c", "Paper.mod", "-o", "Paper.o"], cwd=tmp_path)
