@@ -19,6 +19,7 @@ from .paths import templates_dir
 from .expr import symbols
 from .poly import Polynomial
 from .spec import CodeBlock, Spec
+from .variants import DEFAULT_STRATEGY, Variant, family
 
 RESUME = "@@M2C_RESUME@@"
 MAX_MODULE_DEGREE = 8
@@ -36,6 +37,23 @@ class Param:
 class Coef:
     index: int
     code: str
+    directive: str
+
+
+@dataclass(frozen=True)
+class VariantCtx:
+    """One branch of the module's selection code: its conditions and straight-line code."""
+
+    index: int
+    label: str
+    zeros: tuple[Param, ...]
+    condition: str
+    degree: int
+    ops: str
+    used: tuple[Param, ...]
+    unused: tuple[Param, ...]
+    temps: tuple[tuple[str, str], ...]
+    coefficients: tuple[Coef, ...]
     directive: str
 
 
@@ -66,6 +84,10 @@ class Context:
     initialise: Block | None
     terms: tuple[FragmentTerm, ...]
     finalise: Block | None
+    variants: tuple[VariantCtx, ...] = ()
+    strategy: str = DEFAULT_STRATEGY
+    # The parameters some variant's condition tests, in parameter order.
+    tested: tuple[Param, ...] = ()
     resume: str = RESUME
 
     @property
@@ -94,7 +116,8 @@ def _environment(folder: str) -> jinja2.Environment:
     )
 
 
-def context(spec: Spec, poly: Polynomial, lang: Language) -> Context:
+def context(spec: Spec, poly: Polynomial, lang: Language, strategy: str = DEFAULT_STRATEGY,
+            with_variants: bool = True) -> Context:
     idents = [lang.identifier(p) for p in poly.parameters]
     clash = {i for i in idents if idents.count(i) > 1}
     if clash:
@@ -115,12 +138,46 @@ def context(spec: Spec, poly: Polynomial, lang: Language) -> Context:
         coefs.append(Coef(k, code, lang.line_directive(pos)))
         if term:
             terms.append(FragmentTerm(term.prefix.text.strip(), code, lang.line_directive(term.prefix.pos)))
+    variants = tuple(_variant(spec, v, params, lang, prefixes)
+                     for v in family(poly, strategy, lang.temp_prefix, with_variants))
     return Context(
         name=module_name(spec), source=spec.path, version=__version__, lang=lang, params=params,
         degree=poly.degree, coefficients=tuple(coefs),
         initialise=_block(spec.block_for(spec.initialise, lang.name), lang),
         terms=tuple(terms),
         finalise=_block(spec.block_for(spec.finalise, lang.name), lang),
+        variants=variants, strategy=strategy,
+        tested=tuple(p for p in params if any(p in v.zeros for v in variants)),
+    )
+
+
+def _variant(spec: Spec, v: Variant, params: tuple[Param, ...], lang: Language,
+             prefixes: dict) -> VariantCtx:
+    by_name = {p.name: p for p in params}
+    used_names: set[str] = set()
+    for _, e in v.code.temps:
+        used_names |= symbols(e)
+    for e in v.code.outputs:
+        used_names |= symbols(e)
+    try:
+        temps = tuple((name, lang.expr(e)) for name, e in v.code.temps)
+        outputs = [lang.expr(e) for e in v.code.outputs]
+    except ValueError as exc:
+        raise error(spec.program.last_pos, str(exc)) from None
+    coefs = []
+    for k, code in enumerate(outputs):
+        term = prefixes.get(k)
+        coefs.append(Coef(k, code, lang.line_directive(term.pos if term else spec.program.last_pos)))
+    zeros = tuple(by_name[z] for z in v.zeros)
+    ops = v.ops
+    return VariantCtx(
+        index=v.index, label=v.label, zeros=zeros,
+        condition=lang.condition([z.ident for z in zeros]) if zeros else "",
+        degree=v.degree, ops=f"{ops.add} add, {ops.mul} mul, {ops.div} div",
+        used=tuple(p for p in params if p.name in used_names),
+        unused=tuple(p for p in params if p.name not in used_names),
+        temps=temps, coefficients=tuple(coefs),
+        directive=lang.line_directive(spec.program.last_pos),
     )
 
 
@@ -131,23 +188,25 @@ def _block(block: CodeBlock | None, lang: Language) -> Block | None:
                  lang.line_directive(block.pos))
 
 
-def render(spec: Spec, poly: Polynomial, lang: Language, form: str, out_name: str) -> str:
+def render(spec: Spec, poly: Polynomial, lang: Language, form: str, out_name: str,
+           strategy: str = DEFAULT_STRATEGY, with_variants: bool = True) -> str:
     """Render `form` ('module' or 'fragment') and fix the directives that point back into it."""
     if form == "module" and poly.degree > MAX_MODULE_DEGREE:
         raise error(spec.program.last_pos, f"degree {poly.degree} is above {MAX_MODULE_DEGREE}, "
                     f"the most the runtimes solve; emit a fragment instead")
     template = _environment(str(templates_dir() / lang.name)).get_template(f"{form}.j2")
-    text = template.render(ctx=context(spec, poly, lang))
+    text = template.render(ctx=context(spec, poly, lang, strategy, with_variants))
     return _resume_lines(text, lang, out_name)
 
 
 def render_companions(spec: Spec, poly: Polynomial, lang: Language, form: str,
-                      out_name: str) -> tuple[tuple[str, str], ...]:
+                      out_name: str, strategy: str = DEFAULT_STRATEGY,
+                      with_variants: bool = True) -> tuple[tuple[str, str], ...]:
     """The files `lang` writes beside a module, as (path, text): `out_name` with each companion's
     extension (or '-' when the module goes to standard output). Empty for a fragment."""
     if form != "module" or not lang.companions:
         return ()
-    ctx = context(spec, poly, lang)
+    ctx = context(spec, poly, lang, strategy, with_variants)
     out = []
     for extension, stem in lang.companions:
         path = "-" if out_name in ("-", "<stdout>") else str(Path(out_name).with_suffix(extension))

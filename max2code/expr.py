@@ -73,7 +73,14 @@ class Call:
     args: tuple[Expr, ...]
 
 
-Expr = Union[Num, Float, Sym, Neg, Add, Mul, Div, Pow, Call]
+@dataclass(frozen=True)
+class Ref:
+    """A temporary of generated straight-line code (a shared subexpression), printed verbatim."""
+
+    name: str
+
+
+Expr = Union[Num, Float, Sym, Neg, Add, Mul, Div, Pow, Call, Ref]
 
 ZERO = Num(Fraction(0))
 

@@ -10,7 +10,7 @@ from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput
 
 from .diagnostics import Max2CodeError, Pos, error
 from .maxima_text import split_statements
-from .spec import CodeBlock, Declared, Program, Spec, Term
+from .spec import CodeBlock, Declared, Program, Role, Spec, Term
 
 
 @lru_cache(maxsize=1)
@@ -105,6 +105,7 @@ class _Builder:
         finalise: list[CodeBlock] = []
         terms: list[Term] = []
         program: Program | None = None
+        roles: list[Role] = []
         seen: dict[str, Pos] = {}
         for node in tree.children:
             kind = node.data
@@ -137,12 +138,20 @@ class _Builder:
                 index = int(node.children[0])
                 lang, tok = self.tagged(node.children[1:])
                 terms.append(Term(index, self.block(tok, lang), self.pos(node)))
+            elif kind == "role_decl":
+                name, *params = [str(c) for c in node.children]
+                for r in roles:
+                    if r.name == name:
+                        raise error(self.pos(node), f"duplicate role '{name}' (first at line {r.pos.line})")
+                if len(set(params)) != len(params):
+                    raise error(self.pos(node), f"role '{name}' lists a parameter twice")
+                roles.append(Role(name, tuple(params), self.pos(node)))
             elif kind == "program":
                 program = self.program(node.children[0])
         assert program is not None  # the grammar requires it
         self.check_terms(terms, fields.get("terms_declared"))  # type: ignore[arg-type]
         return Spec(path=self.path, program=program, initialise=tuple(initialise),
-                    terms=tuple(terms), finalise=tuple(finalise), **fields)  # type: ignore[arg-type]
+                    terms=tuple(terms), finalise=tuple(finalise), roles=tuple(roles), **fields)  # type: ignore[arg-type]
 
     def tagged(self, children: list) -> tuple[str | None, Token]:
         if len(children) == 2:

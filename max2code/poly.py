@@ -8,11 +8,12 @@ circles wrong.
 
 from __future__ import annotations
 
+import itertools
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from . import maxima
-from .diagnostics import Diagnostic, Pos, error
+from .diagnostics import Diagnostic, Max2CodeError, Pos, error
 from .expr import ZERO, Expr, ExprSyntaxError, calls, parse_maxima, symbols
 from .spec import Spec
 
@@ -31,91 +32,138 @@ class Polynomial:
     maxima_seconds: float
     maxima_lines: int
     warnings: tuple[Diagnostic, ...] = ()
+    # Maxima's simplified but unexpanded equation: what the optimised strategy works from.
+    unexpanded: Expr | None = None
+    # For a variant: the roles and parameters that are zero; for the general one: ().
+    roles: tuple[str, ...] = ()
+    zeros: tuple[str, ...] = ()
+    variants: tuple[Polynomial, ...] = ()
 
     @property
     def degree(self) -> int:
         return len(self.coefficients) - 1
 
 
-def extraction_script(variable: str, substitutions: tuple[tuple[str, str], ...] = ()) -> str:
+def extraction_script(variable: str,
+                      variants: tuple[tuple[str, ...], ...] = ((),)) -> str:
     """Maxima code run after the user's program: `%` holds the equation.
 
     Noun forms are evaluated (`ev(.., nouns)`) because the paper's figures quote their Taylor
     helper (`'O(...)`) and rely on it being expanded later; an equation `l = r` becomes `l - r`.
-    `substitutions` set parameters to values first (how variants are derived).
+    Each entry of `variants` names parameters set to zero (the first is normally none); every
+    variant is reported between VARIANT and END markers, in the same session.
     """
     t = variable
-    subst = ", ".join(f"{name} = {value}" for name, value in substitutions)
-    lines = [
+    m = maxima.MARK
+    zero_lists = ", ".join("[" + ", ".join(f"{p} = 0" for p in zeros) + "]" for zeros in variants)
+    return "\n".join([
         f"{E}: %$",
         f"{E}: ev({E}, nouns)$",
         f'{E}: if not atom({E}) and op({E}) = "=" then lhs({E}) - rhs({E}) else {E}$',
-        f"{E}: subst([{subst}], {E})$" if subst else "",
         maxima.marker("EXTRACT"),
-        f'printf(true, "~%{maxima.MARK}-KIND ~a~%", if stringp({E}) then "a string" '
-        f'elseif listp({E}) then "a list" elseif matrixp({E}) then "a matrix" '
-        f'elseif not atom({E}) and member(op({E}), ["<", ">", "<=", ">=", "#", "and", "or"]) '
-        f'then "a condition" else "expr")$',
-        f'printf(true, "~%{maxima.MARK}-SHOWN ~d~%", slength(string({E})))$',
-        f'printf(true, "~%{maxima.MARK}-DENOM ~a~%", if freeof({t}, denom(ratsimp({E}))) '
-        f'then 0 else 1)$',
-        f"{X}: expand({E})$",
-        f"m2c__n: hipow({X}, {t})$",
-        f'for m2c__k: 0 thru m2c__n do printf(true, "~%{maxima.MARK}-COEF ~d ~a~%", m2c__k, '
-        f"string(coeff({X}, {t}, m2c__k)))$",
-        f'printf(true, "~%{maxima.MARK}-REST ~a~%", string(expand({X} - sum(coeff({X}, {t}, m2c__k)'
-        f" * {t}^m2c__k, m2c__k, 0, m2c__n))))$",
+        f"m2c__report(m2c__i, m2c__v) := block([m2c__x, m2c__n],",
+        f'  printf(true, "~%{m}-VARIANT ~d~%", m2c__i),',
+        f'  printf(true, "~%{m}-KIND ~a~%", if stringp(m2c__v) then "a string" '
+        f'elseif listp(m2c__v) then "a list" elseif matrixp(m2c__v) then "a matrix" '
+        f'elseif not atom(m2c__v) and member(op(m2c__v), ["<", ">", "<=", ">=", "#", "and", "or"]) '
+        f'then "a condition" else "expr"),',
+        f'  printf(true, "~%{m}-SHOWN ~d~%", slength(string(m2c__v))),',
+        f'  printf(true, "~%{m}-UNEXPANDED ~a~%", string(m2c__v)),',
+        # Variants are substitutions into the general equation: its checks cover them.
+        f'  printf(true, "~%{m}-DENOM ~a~%", if m2c__i > 0 or freeof({t}, denom(ratsimp(m2c__v))) '
+        f"then 0 else 1),",
+        f"  m2c__x: expand(m2c__v),",
+        f"  m2c__n: hipow(m2c__x, {t}),",
+        f'  for m2c__k: 0 thru m2c__n do printf(true, "~%{m}-COEF ~d ~a~%", m2c__k, '
+        f"string(coeff(m2c__x, {t}, m2c__k))),",
+        f'  printf(true, "~%{m}-REST ~a~%", if m2c__i > 0 then 0 else string(expand(m2c__x - '
+        f"sum(coeff(m2c__x, {t}, m2c__k) * {t}^m2c__k, m2c__k, 0, m2c__n)))),",
+        f'  printf(true, "~%{m}-VARIANT-END ~d~%", m2c__i))$',
+        f"m2c__zeros: [{zero_lists}]$",
+        f"for m2c__i: 1 thru length(m2c__zeros) do m2c__report(m2c__i - 1, "
+        f"subst(m2c__zeros[m2c__i], {E}))$",
         maxima.marker("END"),
-    ]
-    return "\n".join(line for line in lines if line) + "\n"
+    ]) + "\n"
 
 
-def polynomial(spec: Spec, timeout: float = maxima.DEFAULT_TIMEOUT,
-               substitutions: tuple[tuple[str, str], ...] = ()) -> Polynomial:
+def polynomial(spec: Spec, timeout: float = maxima.DEFAULT_TIMEOUT) -> Polynomial:
+    """The equation's polynomial, with one specialised variant per combination of its roles."""
     statements = spec.program.statements
     where = spec.program.last_pos
     if not statements:
         raise error(spec.program.pos, "the Maxima program is empty: it must end with the equation")
-    script = maxima.program_script(statements) + extraction_script(spec.variable, substitutions)
+    combos = role_combinations(spec)
+    script = maxima.program_script(statements) + extraction_script(
+        spec.variable, tuple(zeros for _, zeros in combos))
     session = maxima.run(script, statements, where, timeout)
-    return _read(spec, session, where)
+    text = session.output
+    if not _field(text, "END"):
+        raise error(where, "Maxima stopped before the coefficients were read (no error message "
+                    "was recognised; run the program in Maxima to see why)")
+    blocks = re.findall(rf"^{maxima.MARK}-VARIANT (\d+)$([\s\S]*?)^{maxima.MARK}-VARIANT-END \1$",
+                        text, re.M)
+    if not blocks or blocks[0][0] != "0":
+        raise error(where, "Maxima stopped before the coefficients were read")
+    general = _read(spec, blocks[0][1], where, spec.variable)
+    params = _parameters(spec, general.coefficients)
+    for role in spec.roles:
+        unknown = [p for p in role.params if p not in params]
+        if unknown:
+            raise error(role.pos, f"role '{role.name}' names {', '.join(unknown)}, not a parameter "
+                        f"of the equation")
+    variants = []
+    for (index, body), (roles, zeros) in zip(blocks[1:], combos[1:]):
+        try:
+            v = _read(spec, body, where, spec.variable)
+        except Max2CodeError:
+            continue  # e.g. everything vanishes: that combination is no variant
+        variants.append(replace(v, parameters=params, roles=roles, zeros=zeros))
+    return replace(general, parameters=params, maxima_seconds=session.seconds,
+                   warnings=_warnings(spec, params), variants=tuple(variants))
+
+
+def role_combinations(spec: Spec) -> list[tuple[tuple[str, ...], tuple[str, ...]]]:
+    """Every subset of the declared roles, as (role names, parameters set to zero); the empty
+    subset (the general equation) first."""
+    out: list[tuple[tuple[str, ...], tuple[str, ...]]] = [((), ())]
+    roles = spec.roles
+    for size in range(1, len(roles) + 1):
+        for combo in itertools.combinations(roles, size):
+            zeros = tuple(sorted({p for r in combo for p in r.params}))
+            out.append((tuple(r.name for r in combo), zeros))
+    return out
 
 
 def _field(text: str, tag: str) -> list[str]:
     return re.findall(rf"^{maxima.MARK}-{tag} (.*)$", text, re.M)
 
 
-def _read(spec: Spec, session: maxima.Session, where: Pos) -> Polynomial:
-    text, t = session.output, spec.variable
-    if not _field(text, "END"):
-        raise error(where, "Maxima stopped before the coefficients were read (no error message "
-                    "was recognised; run the program in Maxima to see why)")
+def _read(spec: Spec, text: str, where: Pos, t: str) -> Polynomial:
     kind = _field(text, "KIND")[0]
     if kind != "expr":
         raise error(where, f"the program's last result is {kind}, not a polynomial equation in {t}")
     if _field(text, "DENOM")[0].strip() != "0":
         raise error(where, f"not a polynomial: the variable '{t}' appears in a denominator")
     coefficients = []
-    for raw in _field(text, "COEF"):
-        _, body = raw.split(" ", 1)
-        try:
-            coefficients.append(parse_maxima(body))
-        except ExprSyntaxError as exc:
-            raise error(where, str(exc)) from None
+    try:
+        for raw in _field(text, "COEF"):
+            coefficients.append(parse_maxima(raw.split(" ", 1)[1]))
+        unexpanded = parse_maxima(_field(text, "UNEXPANDED")[0])
+    except ExprSyntaxError as exc:
+        raise error(where, str(exc)) from None
     rest = _field(text, "REST")[0].strip()
     if rest != "0" or any(t in symbols(c) for c in coefficients):
         raise error(where, f"not a polynomial in '{t}': '{t}' is left inside a function or a "
-                        f"non-integer power ({_inside(coefficients, rest, t)})")
+                    f"non-integer power ({_inside(coefficients, rest, t)})")
     while len(coefficients) > 1 and coefficients[-1] == ZERO:
         coefficients.pop()
     if all(c == ZERO for c in coefficients):
         raise error(where, f"the equation is identically zero: no polynomial in '{t}' to solve")
     if len(coefficients) == 1:
         raise error(where, f"the equation does not depend on '{t}' (degree 0): nothing to solve")
-    params = _parameters(spec, coefficients)
     shown = int(_field(text, "SHOWN")[0])
-    return Polynomial(t, tuple(coefficients), params, session.seconds,
-                      maxima_lines=max(1, -(-shown // 79)), warnings=_warnings(spec, params))
+    return Polynomial(t, tuple(coefficients), (), 0.0, maxima_lines=max(1, -(-shown // 79)),
+                      unexpanded=unexpanded)
 
 
 def _inside(coefficients: list[Expr], rest: str, t: str) -> str:

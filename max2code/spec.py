@@ -60,6 +60,15 @@ class Declared:
 
 
 @dataclass(frozen=True)
+class Role:
+    """`role NAME = p, q`: when all of p, q are zero the motion is simpler (a variant)."""
+
+    name: str
+    params: tuple[str, ...]
+    pos: Pos
+
+
+@dataclass(frozen=True)
 class Spec:
     path: str
     program: Program
@@ -70,6 +79,7 @@ class Spec:
     initialise: tuple[CodeBlock, ...] = ()
     terms: tuple[Term, ...] = ()
     finalise: tuple[CodeBlock, ...] = ()
+    roles: tuple[Role, ...] = ()
 
     @property
     def parameter_order(self) -> tuple[str, ...] | None:

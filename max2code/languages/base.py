@@ -11,7 +11,7 @@ from dataclasses import dataclass
 from fractions import Fraction
 
 from ..diagnostics import Pos
-from ..expr import Add, Call, Div, Expr, Float, Mul, Neg, Num, Pow, Sym
+from ..expr import Add, Call, Div, Expr, Float, Mul, Neg, Num, Pow, Ref, Sym
 
 # Binding strength, loosest first.
 P_ADD, P_MUL, P_NEG, P_POW, P_ATOM = 1, 2, 3, 4, 5
@@ -30,6 +30,11 @@ class Language:
     max_inline_power: int = 8
     functions: tuple[tuple[str, str], ...] = ()
     terminator: str = ";"
+    # How generated straight-line code names its temporaries, and how a variant's condition
+    # (all of some parameters exactly zero) is written.
+    temp_prefix: str = "m2c_t"
+    and_op: str = " && "
+    zero_test: str = "{} == 0.0"
     # Files the module form writes beside its output, as (extension, template stem) pairs:
     # e.g. a definition module beside an implementation module. Rendered from the same context.
     companions: tuple[tuple[str, str], ...] = ()
@@ -55,6 +60,9 @@ class Language:
     def comment(self, text: str) -> str:
         raise NotImplementedError
 
+    def condition(self, idents: list[str]) -> str:
+        return self.and_op.join(self.zero_test.format(i) for i in idents)
+
     # ---- shared rules ---------------------------------------------------------------------
     def identifier(self, name: str) -> str:
         """A parameter name made safe: keywords and our own reserved names get a trailing '_'."""
@@ -64,8 +72,8 @@ class Language:
         return out
 
     def number(self, value: Fraction) -> str:
-        if value.denominator == 1:
-            return self.float_literal(float(value.numerator))
+        if value.denominator == 1 or Fraction(float(value)) == value:  # exact as a double
+            return self.float_literal(float(value))
         return f"({self.float_literal(float(value.numerator))}/{self.float_literal(float(value.denominator))})"
 
     def expr(self, e: Expr) -> str:
@@ -79,6 +87,8 @@ class Language:
         if isinstance(e, Float):
             text = self.float_literal(abs(e.value))
             return ("-" + text, P_NEG) if e.value < 0 else (text, P_ATOM)
+        if isinstance(e, Ref):
+            return e.name, P_ATOM
         if isinstance(e, Sym):
             if e.name in CONSTANT_VALUES:
                 return self.float_literal(CONSTANT_VALUES[e.name]), P_ATOM

@@ -18,6 +18,7 @@ class Python(Language):
     extension: str = ".py"
     keywords: frozenset[str] = PY_KEYWORDS
     terminator: str = ""
+    and_op: str = " and "
     functions: tuple[tuple[str, str], ...] = (
         ("sin", "math.sin"), ("cos", "math.cos"), ("tan", "math.tan"), ("sqrt", "math.sqrt"),
         ("exp", "math.exp"), ("log", "math.log"), ("abs", "abs"), ("atan", "math.atan"),
