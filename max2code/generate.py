@@ -11,6 +11,7 @@ from .languages import LANGUAGES, Language
 from .parse import parse_file
 from .poly import Polynomial, check_declared_terms, polynomial
 from .spec import Spec
+from .variants import DEFAULT_STRATEGY
 
 
 @dataclass(frozen=True)
@@ -45,7 +46,8 @@ def load(path: str, timeout: float = maxima.DEFAULT_TIMEOUT) -> tuple[Spec, Poly
     return spec, polynomial(spec, timeout)
 
 
-def generate(spec: Spec, poly: Polynomial, lang: Language, form: str, out_name: str) -> Generated:
+def generate(spec: Spec, poly: Polynomial, lang: Language, form: str, out_name: str,
+             strategy: str = DEFAULT_STRATEGY, with_variants: bool = True) -> Generated:
     form = choose_form(spec, form)
     warnings = list(poly.warnings)
     mismatch = check_declared_terms(spec, poly, "error" if form == "fragment" else "warning")
@@ -53,6 +55,6 @@ def generate(spec: Spec, poly: Polynomial, lang: Language, form: str, out_name: 
         if mismatch.severity == "error":
             raise error(mismatch.pos, mismatch.message)
         warnings.append(mismatch)
-    text = render(spec, poly, lang, form, out_name)
-    companions = render_companions(spec, poly, lang, form, out_name)
+    text = render(spec, poly, lang, form, out_name, strategy, with_variants)
+    companions = render_companions(spec, poly, lang, form, out_name, strategy, with_variants)
     return Generated(spec, poly, text, form, tuple(warnings), companions)
