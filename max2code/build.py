@@ -3,6 +3,12 @@
 Each equation is expanded by Maxima once and rendered for every registered language as a
 module into OUT/<lang>/; a Markdown summary (degree, parameters, Maxima time, lines per
 language) is written to OUT/summary.md and printed.
+
+`--jobs N` runs up to N equations at once (Maxima is a subprocess, so threads suffice); output
+files, diagnostics and the summary come out in input order whatever finishes first. An equation
+whose .mxm, loaded files, Maxima and max2code are unchanged since a successful build is served
+from the results cache (cache.py) without parsing or rendering: the heavy modules (Lark, Jinja)
+are imported only when something has to be generated.
 """
 
 from __future__ import annotations
@@ -10,14 +16,12 @@ from __future__ import annotations
 import argparse
 import os
 import sys
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 
-from . import maxima
+from . import cache, depfile, maxima
 from .diagnostics import Max2CodeError
-from .emit import module_name
-from .generate import generate, load
-from .languages import LANGUAGES
 from .output import write_if_changed
 from .paths import ROOT
 
@@ -32,23 +36,89 @@ class Row:
     lines: tuple[tuple[str, int], ...]
 
 
-def build_one(path: str, out: Path, langs: list[str], timeout: float) -> Row:
+@dataclass(frozen=True)
+class Outcome:
+    """One equation's result: its row (None on failure), what to print, what was written."""
+
+    row: Row | None
+    messages: tuple[str, ...]
+    outputs: tuple[tuple[str, str], ...] = ()
+
+
+def build_one(path: str, out: Path, langs: list[str] | None, timeout: float) -> Outcome:
+    from .emit import module_name
+    from .generate import generate, load
+    from .languages import LANGUAGES
+
+    langs = langs or sorted(LANGUAGES)
     spec, poly = load(path, timeout)
     name = module_name(spec)
     lines = []
+    messages: list[str] = []
+    outputs: list[tuple[str, str]] = []
     for lang_name in langs:
         lang = LANGUAGES[lang_name]
         folder = out / lang_name
-        folder.mkdir(parents=True, exist_ok=True)
         target = folder / f"{name}{lang.extension}"
         result = generate(spec, poly, lang, "module", str(target))
-        for warning in result.warnings:
-            print(warning, file=sys.stderr)
-        for companion, text in result.companions:
-            write_if_changed(companion, text)
-        write_if_changed(str(target), result.text)
+        messages += [str(w) for w in result.warnings]
+        outputs += [*result.companions, (str(target), result.text)]
         lines.append((lang_name, result.text.count("\n") + sum(t.count("\n") for _, t in result.companions)))
-    return Row(path, name, poly.degree, len(poly.parameters), poly.maxima_seconds, tuple(lines))
+    row = Row(path, name, poly.degree, len(poly.parameters), poly.maxima_seconds, tuple(lines))
+    return Outcome(row, tuple(messages), tuple(outputs))
+
+
+def _result_key(path: str, out: Path, langs: list[str] | None) -> str | None:
+    """The results-cache key of one equation, or None when it cannot be cached (no Maxima,
+    unreadable file): then the full path runs and reports the problem."""
+    if not cache.enabled():
+        return None
+    try:
+        exe = maxima.maxima_executable()
+    except Max2CodeError:
+        return None
+    loads = depfile.loaded_files_of_source(path)
+    if loads is None:
+        return None
+    return cache.result_key("build", path, str(out), ",".join(langs or ["*"]),
+                            cache.executable_identity(exe), inputs=(path, *loads))
+
+
+def _cached(key: str | None) -> Outcome | None:
+    obj = cache.get_json(key, "results") if key else None
+    if obj is None:
+        return None
+    try:
+        r = obj["row"]
+        row = Row(r["source"], r["name"], int(r["degree"]), int(r["nparams"]), float(r["seconds"]),
+                  tuple((str(a), int(b)) for a, b in r["lines"]))
+        return Outcome(row, tuple(obj["messages"]), tuple((str(p), str(t)) for p, t in obj["outputs"]))
+    except (KeyError, TypeError, ValueError):
+        return None
+
+
+def _store(key: str | None, outcome: Outcome) -> None:
+    if key is None or outcome.row is None:
+        return
+    r = outcome.row
+    cache.put_json(key, {"row": {"source": r.source, "name": r.name, "degree": r.degree,
+                                 "nparams": r.nparams, "seconds": r.seconds,
+                                 "lines": [list(x) for x in r.lines]},
+                         "messages": list(outcome.messages),
+                         "outputs": [list(x) for x in outcome.outputs]}, "results")
+
+
+def _run(path: str, out: Path, langs: list[str] | None, timeout: float) -> Outcome:
+    key = _result_key(path, out, langs)
+    hit = _cached(key)
+    if hit is not None:
+        return hit
+    try:
+        outcome = build_one(path, out, langs, timeout)
+    except Max2CodeError as exc:
+        return Outcome(None, tuple(str(d) for d in exc.diagnostics))
+    _store(key, outcome)
+    return outcome
 
 
 def _display(path: Path) -> str:
@@ -69,26 +139,66 @@ def summary(rows: list[Row], failed: list[str], langs: list[str]) -> str:
     return text
 
 
+def _languages() -> list[str]:
+    from .languages import LANGUAGES
+    return sorted(LANGUAGES)
+
+
 def main(argv: list[str]) -> int:
     ap = argparse.ArgumentParser(prog="max2code build", description=__doc__.splitlines()[0])
     ap.add_argument("inputs", nargs="*", metavar="FILE.mxm",
                     help="equations (default: the shipped equations/*.mxm)")
     ap.add_argument("-o", "--out", default="build", help="output folder (default: build)")
-    ap.add_argument("--lang", action="append", choices=sorted(LANGUAGES),
-                    help="only these languages (repeatable; default: all)")
+    ap.add_argument("--lang", action="append", metavar="LANG",
+                    help="only this language (repeatable; default: all registered ones)")
     ap.add_argument("--timeout", type=float, default=maxima.DEFAULT_TIMEOUT)
+    ap.add_argument("-j", "--jobs", type=int, default=1, metavar="N",
+                    help="run up to N equations at once (default 1; 0: one per CPU)")
+    ap.add_argument("--no-cache", action="store_true",
+                    help="neither read nor write the cache of Maxima results and outputs")
     opts = ap.parse_args(argv)
+    if opts.no_cache:
+        cache.disable()
+    if opts.jobs < 0:
+        ap.error("--jobs must be 0 or more")
+    jobs = opts.jobs or os.cpu_count() or 1
     inputs = opts.inputs or sorted(_display(p) for p in (ROOT / "equations").glob("*.mxm"))
-    langs = opts.lang or sorted(LANGUAGES)
+    langs: list[str] | None = None  # None: every registered language (looked up only if needed)
+    if opts.lang:
+        known = _languages()
+        for lang in opts.lang:
+            if lang not in known:
+                ap.error(f"argument --lang: invalid choice: {lang!r} (choose from {', '.join(known)})")
+        langs = sorted(set(opts.lang), key=opts.lang.index)
     out = Path(opts.out)
+
+    def task(path: str) -> Outcome:
+        return _run(path, out, langs, opts.timeout)
+
+    if jobs > 1 and len(inputs) > 1:
+        with ThreadPoolExecutor(max_workers=jobs) as pool:
+            outcomes = list(pool.map(task, inputs))
+    else:
+        outcomes = [task(p) for p in inputs]
     rows, failed = [], []
-    for path in inputs:
-        try:
-            rows.append(build_one(path, out, langs, opts.timeout))
-        except Max2CodeError as exc:
-            for diag in exc.diagnostics:
-                print(diag, file=sys.stderr)
+    for path, outcome in zip(inputs, outcomes):
+        for message in outcome.messages:
+            print(message, file=sys.stderr)
+        if outcome.row is None:
             failed.append(path)
+            continue
+        try:
+            for target, text in outcome.outputs:
+                Path(target).parent.mkdir(parents=True, exist_ok=True)
+                write_if_changed(target, text)
+        except (Max2CodeError, OSError) as exc:
+            print(exc if isinstance(exc, Max2CodeError) else f"{out}:1:1: error: {exc}",
+                  file=sys.stderr)
+            failed.append(path)
+            continue
+        rows.append(outcome.row)
+    if langs is None:
+        langs = [name for name, _ in rows[0].lines] if rows else _languages()
     text = summary(rows, failed, langs)
     out.mkdir(parents=True, exist_ok=True)
     write_if_changed(str(out / "summary.md"), text)

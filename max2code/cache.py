@@ -14,6 +14,11 @@ the same entry each leave a whole entry behind, never a mixture. Only successful
 stored (the caller decides); any failure to read or write the cache is silent, since the cache
 is an optimisation, never a reason for a build to fail. `--no-cache` (or MAX2CODE_NO_CACHE=1)
 bypasses it.
+
+A second kind of entry (`results/`) serves `max2code build` the way ccache's direct mode serves
+a compiler: keyed by the .mxm's bytes and path, the contents of the files it loads, Maxima's
+identity and a digest of max2code's own code and templates, it holds the finished outputs, so
+a rebuild of unchanged equations neither parses nor renders (and imports neither Lark nor Jinja).
 """
 
 from __future__ import annotations
@@ -79,8 +84,42 @@ def key(script: str, exe: str, inputs: tuple[str, ...] = ()) -> str:
     return h.hexdigest()
 
 
-def _entry_path(k: str) -> Path:
-    return directory() / "v1" / k[:2] / k
+def _entry_path(k: str, kind: str = "v1") -> Path:
+    return directory() / kind / k[:2] / k
+
+
+def source_digest() -> str:
+    """A digest of max2code's code, grammars and templates: what renders the outputs.
+
+    Reading some 50 small files costs about a millisecond, and it makes the results cache
+    correct in a checkout being edited, where the version number does not change.
+    """
+    global _source_digest
+    if _source_digest is None:
+        package = Path(__file__).resolve().parent
+        h = hashlib.sha256(__version__.encode())
+        for folder in (package, package.parent / "templates"):
+            for root, dirs, files in sorted(os.walk(folder)):
+                dirs[:] = sorted(d for d in dirs if d != "__pycache__")
+                for name in sorted(files):
+                    if name.endswith((".py", ".lark", ".j2", ".jinja", ".txt")):
+                        full = os.path.join(root, name)
+                        h.update(full.encode("utf-8", "surrogatepass") + b"\0")
+                        try:
+                            with open(full, "rb") as f:
+                                h.update(hashlib.sha256(f.read()).digest())
+                        except OSError:
+                            pass
+        _source_digest = h.hexdigest()
+    return _source_digest
+
+
+_source_digest: str | None = None
+
+
+def result_key(*parts: str, inputs: tuple[str, ...] = ()) -> str:
+    """A results-cache key: `parts` (paths, options, Maxima's identity) and file contents."""
+    return key("\0".join((source_digest(), *parts)), "", inputs)
 
 
 @dataclass(frozen=True)
@@ -90,29 +129,41 @@ class Entry:
 
 
 def get(k: str) -> Entry | None:
-    """The stored result for key `k`, or None when absent, corrupt or the cache is off."""
-    if not enabled():
-        return None
+    """The stored Maxima output for key `k`, or None when absent, corrupt or the cache is off."""
+    obj = get_json(k, "v1")
     try:
-        data = _entry_path(k).read_bytes()
-        head, _, body = data.partition(b"\n")
-        if head != (FORMAT + " " + hashlib.sha256(body).hexdigest()).encode():
-            return None
-        obj = json.loads(body.decode("utf-8"))
-        if obj.get("key") != k:
-            return None
-        return Entry(str(obj["output"]), float(obj["seconds"]))
-    except (OSError, ValueError, KeyError, TypeError, AttributeError):
+        return None if obj is None else Entry(str(obj["output"]), float(obj["seconds"]))
+    except (KeyError, TypeError, ValueError):
         return None
 
 
 def put(k: str, entry: Entry) -> None:
-    """Store a result atomically; silently do nothing if the cache cannot be written."""
+    put_json(k, {"seconds": entry.seconds, "output": entry.output}, "v1")
+
+
+def get_json(k: str, kind: str) -> dict | None:
+    """The stored object for key `k` in `kind`, or None when absent, corrupt or off."""
+    if not enabled():
+        return None
+    try:
+        data = _entry_path(k, kind).read_bytes()
+        head, _, body = data.partition(b"\n")
+        if head != (FORMAT + " " + hashlib.sha256(body).hexdigest()).encode():
+            return None
+        obj = json.loads(body.decode("utf-8"))
+        if not isinstance(obj, dict) or obj.get("key") != k:
+            return None
+        return obj
+    except (OSError, ValueError, TypeError, AttributeError):
+        return None
+
+
+def put_json(k: str, obj: dict, kind: str) -> None:
+    """Store an object atomically; silently do nothing if the cache cannot be written."""
     if not enabled():
         return
-    path = _entry_path(k)
-    body = json.dumps({"key": k, "seconds": entry.seconds, "output": entry.output},
-                      ensure_ascii=False).encode("utf-8")
+    path = _entry_path(k, kind)
+    body = json.dumps({"key": k, **obj}, ensure_ascii=False).encode("utf-8")
     data = (FORMAT + " " + hashlib.sha256(body).hexdigest()).encode() + b"\n" + body
     tmp = None
     try:

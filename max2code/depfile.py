@@ -15,8 +15,10 @@ from __future__ import annotations
 
 import os
 import re
+from typing import TYPE_CHECKING
 
-from .spec import Statement
+if TYPE_CHECKING:
+    from .spec import Statement
 
 LOAD_CALL = re.compile(r"\b(?:load|batchload|batch)\s*\(\s*\"((?:[^\"\\]|\\.)*)\"")
 ANY_LOAD = re.compile(r"\b(?:load|batchload|batch)\s*\(")
@@ -53,11 +55,24 @@ def loaded_files(statements: tuple[Statement, ...]) -> tuple[str, ...]:
     """
     if not statements:
         return ()
-    mxm = statements[0].pos.file
-    folder = os.path.dirname(mxm)
+    folder = os.path.dirname(statements[0].pos.file)
+    return _scan([(s.text, folder) for s in statements])
+
+
+def loaded_files_of_source(path: str) -> tuple[str, ...] | None:
+    """The same from the raw .mxm text, without parsing it: a superset (loads in comments count
+    too), which is what a cache key needs. None if the file cannot be read."""
+    try:
+        with open(path, encoding="utf-8", errors="replace") as f:
+            text = f.read()
+    except OSError:
+        return None
+    return _scan([(text, os.path.dirname(path))])
+
+
+def _scan(texts: list[tuple[str, str]]) -> tuple[str, ...]:
     found: list[str] = []
     seen: set[str] = set()
-    texts = [(s.text, folder) for s in statements]
     while texts and len(found) < _MAX_FILES:
         text, where = texts.pop(0)
         for m in LOAD_CALL.finditer(text):

@@ -1,0 +1,116 @@
+"""`max2code runtime`: where each language's runtime lives and how to use it, like pkg-config.
+
+    max2code runtime                       everything, one language per paragraph
+    max2code runtime --lang c --cflags     -I/path/to/runtime/c
+    max2code runtime --lang c --sources    /path/to/runtime/c/max2code_roots.c
+    max2code runtime --lang c --libs       -lgsl -lgslcblas -lm
+    max2code runtime --lang rust --dir     /path/to/runtime/rust   (a Cargo path dependency)
+    max2code runtime --lang python --dir   the folder to put on PYTHONPATH for max2code_runtime
+    max2code runtime --lang m2 --cflags    -fiso -I/path/to/runtime/m2   (Max2codeRoots.def)
+
+Build systems call it once at configure time (Make: `$(shell ...)`, CMake: `execute_process`,
+Cargo: a build script) instead of hard-coding the checkout's layout. Each query prints one line.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib.util
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+from .paths import runtime_dir
+
+C_LIBS = ["-lgsl", "-lgslcblas", "-lm"]
+
+
+def _m2_iso_libs() -> list[str]:
+    """gm2's ISO library folder, as DESIGN.md measured: -L<m2iso> -lm2iso -lpthread."""
+    gm2 = shutil.which("gm2")
+    folder = "$(gm2 -print-file-name=m2/m2iso)"
+    if gm2:
+        try:
+            found = subprocess.run([gm2, "-print-file-name=m2/m2iso"], capture_output=True,
+                                   text=True, timeout=30).stdout.strip()
+            folder = found or folder
+        except (OSError, subprocess.SubprocessError):
+            pass
+    return [f"-L{folder}", "-lm2iso", "-lpthread"]
+
+
+def info(lang: str) -> dict[str, str]:
+    """The answers for one language; every value is one line of text ('' when not relevant)."""
+    c_dir = runtime_dir("c")
+    c_source = str(c_dir / "max2code_roots.c")
+    if lang == "c":
+        return {"dir": str(c_dir), "cflags": f"-I{c_dir}", "sources": c_source,
+                "libs": " ".join(C_LIBS),
+                "note": "compile the source into the program; the generated header includes "
+                        "max2code_roots.h"}
+    if lang == "m2":
+        m2 = runtime_dir("m2")
+        return {"dir": str(m2), "cflags": f"-fiso -I{m2}", "sources": c_source,
+                "libs": " ".join(_m2_iso_libs() + C_LIBS),
+                "note": "Max2codeRoots.def binds the C runtime: compile the C source with gcc "
+                        "and link it; compile the generated .mod with gm2 -fiso -fcpp"}
+    if lang == "rust":
+        crate = runtime_dir("rust")
+        return {"dir": str(crate), "cflags": "", "sources": str(crate / "src" / "lib.rs"),
+                "libs": "", "cargo": f'max2code-runtime = {{ path = "{crate.as_posix()}" }}',
+                "note": "a Cargo path dependency: the 'cargo' line goes under [dependencies]"}
+    if lang == "python":
+        folder = runtime_dir("python")
+        spec = importlib.util.find_spec("max2code_runtime")
+        importable = spec is not None and spec.origin is not None
+        where = str(Path(spec.origin).parent) if importable else ""  # type: ignore[union-attr, arg-type]
+        return {"dir": str(folder), "cflags": "", "sources": str(folder / "max2code_runtime"),
+                "libs": "", "importable": "yes" if importable else "no",
+                "module": where,
+                "note": "pure Python: installed with max2code as 'max2code_runtime', else put "
+                        "'dir' on PYTHONPATH"}
+    raise KeyError(lang)
+
+
+def _languages() -> list[str]:
+    from .languages import LANGUAGES
+    return sorted(LANGUAGES)
+
+
+def main(argv: list[str]) -> int:
+    ap = argparse.ArgumentParser(prog="max2code runtime",
+                                 description="Where each language's runtime lives and the flags "
+                                             "to use it (like pkg-config).")
+    ap.add_argument("--lang", metavar="LANG", help="one language (default: all, described)")
+    group = ap.add_mutually_exclusive_group()
+    for flag, what in (("dir", "the runtime's folder (Rust: the crate; Python: for PYTHONPATH)"),
+                       ("cflags", "compiler flags (C: -I; Modula-2: gm2 flags)"),
+                       ("sources", "source file(s) to compile into the program"),
+                       ("libs", "linker flags"),
+                       ("cargo", "the Cargo.toml dependency line (Rust)"),
+                       ("importable", "'yes' if max2code_runtime imports here (Python)")):
+        group.add_argument(f"--{flag}", dest="query", action="store_const", const=flag, help=what)
+    opts = ap.parse_args(argv)
+    langs = _languages()
+    if opts.lang is not None and opts.lang not in langs:
+        ap.error(f"unknown language {opts.lang!r} (choose from {', '.join(langs)})")
+    if opts.query:
+        if opts.lang is None:
+            ap.error(f"--{opts.query} needs --lang")
+        values = info(opts.lang)
+        if opts.query not in values:
+            ap.error(f"--{opts.query} does not apply to {opts.lang}")
+        print(values[opts.query])
+        return 0
+    for lang in [opts.lang] if opts.lang else langs:
+        print(f"[{lang}]")
+        for k, v in info(lang).items():
+            if v:
+                print(f"{k}: {v}")
+        print()
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
