@@ -10,6 +10,7 @@ import sys
 from . import __version__, cache, depfile, maxima
 from .diagnostics import Max2CodeError
 from .output import write_if_changed
+from .variants import DEFAULT_STRATEGY, STRATEGIES
 
 
 # `max2code NAME ...` runs the module's main(argv); one line per subcommand.
@@ -21,7 +22,6 @@ SUBCOMMANDS = {
 
 def _parser() -> argparse.ArgumentParser:
     from .languages import LANGUAGES
-from .variants import DEFAULT_STRATEGY, STRATEGIES
 
     ap = argparse.ArgumentParser(
         prog="max2code",
@@ -92,7 +92,6 @@ def _main(argv: list[str] | None) -> int:
         cache.disable()
     from .generate import generate, load
     from .languages import LANGUAGES
-from .variants import DEFAULT_STRATEGY, STRATEGIES
 
     try:
         spec, poly = load(opts.input, opts.timeout)
