@@ -10,7 +10,6 @@ import sys
 from . import __version__, cache, depfile, maxima
 from .diagnostics import Max2CodeError
 from .output import write_if_changed
-from .variants import DEFAULT_STRATEGY, STRATEGIES
 
 
 # `max2code NAME ...` runs the module's main(argv); one line per subcommand.
@@ -22,6 +21,7 @@ SUBCOMMANDS = {
 
 def _parser() -> argparse.ArgumentParser:
     from .languages import LANGUAGES
+    from .variants import DEFAULT_STRATEGY, STRATEGIES
 
     ap = argparse.ArgumentParser(
         prog="max2code",
