@@ -1,0 +1,137 @@
+"""The examples build and run in temporary copies, print the right time, and rebuild only what
+depends on an edited .mxm (or on the .mac file it loads).
+
+The scene (examples/README.md) closes a gap of 10 - 2t - t^2/4 to r1 + r2 = 1.5, so the first
+contact is t = 2 (sqrt(12.5) - 2): computed here with mpmath, independently of Maxima and of
+the runtimes.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import mpmath
+import pytest
+
+from conftest import ROOT, require
+
+EXPECTED = float(2 * (mpmath.sqrt(mpmath.mpf("12.5")) - 2))
+
+
+@pytest.fixture
+def tree(tmp_path: Path, maxima_exe: str) -> Path:
+    """A copy of examples/ beside a link to runtime/, as in the repository."""
+    shutil.copytree(ROOT / "examples", tmp_path / "examples",
+                    ignore=shutil.ignore_patterns("build", "target", "generated", "__pycache__"))
+    (tmp_path / "runtime").symlink_to(ROOT / "runtime")
+    return tmp_path / "examples"
+
+
+@pytest.fixture
+def env(tmp_path: Path) -> dict[str, str]:
+    return {**os.environ, "PYTHONPATH": str(ROOT), "MAX2CODE_CACHE": str(tmp_path / "cache"),
+            "MAX2CODE": f"{sys.executable} -m max2code"}
+
+
+def run(args: list[str], cwd: Path, env: dict[str, str]) -> str:
+    proc = subprocess.run(args, cwd=cwd, env=env, capture_output=True, text=True, timeout=600)
+    assert proc.returncode == 0, f"{args}:\n{proc.stdout}\n{proc.stderr}"
+    return proc.stdout + proc.stderr
+
+
+def collision_time(output: str) -> float:
+    m = re.search(r"collision at t = (\S+)", output)
+    assert m, output
+    return float(m.group(1))
+
+
+def check_time(output: str) -> None:
+    assert collision_time(output) == pytest.approx(EXPECTED, rel=1e-13, abs=0)
+
+
+def shift_lines(mxm: Path) -> None:
+    """Change the .mxm so that the generated code changes (its #line numbers move)."""
+    mxm.write_text("// one more line\n" + mxm.read_text())
+
+
+def test_make(tree: Path, env: dict[str, str]) -> None:
+    make = require("make")
+    require("cc")
+    folder = tree / "make"
+    margs = [make, f"MAX2CODE={env['MAX2CODE']}"]
+    check_time(run([*margs, "run"], folder, env))
+    depfile = (folder / "build" / "circles.h.d").read_text()
+    assert "../equations/circles.mxm" in depfile and "../equations/motion.mac" in depfile
+    assert "Nothing to be done" in run([*margs, "all"], folder, env)
+    for touched in ("circles.mxm", "motion.mac"):
+        os.utime(tree / "equations" / touched)
+        plan = run([*margs, "-n", "all"], folder, env)
+        assert "--lang=c" in plan and "max2code_roots.c" not in plan, plan
+        header = folder / "build" / "circles.h"
+        before = header.stat().st_mtime_ns
+        out = run([*margs, "all"], folder, env)
+        assert "main.c" not in out and "max2code_roots" not in out, out  # same header: no rebuild
+        assert header.stat().st_mtime_ns == before
+    shift_lines(tree / "equations" / "circles.mxm")
+    out = run([*margs, "run"], folder, env)
+    assert "-c main.c" in out and "max2code_roots.c" not in out, out
+    check_time(out)
+
+
+def test_cmake(tree: Path, env: dict[str, str]) -> None:
+    cmake = require("cmake")
+    require("ninja")
+    folder = tree / "cmake"
+    build = folder / "build"
+    command = ";".join(env["MAX2CODE"].split())
+    run([cmake, "-S", str(folder), "-B", str(build), "-G", "Ninja", f"-DMAX2CODE={command}"],
+        folder, env)
+    out = run([cmake, "--build", str(build)], folder, env)
+    assert "max2code circles.h" in out
+    check_time(run([str(build / "collide")], folder, env))
+    assert "no work to do" in run([cmake, "--build", str(build)], folder, env)
+    for touched in ("circles.mxm", "motion.mac"):
+        os.utime(tree / "equations" / touched)
+        out = run([cmake, "--build", str(build)], folder, env)
+        assert "max2code circles.h" in out and "Building C object" not in out, out
+    shift_lines(tree / "equations" / "circles.mxm")
+    out = run([cmake, "--build", str(build)], folder, env)
+    assert "max2code circles.h" in out and "main.c.o" in out and "max2code_roots.c.o" not in out, out
+    check_time(run([str(build / "collide")], folder, env))
+
+
+def cargo_exe() -> str:
+    home = Path.home() / ".cargo" / "bin" / "cargo"
+    return shutil.which("cargo") or (str(home) if home.exists() else require("cargo"))
+
+
+def test_cargo(tree: Path, env: dict[str, str]) -> None:
+    cargo = cargo_exe()
+    folder = tree / "cargo"
+    env = {**env, "CARGO_TARGET_DIR": str(folder / "target")}
+    check_time(run([cargo, "run", "--quiet", "--offline"], folder, env))
+    out = run([cargo, "build", "-v", "--offline"], folder, env)
+    assert "Fresh max2code-example" in out, out
+    for touched in ("circles.mxm", "motion.mac"):
+        os.utime(tree / "equations" / touched)
+        out = run([cargo, "build", "-v", "--offline"], folder, env)
+        assert "Dirty max2code-example" in out and f"{touched}` has changed" in out, out
+        assert "Fresh max2code-runtime" in out, out
+    check_time(run([cargo, "run", "--quiet", "--offline"], folder, env))
+
+
+def test_python(tree: Path, env: dict[str, str]) -> None:
+    folder = tree / "python"
+    assert "regenerating" in run([sys.executable, "generate.py"], folder, env)
+    check_time(run([sys.executable, "main.py"], folder, env))
+    assert "up to date" in run([sys.executable, "generate.py"], folder, env)
+    for touched in ("circles.mxm", "motion.mac"):
+        os.utime(tree / "equations" / touched)
+        assert "regenerating" in run([sys.executable, "generate.py"], folder, env)
+        assert "up to date" in run([sys.executable, "generate.py"], folder, env)
+    check_time(run([sys.executable, "main.py"], folder, env))
