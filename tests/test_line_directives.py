@@ -202,7 +202,7 @@ def test_m2_dwarf_points_at_the_equation(m2_build: tuple[Path, Path, str]) -> No
 def test_gdb_stops_at_the_mxm_line_in_m2(m2_build: tuple[Path, Path, str]) -> None:
     folder, exe, _ = m2_build
     stop = gdb_stop(exe, f"{MXM.name}:{EXPECTED}", folder)
-    assert "circles_accel_Coefficients (" in stop, stop
+    assert re.search(r"(circles_accel_)?Coefficients\w* \(", stop), stop
     assert stop.endswith(f"{MXM.name}:{EXPECTED}"), stop
 
 

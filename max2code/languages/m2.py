@@ -18,6 +18,7 @@ C's long double, so REAL is the type that matches the C runtime and the other th
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 from ..diagnostics import Pos
 from ..expr import Add, Expr, Neg, Num
@@ -36,7 +37,8 @@ ABS BITSET BOOLEAN CAP CARDINAL CHAR CHR CMPLX COMPLEX DEC DISPOSE EXCL FALSE FL
 IM INC INCL INT INTEGER INTERRUPTIBLE LENGTH LFLOAT LONGCOMPLEX LONGREAL MAX MIN NEW NIL ODD ORD
 PROC PROTECTION RE REAL SIZE TRUE TRUNC UNINTERRUPTIBLE VAL LONGINT LONGCARD SHORTINT SHORTCARD
 SHORTREAL SHORTCOMPLEX LOC BYTE WORD ADDRESS ADR TSIZE SYSTEM CAST
-RealMath Max2codeRoots NParams Degree Coefficients FirstRoot ParamName
+RealMath Strings Max2codeRoots NParams Degree NVariants Coefficients FirstRoot ParamName Variant
+VariantName
 """.split())
 
 
@@ -54,6 +56,9 @@ class Modula2(Language):
     )
     # The DEFINITION MODULE is written beside the IMPLEMENTATION MODULE: NAME.mod -> NAME.def.
     companions: tuple[tuple[str, str], ...] = ((".def", "definition"),)
+    # A variant's condition: AND binds tighter than = in Modula-2, hence the parentheses.
+    and_op: str = " AND "
+    zero_test: str = "({} = 0.0)"
     # gm2 12 -fcpp puts `#line N` on line N-1; see the module docstring.
     line_offset: int = 1
 
@@ -72,6 +77,17 @@ class Modula2(Language):
 
     def resume_directive(self, line: int, file: str) -> str | None:
         return f"#line {line + self.line_offset} {c_string(file)}"
+
+    def wrap(self, text: str, indent: int) -> str:
+        """Never wrapped: gm2 gives a continuation line its own line number, so a statement split
+        over three lines after `#line N` would claim .mxm lines N, N+1 and N+2."""
+        return text
+
+    def needs_math(self, ctx: Any) -> bool:
+        """Whether the module's code calls RealMath (so the template imports it)."""
+        codes = [code for v in ctx.variants for _, code in v.temps]
+        codes += [c.code for v in ctx.variants for c in v.coefficients]
+        return any("RealMath." in code for code in codes)
 
     def comment(self, text: str) -> str:
         return "(* " + text.replace("*)", "* )").replace("(*", "( *") + " *)"
