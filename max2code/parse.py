@@ -36,7 +36,9 @@ def read_source(path: str) -> str:
         text = data.decode("utf-8-sig")
     except UnicodeDecodeError as exc:
         line = data[: exc.start].count(b"\n") + 1
-        raise error(Pos(path, line, 1), f"not UTF-8 text (invalid byte at offset {exc.start})") from None
+        col = exc.start - data.rfind(b"\n", 0, exc.start)
+        raise error(Pos(path, line, col), f"not UTF-8 text (invalid byte 0x{data[exc.start]:02x} at "
+                    f"offset {exc.start})") from None
     return text.replace("\r\n", "\n").replace("\r", "\n")
 
 
@@ -73,6 +75,8 @@ def _syntax_error(exc: UnexpectedInput, text: str, path: str) -> Max2CodeError:
         tok = exc.token
         if tok.type == "$END":
             return error(end, eof_message)
+        if str(tok).lower() == "begin":  # BEGIN_END did not match: no closing 'end' line
+            return error(pos, "unterminated 'begin': no line starting with 'end' follows")
         expected = ", ".join(sorted(_describe(t) for t in exc.expected))
         return error(pos, f"unexpected {_describe(tok.type)} {str(tok)[:20]!r}; expected {expected}")
     return error(pos, str(exc).splitlines()[0])
@@ -180,6 +184,11 @@ class _Builder:
                 if term.index < expected:
                     raise error(term.pos, f"'term {term.index}' is out of order: terms must be "
                                 f"given as 0, 1, 2, ...; expected 'term {expected}' here")
+                later = [t for t in group[expected:] if t.index == expected]
+                if later:
+                    raise error(term.pos, f"'term {term.index}' is out of order: terms must be "
+                                f"given as 0, 1, 2, ...; expected 'term {expected}' (line "
+                                f"{later[0].pos.line}) here")
                 raise error(term.pos, f"'term {expected}' is missing before 'term {term.index}'")
             if declared is not None and len(group) > int(declared.value):  # type: ignore[arg-type]
                 extra = group[int(declared.value)]  # type: ignore[arg-type]
