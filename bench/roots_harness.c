@@ -1,0 +1,152 @@
+/*
+ * roots_harness.c -- timing and answers of the C runtime's root methods, for
+ * bench/roots.py (which writes the input, builds this file with -O2 against
+ * runtime/c/max2code_roots.c and reads the output).
+ *
+ * Input (stdin), one polynomial a line:   TMAX DEGREE C0 .. CDEGREE   (hex floats)
+ * Argument 1: number of sweeps (default 7).
+ *
+ * Each sweep visits every polynomial once, in an order shuffled anew per
+ * sweep, and for each calls every method once, in a rotating order; every call
+ * is timed on its own with clock_gettime(CLOCK_MONOTONIC) (TSC clock source
+ * here).  So a solve never follows a solve of the same polynomial by the same
+ * method: branch predictors and caches see what an engine would, a stream of
+ * different polynomials.  The cost of an empty timed region (measured here,
+ * median of many) is subtracted.
+ *
+ * Output, one line per polynomial and method:
+ *   INDEX METHOD STATUS T GRAZE NS_MEDIAN
+ * with T as %a (hex, exact) and NS_MEDIAN the median over the sweeps.
+ */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "max2code_roots.h"
+
+#define NMETHODS 4
+#define MAXSWEEPS 31
+
+typedef struct {
+    double tmax;
+    int degree;
+    double c[M2C_MAX_DEGREE + 1];
+} Poly;
+
+static double now_ns(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec * 1e9 + (double)ts.tv_nsec;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static double median(double *v, int n)
+{
+    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+static unsigned long long rng_state = 88172645463325252ULL;
+static unsigned long long xorshift(void)
+{
+    rng_state ^= rng_state << 13;
+    rng_state ^= rng_state >> 7;
+    rng_state ^= rng_state << 17;
+    return rng_state;
+}
+
+volatile double sink;
+
+int main(int argc, char **argv)
+{
+    int sweeps = argc > 1 ? atoi(argv[1]) : 7;
+    if (sweeps < 1) sweeps = 1;
+    if (sweeps > MAXSWEEPS) sweeps = MAXSWEEPS;
+
+    size_t cap = 1024, n = 0;
+    Poly *ps = malloc(cap * sizeof *ps);
+    char line[8192];
+    while (fgets(line, sizeof line, stdin) != NULL) {
+        char *p = line, *end;
+        Poly q;
+        q.tmax = strtod(p, &end);
+        if (end == p) continue;
+        p = end;
+        q.degree = (int)strtol(p, &end, 10);
+        p = end;
+        for (int i = 0; i <= q.degree && i <= M2C_MAX_DEGREE; i++) {
+            q.c[i] = strtod(p, &end);
+            p = end;
+        }
+        if (n == cap) {
+            cap *= 2;
+            ps = realloc(ps, cap * sizeof *ps);
+        }
+        ps[n++] = q;
+    }
+
+    /* cost of an empty timed region */
+    double empty[4001];
+    for (int i = 0; i < 4001; i++) {
+        double t0 = now_ns();
+        double t1 = now_ns();
+        empty[i] = t1 - t0;
+    }
+    double overhead = median(empty, 4001);
+
+    double *ns = malloc(n * NMETHODS * (size_t)sweeps * sizeof *ns);
+    int *status = malloc(n * NMETHODS * sizeof *status);
+    int *graze = malloc(n * NMETHODS * sizeof *graze);
+    double *root = malloc(n * NMETHODS * sizeof *root);
+    size_t *order = malloc(n * sizeof *order);
+    for (size_t i = 0; i < n; i++) order[i] = i;
+
+    for (int s = 0; s < sweeps; s++) {
+        for (size_t i = n; i > 1; i--) { /* Fisher-Yates */
+            size_t j = (size_t)(xorshift() % i);
+            size_t tmp = order[i - 1];
+            order[i - 1] = order[j];
+            order[j] = tmp;
+        }
+        for (size_t k = 0; k < n; k++) {
+            size_t i = order[k];
+            const Poly *q = &ps[i];
+            for (int mm = 0; mm < NMETHODS; mm++) {
+                int m = (mm + (int)k) % NMETHODS;
+                double t = NAN;
+                int g = 0;
+                double t0 = now_ns();
+                int st = m2c_first_root_ex(q->c, q->degree, q->tmax, &t, m, &g);
+                double t1 = now_ns();
+                sink = t;
+                ns[(i * NMETHODS + (size_t)m) * (size_t)sweeps + (size_t)s] = t1 - t0 - overhead;
+                status[i * NMETHODS + (size_t)m] = st;
+                root[i * NMETHODS + (size_t)m] = st == 1 ? t : NAN;
+                graze[i * NMETHODS + (size_t)m] = st == 1 ? g : 0;
+            }
+        }
+    }
+    printf("# overhead_ns %.2f sweeps %d\n", overhead, sweeps);
+    for (size_t i = 0; i < n; i++)
+        for (int m = 0; m < NMETHODS; m++) {
+            size_t k = i * NMETHODS + (size_t)m;
+            double med = median(&ns[k * (size_t)sweeps], sweeps);
+            printf("%zu %d %d %a %d %.2f\n", i, m, status[k], root[k], graze[k], med);
+        }
+    free(ns);
+    free(status);
+    free(graze);
+    free(root);
+    free(order);
+    free(ps);
+    return 0;
+}
