@@ -130,7 +130,7 @@ def context(spec: Spec, poly: Polynomial, lang: Language, strategy: str = DEFAUL
     terms = []
     for k, c in enumerate(poly.coefficients):
         try:
-            code = lang.expr(c)
+            code = lang.wrap(lang.expr(c), 4)
         except ValueError as exc:
             raise error(spec.program.last_pos, str(exc)) from None
         term = prefixes.get(k)
@@ -160,8 +160,8 @@ def _variant(spec: Spec, v: Variant, params: tuple[Param, ...], lang: Language,
     for e in v.code.outputs:
         used_names |= symbols(e)
     try:
-        temps = tuple((name, lang.expr(e)) for name, e in v.code.temps)
-        outputs = [lang.expr(e) for e in v.code.outputs]
+        temps = tuple((name, lang.wrap(lang.expr(e), 4)) for name, e in v.code.temps)
+        outputs = [lang.wrap(lang.expr(e), 4) for e in v.code.outputs]
     except ValueError as exc:
         raise error(spec.program.last_pos, str(exc)) from None
     coefs = []

@@ -30,10 +30,13 @@ class Polynomial:
     coefficients: tuple[Expr, ...]
     parameters: tuple[str, ...]
     maxima_seconds: float
+    # Lines Maxima prints for the equation at its default width (79): as the program left
+    # it, and as the expanded polynomial (sum of its coefficient texts); for the report.
     maxima_lines: int
     warnings: tuple[Diagnostic, ...] = ()
     # Maxima's simplified but unexpanded equation: what the optimised strategy works from.
     unexpanded: Expr | None = None
+    maxima_lines_expanded: int = 0
     # For a variant: the roles and parameters that are zero; for the general one: ().
     roles: tuple[str, ...] = ()
     zeros: tuple[str, ...] = ()
@@ -145,9 +148,12 @@ def _read(spec: Spec, text: str, where: Pos, t: str) -> Polynomial:
     if _field(text, "DENOM")[0].strip() != "0":
         raise error(where, f"not a polynomial: the variable '{t}' appears in a denominator")
     coefficients = []
+    expanded_chars = 0
     try:
         for raw in _field(text, "COEF"):
-            coefficients.append(parse_maxima(raw.split(" ", 1)[1]))
+            body = raw.split(" ", 1)[1]
+            expanded_chars += len(body) + 8  # and "*t^k+" between terms
+            coefficients.append(parse_maxima(body))
         unexpanded = parse_maxima(_field(text, "UNEXPANDED")[0])
     except ExprSyntaxError as exc:
         raise error(where, str(exc)) from None
@@ -163,7 +169,7 @@ def _read(spec: Spec, text: str, where: Pos, t: str) -> Polynomial:
         raise error(where, f"the equation does not depend on '{t}' (degree 0): nothing to solve")
     shown = int(_field(text, "SHOWN")[0])
     return Polynomial(t, tuple(coefficients), (), 0.0, maxima_lines=max(1, -(-shown // 79)),
-                      unexpanded=unexpanded)
+                      unexpanded=unexpanded, maxima_lines_expanded=max(1, -(-expanded_chars // 79)))
 
 
 def _inside(coefficients: list[Expr], rest: str, t: str) -> str:

@@ -60,6 +60,34 @@ class Language:
     def comment(self, text: str) -> str:
         raise NotImplementedError
 
+    # Generated lines longer than this are broken before a top-level + or -.
+    max_line: int = 100
+
+    def wrap(self, text: str, indent: int) -> str:
+        """Break a long expression before its top-level additions, so that the expanded
+        strategy's thousand-term coefficients stay readable (and line counts mean something)."""
+        if len(text) + indent <= self.max_line:
+            return text
+        pieces, depth, start = [], 0, 0
+        for i, ch in enumerate(text):
+            depth += ch in "([{"
+            depth -= ch in ")]}"
+            if depth == 0 and i > start and text.startswith((" + ", " - "), i):
+                pieces.append(text[start:i])
+                start = i + 1
+        pieces.append(text[start:])
+        lines = [pieces[0]]
+        for piece in pieces[1:]:
+            if len(lines[-1]) + 1 + len(piece) + indent + 4 > self.max_line:
+                lines.append(piece)
+            else:
+                lines[-1] += " " + piece
+        return self.join_lines(lines, indent)
+
+    def join_lines(self, lines: list[str], indent: int) -> str:
+        """How a wrapped expression continues on the next line (free-form languages: as is)."""
+        return ("\n" + " " * (indent + 4)).join(lines)
+
     def condition(self, idents: list[str]) -> str:
         return self.and_op.join(self.zero_test.format(i) for i in idents)
 

@@ -26,6 +26,9 @@ class Python(Language):
         ("sinh", "math.sinh"), ("cosh", "math.cosh"), ("tanh", "math.tanh"),
     )
 
+    def join_lines(self, lines: list[str], indent: int) -> str:
+        return "(" + super().join_lines(lines, indent) + ")" if len(lines) > 1 else lines[0]
+
     def power_call(self, base: str, exponent: str) -> str:
         return f"({base})**({exponent})"
 
