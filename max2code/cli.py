@@ -16,6 +16,7 @@ from .output import write_if_changed
 SUBCOMMANDS = {
     "build": "build",
     "report": "report",
+    "roles": "roles",
     "runtime": "runtime_info",
 }
 

@@ -89,13 +89,15 @@ def extraction_script(variable: str,
     ]) + "\n"
 
 
-def polynomial(spec: Spec, timeout: float = maxima.DEFAULT_TIMEOUT) -> Polynomial:
-    """The equation's polynomial, with one specialised variant per combination of its roles."""
+def polynomial(spec: Spec, timeout: float = maxima.DEFAULT_TIMEOUT,
+               combos: list[tuple[tuple[str, ...], tuple[str, ...]]] | None = None) -> Polynomial:
+    """The equation's polynomial, with one specialised variant per combination of its roles
+    (or per entry of `combos`: (names, parameters set to zero), the first being ((), ()))."""
     statements = spec.program.statements
     where = spec.program.last_pos
     if not statements:
         raise error(spec.program.pos, "the Maxima program is empty: it must end with the equation")
-    combos = role_combinations(spec)
+    combos = role_combinations(spec) if combos is None else combos
     script = maxima.program_script(statements) + extraction_script(
         spec.variable, tuple(zeros for _, zeros in combos))
     session = maxima.run(script, statements, where, timeout)
