@@ -38,6 +38,7 @@ from oracle import Exact, exact_coefficients, random_samples
 from max2code.emit import module_name
 from max2code.generate import generate, load
 from max2code.languages import LANGUAGES
+from max2code.variants import family
 
 EQUATIONS = sorted((ROOT / "equations").glob("*.mxm"))
 SAMPLES = 120
@@ -158,7 +159,8 @@ MODULE Driver ;
 FROM SYSTEM IMPORT CAST ;
 FROM STextIO IMPORT WriteString, WriteLn ;
 FROM SWholeIO IMPORT WriteCard ;
-FROM {name} IMPORT Coefficients, FirstRoot, ParamName, NParams, Degree ;
+FROM {name} IMPORT Coefficients, FirstRoot, ParamName, Variant, VariantName, NParams, Degree,
+   NVariants ;
 
 TYPE
    Halves = ARRAY [0..1] OF CARDINAL ;
@@ -185,13 +187,16 @@ END Put ;
 PROCEDURE Meta ;
 VAR
    i: CARDINAL ;
-   name: ARRAY [0..63] OF CHAR ;
+   name: ARRAY [0..255] OF CHAR ;
 BEGIN
    WriteCard(NParams, 0) ; WriteString(" ") ; WriteCard(Degree, 0) ;
    FOR i := 0 TO NParams-1 DO
       ParamName(i, name) ; WriteString(" ") ; WriteString(name)
    END ;
-   WriteLn
+   WriteLn ;
+   FOR i := 0 TO NVariants-1 DO
+      VariantName(i, name) ; WriteString(name) ; WriteLn
+   END
 END Meta ;
 
 PROCEDURE Sample ;
@@ -200,6 +205,7 @@ VAR
    i, degree: CARDINAL ;
    t: REAL ;
 BEGIN
+   WriteCard(Variant(p), 0) ; WriteString(" ") ;
    degree := Coefficients(p, c) ;
    WriteCard(degree, 0) ;
    FOR i := 0 TO degree DO Put(c[i]) END ;
@@ -244,13 +250,15 @@ def build_m2(mxm: Path, workdir: Path, samples: list[tuple[float, ...]], runtime
     return run([str(workdir / "driver")], cwd=workdir).stdout.splitlines()
 
 
-def parse_m2(line: str) -> tuple[list[float], float | None]:
+def parse_m2(line: str) -> tuple[int, list[float], float | None]:
+    """(variant chosen, coefficients up to the degree used, first root or None)."""
     left, right = line.split(" | ")
     fields = left.split()
-    degree = int(fields[0])
-    coefs = [from_halves(fields[1 + 2 * i], fields[2 + 2 * i]) for i in range(degree + 1)]
+    degree = int(fields[1])
+    coefs = [from_halves(fields[2 + 2 * i], fields[3 + 2 * i]) for i in range(degree + 1)]
+    assert len(fields) == 2 + 2 * (degree + 1)
     status, lo, hi = right.split()
-    return coefs, (from_halves(lo, hi) if status == "1" else None)
+    return int(fields[0]), coefs, (from_halves(lo, hi) if status == "1" else None)
 
 
 def test_m2_module_matches_oracle(equation, tmp_path: Path, c_runtime_object: Path) -> None:
@@ -259,9 +267,13 @@ def test_m2_module_matches_oracle(equation, tmp_path: Path, c_runtime_object: Pa
     meta = lines[0].split()
     assert int(meta[0]) == len(poly.parameters) and int(meta[1]) == poly.degree
     assert tuple(meta[2:]) == poly.parameters
-    assert len(lines) == 1 + len(exact)
-    for i, (line, e) in enumerate(zip(lines[1:], exact)):
-        coefs, root = parse_m2(line)
+    variants = family(poly)
+    assert lines[1:1 + len(variants)] == [v.label for v in variants]
+    lines = lines[1 + len(variants):]
+    assert len(lines) == len(exact)
+    for i, (line, e) in enumerate(zip(lines, exact)):
+        chosen, coefs, root = parse_m2(line)
+        assert chosen == len(variants) - 1  # random parameters are never exactly zero
         assert len(coefs) == poly.degree + 1
         check_sample(e, coefs, root, f"Modula-2 sample {i}")
 
@@ -272,7 +284,8 @@ def test_m2_module_matches_oracle(equation, tmp_path: Path, c_runtime_object: Pa
 
 RUST_MAIN = """\
 // Test driver: lines "NAME TMAX p0 p1 ..." (f64 bit patterns in hex) on stdin; for each, prints
-// "degree c0 .. cn | 1 t" or "... | 0", bit patterns in hex. "meta NAME" prints NAME, K, N, PARAMS.
+// "variant degree c0 .. cn | 1 t" or "... | 0", bit patterns in hex. "meta NAME" prints NAME,
+// K, N, PARAMS, STRATEGY.
 {mods}
 
 use std::io::{{BufRead, Write}};
@@ -287,11 +300,14 @@ fn sample<const K: usize, const M: usize>(
     coefficients_degree: fn(&[f64; K]) -> (usize, [f64; M]),
     coefficients: fn(&[f64; K]) -> [f64; M],
     first_root: fn(&[f64; K], f64) -> Option<f64>,
+    variant: (fn(&[f64; K]) -> usize, usize),
 ) -> String {{
     let p: [f64; K] = p.try_into().expect("parameter count");
+    let chosen = variant.0(&p);
+    assert!(chosen < variant.1);
     let (degree, c) = coefficients_degree(&p);
     assert_eq!(coefficients(&p), c);
-    let mut out = degree.to_string();
+    let mut out = format!("{{chosen}} {{degree}}");
     for x in &c[..=degree] {{
         out += &format!(" {{:016x}}", x.to_bits());
     }}
@@ -350,11 +366,12 @@ def rust_crate(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, Path]:
         f'max2code-runtime = {{ path = "{RUST_RUNTIME.as_posix()}" }}\n')
     (src / "main.rs").write_text(RUST_MAIN.format(
         mods="\n".join(f"mod {n};" for n in names),
-        metas="\n".join(f'                "{n}" => format!("{{}} {{}} {{}} {{}}", {n}::NAME, '
-                        f'{n}::PARAMS.len(), {n}::DEGREE, {n}::PARAMS.join(" ")),'
-                        for n in names),
+        metas="\n".join(f'                "{n}" => format!("{{}} {{}} {{}} {{}} {{}}", {n}::NAME, '
+                        f'{n}::PARAMS.len(), {n}::DEGREE, {n}::PARAMS.join(" "), '
+                        f'{n}::STRATEGY),' for n in names),
         samples="\n".join(f'            "{n}" => sample(&p, tmax, {n}::coefficients_degree, '
-                          f'{n}::coefficients, {n}::first_root),' for n in names)))
+                          f'{n}::coefficients, {n}::first_root, '
+                          f'({n}::variant, {n}::VARIANTS.len())),' for n in names)))
     env = {**os.environ, "CARGO_TARGET_DIR": str(CARGO_TARGET), "RUSTFLAGS": "-D warnings"}
     run([cargo, "build", "--release", "--quiet"], cwd=crate, env=env)
     binary = CARGO_TARGET / "release" / "max2code-generated-test"
@@ -370,14 +387,15 @@ def rust_line(name: str, tmax: float, params: tuple[float, ...]) -> str:
                              for v in (tmax, *params))])
 
 
-def parse_rust(line: str) -> tuple[list[float], float | None]:
+def parse_rust(line: str) -> tuple[int, list[float], float | None]:
+    """(variant chosen, coefficients up to the degree used, first root or None)."""
     left, right = line.split(" | ")
     fields = left.split()
-    coefs = [struct.unpack("<d", struct.pack("<Q", int(x, 16)))[0] for x in fields[1:]]
-    assert int(fields[0]) == len(coefs) - 1
+    coefs = [struct.unpack("<d", struct.pack("<Q", int(x, 16)))[0] for x in fields[2:]]
+    assert int(fields[1]) == len(coefs) - 1
     parts = right.split()
     root = struct.unpack("<d", struct.pack("<Q", int(parts[1], 16)))[0] if parts[0] == "1" else None
-    return coefs, root
+    return int(fields[0]), coefs, root
 
 
 def test_rust_module_matches_oracle(equation, rust_crate: tuple[Path, Path]) -> None:
@@ -388,10 +406,11 @@ def test_rust_module_matches_oracle(equation, rust_crate: tuple[Path, Path]) -> 
     meta = out[0].split()
     assert meta[0] == name
     assert int(meta[1]) == len(poly.parameters) and int(meta[2]) == poly.degree
-    assert tuple(meta[3:]) == poly.parameters
+    assert tuple(meta[3:-1]) == poly.parameters
     assert len(out) == 1 + len(exact)
     for i, (line, e) in enumerate(zip(out[1:], exact)):
-        coefs, root = parse_rust(line)
+        chosen, coefs, root = parse_rust(line)
+        assert chosen == len(family(poly)) - 1  # random parameters are never exactly zero
         assert len(coefs) == poly.degree + 1
         check_sample(e, coefs, root, f"Rust sample {i}")
 
@@ -429,6 +448,54 @@ def test_rust_module_can_be_included(rust_crate: tuple[Path, Path], tmp_path: Pa
     env = {**os.environ, "CARGO_TARGET_DIR": str(CARGO_TARGET), "RUSTFLAGS": "-D warnings"}
     out = run([cargo_exe(), "run", "--release", "--quiet"], cwd=tmp_path, env=env).stdout
     assert out.strip() == "[8.0, -6.0, 1.0, 0.0, 0.0] Some(2.0)"
+
+
+# ---------------------------------------------------------------------------------------------
+# Every variant: parameters of its roles exactly zero (as tests/test_variants.py does for C/Python)
+# ---------------------------------------------------------------------------------------------
+
+PER_VARIANT = 12
+
+
+@pytest.fixture(scope="module", params=EQUATIONS, ids=lambda p: p.stem)
+def variant_cases(request: pytest.FixtureRequest, maxima_exe: str):
+    """(spec, poly, [(variant index, params)], exact per sample)."""
+    path = request.param
+    spec, poly = load(str(path))
+    samples = []
+    for v in family(poly):
+        seed = zlib.crc32(path.name.encode()) + v.index
+        for params in random_samples(poly.parameters, PER_VARIANT, seed=seed):
+            samples.append((v.index, tuple(0.0 if n in v.zeros else x
+                                           for n, x in zip(poly.parameters, params))))
+    exact = exact_coefficients(path, poly.parameters, [p for _, p in samples])
+    return spec, poly, samples, exact
+
+
+def check_variant(label: str, k: int, chosen: int, coefs: list[float], root: float | None,
+                  exact: Exact) -> None:
+    assert chosen == k, f"{label}: the dispatcher chose variant {chosen} for variant {k}"
+    assert len(coefs) == len(exact.coefficients), (
+        f"{label}: degree {len(coefs) - 1}, exact {len(exact.coefficients) - 1}")
+    check_sample(exact, coefs, root, label)
+
+
+def test_m2_variants(variant_cases, tmp_path: Path, c_runtime_object: Path) -> None:
+    spec, poly, samples, exact = variant_cases
+    lines = build_m2(Path(spec.path), tmp_path, [p for _, p in samples], c_runtime_object)
+    lines = lines[1 + len(family(poly)):]
+    assert len(lines) == len(samples)
+    for (k, _), line, e in zip(samples, lines, exact):
+        check_variant(f"Modula-2 v{k}", k, *parse_m2(line), e)
+
+
+def test_rust_variants(variant_cases, rust_crate: tuple[Path, Path]) -> None:
+    spec, poly, samples, exact = variant_cases
+    name = module_name(spec)
+    out = run_rust(rust_crate[1], [rust_line(name, TMAX, p) for _, p in samples])
+    assert len(out) == len(samples)
+    for (k, _), line, e in zip(samples, out, exact):
+        check_variant(f"Rust v{k}", k, *parse_rust(line), e)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -484,7 +551,7 @@ def test_keywords_m2(keywords_mxm: Path, tmp_path: Path, c_runtime_object: Path)
     text = (tmp_path / "keywords.mod").read_text()
     for mangled in ("VAR_ := p[3]", "TYPE_ := p[4]", "BEGIN_ := p[7]", "type := p[0]"):
         assert mangled in text
-    coefs, _ = parse_m2(lines[1])
+    _, coefs, _ = parse_m2(lines[-1])
     assert_close(coefs, keyword_coefficients(KEYWORD_PARAMS), "Modula-2")
 
 
@@ -493,8 +560,8 @@ def test_keywords_rust(rust_crate: tuple[Path, Path]) -> None:
     text = (crate / "src" / "keywords.rs").read_text()
     assert "let [type_, match_, self_, VAR, TYPE, int, char_, BEGIN] = *p;" in text
     out = run_rust(binary, ["meta keywords", rust_line("keywords", TMAX, KEYWORD_PARAMS)])
-    assert out[0].split()[3:] == ["type", "match", "self", "VAR", "TYPE", "int", "char", "BEGIN"]
-    coefs, _ = parse_rust(out[1])
+    assert out[0].split()[3:-1] == ["type", "match", "self", "VAR", "TYPE", "int", "char", "BEGIN"]
+    _, coefs, _ = parse_rust(out[1])
     assert_close(coefs, keyword_coefficients(KEYWORD_PARAMS), "Rust")
 
 
