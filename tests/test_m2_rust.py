@@ -244,7 +244,8 @@ def build_m2(mxm: Path, workdir: Path, samples: list[tuple[float, ...]], runtime
     driver = workdir / "Driver.mod"
     driver.write_text(M2_DRIVER.format(name=name, tmax=LANGUAGES["m2"].float_literal(tmax),
                                        samples="\n".join(lines)))
-    run([gm2, "-fiso", "-fcpp", "-g", "-Wall", "-c", out.name, "-o", f"{name}.o"], cwd=workdir)
+    run([gm2, "-fiso", "-fcpp", "-g", "-Wall", "-Werror", "-c", out.name, "-o", f"{name}.o"],
+        cwd=workdir)
     run([gm2, "-fiso", "-g", "Driver.mod", f"{name}.o", str(runtime_obj), "-o", "driver",
          *gm2_link_flags(gm2)], cwd=workdir)
     return run([str(workdir / "driver")], cwd=workdir).stdout.splitlines()
@@ -563,6 +564,19 @@ def test_keywords_rust(rust_crate: tuple[Path, Path]) -> None:
     assert out[0].split()[3:-1] == ["type", "match", "self", "VAR", "TYPE", "int", "char", "BEGIN"]
     _, coefs, _ = parse_rust(out[1])
     assert_close(coefs, keyword_coefficients(KEYWORD_PARAMS), "Rust")
+
+
+# ---------------------------------------------------------------------------------------------
+# Determinism: the same input gives byte-identical output, companions included
+# ---------------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("lang", ["m2", "rust"])
+@pytest.mark.parametrize("mxm", EQUATIONS, ids=lambda p: p.stem)
+def test_output_is_deterministic(lang: str, mxm: Path, maxima_exe: str) -> None:
+    out = f"out{LANGUAGES[lang].extension}"
+    first = generate(*load(str(mxm)), LANGUAGES[lang], "module", out)
+    again = generate(*load(str(mxm)), LANGUAGES[lang], "module", out)
+    assert (first.text, first.companions) == (again.text, again.companions)
 
 
 # ---------------------------------------------------------------------------------------------
