@@ -241,7 +241,7 @@ def test_warm_build_runs_nothing(logged: tuple[dict[str, str], Path], tmp_path: 
     assert {p: p.read_bytes() for p in files} == files  # the deleted one is back
     assert all(p.stat().st_mtime_ns == stamps[p] for p in files if p != victim)
     results = [p for p in entries(env, "results") if p.is_file()]
-    assert len(results) == 4
+    assert len(results) >= 4  # 4, or more if max2code's own code changed between the two runs
     json.loads(results[0].read_bytes().split(b"\n", 1)[1])
 
 
