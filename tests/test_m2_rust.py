@@ -620,3 +620,52 @@ def test_m2_fragment_compiles_as_the_paper_used_it(tmp_path: Path) -> None:
         "PROCEDURE Predict ;\n#include \"fragment.inc\"\nEND Predict ;\n\n"
         "BEGIN\n   Predict\nEND Paper.\n")
     run([gm2, "-fiso", "-fcpp", "-g", "-Wall", "-c", "Paper.mod", "-o", "Paper.o"], cwd=tmp_path)
+
+
+# ---------------------------------------------------------------------------------------------
+# Printer rules (no tools needed)
+# ---------------------------------------------------------------------------------------------
+
+def test_printer_signs_literals_and_constants() -> None:
+    from fractions import Fraction
+
+    from max2code.expr import Add, Div, Float, Mul, Neg, Num, Pow, Sym
+
+    a, b, c = Sym("a"), Sym("b"), Sym("c")
+    # Modula-2 allows a sign only at the start of an expression; Rust would accept more, but
+    # clippy rejects `--x` and `a + -b` reads badly: both print signed operands the same way.
+    cases = [
+        (Mul((a, Neg(b))), "-a*b"),
+        (Add((a, Mul((Num(Fraction(-2)), b)))), "a - 2.0*b"),
+        (Div(a, Neg(b)), "a/(-b)"),
+        (Pow(Neg(a), Num(Fraction(2))), "(-a)*(-a)"),
+        (Add((a, Neg(Neg(b)))), "a - (-b)"),
+        (Neg(Add((a, b))), "-(a + b)"),
+        (Mul((a, Add((Neg(b), c)))), "a*(-b + c)"),
+        (Neg(Mul((Num(Fraction(-2)), a))), "-(-2.0*a)"),
+        (Add((a, Neg(Add((b, c))))), "a - (b + c)"),
+    ]
+    for lang in ("m2", "rust"):
+        for e, want in cases:
+            assert LANGUAGES[lang].expr(e) == want, (lang, e)
+    m2, rust = LANGUAGES["m2"], LANGUAGES["rust"]
+    assert m2.expr(Float("1e-5")) == "1.0E-05"
+    assert m2.expr(Float("-1.5e16")) == "-1.5E+16"
+    assert m2.expr(Num(Fraction(3))) == "3.0"
+    assert rust.expr(Sym("%pi")) == "std::f64::consts::PI"  # clippy: approx_constant
+    assert rust.expr(Float("1e-5")) == "1e-05"
+    assert m2.expr(Pow(a, Num(Fraction(1, 2)))) == "RealMath.sqrt(a)"
+    assert rust.expr(Pow(a, b)) == "f64::powf(a, b)"
+
+
+def test_identifiers() -> None:
+    m2, rust = LANGUAGES["m2"], LANGUAGES["rust"]
+    names = ["type", "match", "self", "VAR", "TYPE", "int", "char", "BEGIN", "MOD", "DIV", "REAL"]
+    assert [m2.identifier(n) for n in names] == [
+        "type", "match", "self", "VAR_", "TYPE_", "int", "char", "BEGIN_", "MOD_", "DIV_", "REAL_"]
+    assert [rust.identifier(n) for n in names] == [
+        "type_", "match_", "self_", "VAR", "TYPE", "int", "char_", "BEGIN", "MOD", "DIV", "REAL"]
+    assert [rust.identifier(n) for n in ["fn", "in", "loop", "mod", "ref", "move", "Self"]] == [
+        "fn_", "in_", "loop_", "mod_", "ref_", "move_", "Self_"]
+    assert rust.lint_allows(["x1", "vx_1"]) == ""
+    assert "non_snake_case" in rust.lint_allows(["x1", "TYPE"])

@@ -14,7 +14,7 @@ import math
 from dataclasses import dataclass
 
 from ..diagnostics import Pos
-from .base import Language
+from .m2 import SignedOperands
 
 # Strict, reserved and weak keywords (all editions), names that cannot even be raw identifiers
 # (self, Self, super, crate), and the names the generated module itself defines or uses.
@@ -24,7 +24,8 @@ mut pub ref return self Self static struct super trait true type unsafe use wher
 await dyn abstract become box do final macro override priv typeof unsized virtual yield try
 union gen macro_rules raw safe
 f32 f64 i8 i16 i32 i64 i128 isize u8 u16 u32 u64 u128 usize bool char str std core alloc
-p c tmax NAME PARAMS DEGREE coefficients coefficients_degree first_root max2code_runtime
+p NAME PARAMS DEGREE STRATEGY VARIANTS coefficients coefficients_degree first_root variant
+max2code_runtime
 """.split())
 
 # Values clippy's `approx_constant` knows, by the name Rust gives them.
@@ -51,7 +52,7 @@ def is_snake_case(ident: str) -> bool:
 
 
 @dataclass(frozen=True)
-class Rust(Language):
+class Rust(SignedOperands):
     name: str = "rust"
     extension: str = ".rs"
     keywords: frozenset[str] = RUST_KEYWORDS
