@@ -107,7 +107,7 @@ def run(script: str, statements: tuple[Statement, ...], where: Pos,
         with open(out_path, "wb") as out:
             try:
                 proc = subprocess.Popen(
-                    [exe, "--very-quiet", "--no-init", "-b", path],
+                    [exe, "--very-quiet", "-b", path],
                     stdin=subprocess.DEVNULL, stdout=out, stderr=subprocess.STDOUT, cwd=tmp,
                     start_new_session=True, env={**os.environ, "HOME": tmp},
                 )
