@@ -669,3 +669,48 @@ def test_identifiers() -> None:
         "fn_", "in_", "loop_", "mod_", "ref_", "move_", "Self_"]
     assert rust.lint_allows(["x1", "vx_1"]) == ""
     assert "non_snake_case" in rust.lint_allows(["x1", "TYPE"])
+
+
+def test_m2_binding_of_the_c_runtime(tmp_path: Path, c_runtime_object: Path) -> None:
+    """runtime/m2/Max2codeRoots.def: every procedure and constant, called from Modula-2."""
+    gm2 = require("gm2")
+    shutil.copy(M2_RUNTIME / "Max2codeRoots.def", tmp_path)
+    (tmp_path / "Binding.mod").write_text("""\
+MODULE Binding ;
+FROM STextIO IMPORT WriteString, WriteLn ;
+FROM SWholeIO IMPORT WriteInt ;
+FROM Max2codeRoots IMPORT MaxDegree, MethodInterval, MethodIntervalNoGraze, MethodGsl,
+   MethodClosed, m2c_first_root, m2c_first_root_method, m2c_first_root_ex ;
+VAR
+   c: ARRAY [0..MaxDegree] OF REAL ;
+   t: REAL ;
+   graze: INTEGER ;
+
+PROCEDURE Show (status: INTEGER; expect: REAL) ;
+BEGIN
+   WriteInt(status, 0) ;
+   IF (status = 1) AND (ABS(t - expect) <= 1.0E-12) THEN WriteString(" ok") END ;
+   WriteLn
+END Show ;
+
+BEGIN
+   (* (t - 2)^2: a graze at 2 *)
+   c[0] := 4.0 ; c[1] := -4.0 ; c[2] := 1.0 ;
+   t := 0.0 ; Show(m2c_first_root(c, 2, 10.0, t), 2.0) ;
+   t := 0.0 ; graze := 7 ;
+   Show(m2c_first_root_ex(c, 2, 10.0, t, MethodInterval, graze), 2.0) ;
+   WriteInt(graze, 0) ; WriteLn ;
+   (* (t - 1)(t - 3)(t - 4) = t^3 - 8t^2 + 19t - 12 *)
+   c[0] := -12.0 ; c[1] := 19.0 ; c[2] := -8.0 ; c[3] := 1.0 ;
+   t := 0.0 ; Show(m2c_first_root_method(c, 3, 10.0, t, MethodClosed), 1.0) ;
+   t := 0.0 ; Show(m2c_first_root_method(c, 3, 10.0, t, MethodGsl), 1.0) ;
+   t := 0.0 ; Show(m2c_first_root_method(c, 3, 10.0, t, MethodIntervalNoGraze), 1.0) ;
+   t := 0.0 ; Show(m2c_first_root_method(c, 3, 0.5, t, MethodInterval), 1.0) ;
+   t := 0.0 ; Show(m2c_first_root(c, 3, -1.0, t), 1.0)
+END Binding.
+""")
+    run([gm2, "-fiso", "-g", "-Wall", "-Werror", "Binding.mod", str(c_runtime_object), "-o",
+         "binding", *gm2_link_flags(gm2)], cwd=tmp_path)
+    out = run([str(tmp_path / "binding")]).stdout.split("\n")
+    # gm2's ISO WriteInt writes a sign; the third line is the graze flag.
+    assert out[:8] == ["+1 ok", "+1 ok", "+1", "+1 ok", "+1 ok", "+1 ok", "+0", "-1"]
