@@ -15,6 +15,7 @@ from .output import write_if_changed
 # `max2code NAME ...` runs the module's main(argv); one line per subcommand.
 SUBCOMMANDS = {
     "build": "build",
+    "check": "check",
     "report": "report",
     "roles": "roles",
     "runtime": "runtime_info",

@@ -1,0 +1,45 @@
+"""C: the generated header and a driver, gcc -std=c11 -Wall -Wextra -Werror -pedantic, linked with
+the C runtime (runtime/c, GSL). Numbers travel as C99 hex floats (%a), exactly."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from ..paths import runtime_dir
+from .base import Harness, Outcome, Unit, parse_lines, run, tool
+
+CFLAGS = ["-std=c11", "-Wall", "-Wextra", "-Werror", "-pedantic", "-O2"]
+LIBS = ["-lgsl", "-lgslcblas", "-lm"]
+
+
+def runtime_object(gcc: str, workdir: Path) -> Path:
+    """The C runtime compiled once per run (the Modula-2 harness links it too)."""
+    obj = workdir / "max2code_roots.o"
+    if not obj.exists():
+        source = runtime_dir("c") / "max2code_roots.c"
+        run([gcc, *CFLAGS, f"-I{runtime_dir('c')}", "-c", str(source), "-o", str(obj)])
+    return obj
+
+
+class CHarness(Harness):
+    lang = "c"
+    tools = ("gcc",)
+
+    def run(self, units: list[Unit], workdir: Path, build_dir: Path) -> dict[str, list[Outcome]]:
+        gcc = tool("gcc")
+        obj = runtime_object(gcc, workdir)
+        results = {}
+        for unit in units:
+            folder = workdir / unit.name
+            folder.mkdir()
+            header = folder / f"{unit.name}.h"
+            header.write_text(self.module_text(unit, header)[0])
+            (folder / "driver.c").write_text(self.render(name=unit.name, header=header.name))
+            exe = folder / "driver"
+            run([gcc, *CFLAGS, f"-I{runtime_dir('c')}", f"-I{folder}", str(folder / "driver.c"),
+                 str(obj), "-o", str(exe), *LIBS])
+            stdin = "".join(" ".join(float.hex(x) for x in (case.tmax, *case.params)) + "\n"
+                            for case in unit.cases)
+            out = run([str(exe)], input=stdin)
+            results[unit.name] = parse_lines(out, len(unit.cases), float.fromhex)
+        return results

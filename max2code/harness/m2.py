@@ -1,0 +1,54 @@
+"""Modula-2: the generated NAME.def + NAME.mod compiled with gm2 -fiso -fcpp (the #line
+directives), a driver with the cases embedded as IEEE bit patterns (two 32-bit halves each,
+since the ISO library reads no hex), linked with the C runtime through Max2codeRoots.def:
+-L<m2iso> -lm2iso -lpthread and GSL. The driver prints each double as "lo:hi"."""
+
+from __future__ import annotations
+
+import shutil
+import struct
+from pathlib import Path
+
+from ..paths import runtime_dir
+from .base import Harness, Outcome, Unit, parse_lines, run, tool
+from .c import LIBS, runtime_object
+
+
+def halves(x: float) -> tuple[int, int]:
+    """The low and high 32-bit halves of a double (little-endian x86-64 and ARM)."""
+    return struct.unpack("<II", struct.pack("<d", x))
+
+
+def from_halves(text: str) -> float:
+    lo, hi = text.split(":")
+    return struct.unpack("<d", struct.pack("<II", int(lo), int(hi)))[0]
+
+
+class M2Harness(Harness):
+    lang = "m2"
+    tools = ("gm2", "gcc")
+
+    def run(self, units: list[Unit], workdir: Path, build_dir: Path) -> dict[str, list[Outcome]]:
+        gm2, gcc = tool("gm2"), tool("gcc")
+        obj = runtime_object(gcc, workdir)
+        iso = run([gm2, "-print-file-name=m2/m2iso"]).strip()
+        results = {}
+        for unit in units:
+            folder = workdir / unit.name
+            folder.mkdir()
+            module = folder / f"{unit.name}.mod"
+            text, companions = self.module_text(unit, module)
+            module.write_text(text)
+            for path, companion in companions:
+                Path(path).write_text(companion)
+            shutil.copy(runtime_dir("m2") / "Max2codeRoots.def", folder)
+            cases = [{"tmax": halves(case.tmax), "params": [halves(x) for x in case.params]}
+                     for case in unit.cases]
+            (folder / "Driver.mod").write_text(self.render(name=unit.name, cases=cases))
+            run([gm2, "-fiso", "-fcpp", "-Wall", "-Werror", "-c", module.name,
+                 "-o", f"{unit.name}.o"], cwd=folder)
+            run([gm2, "-fiso", "Driver.mod", f"{unit.name}.o", str(obj), "-o", "driver",
+                 f"-L{iso}", "-lm2iso", "-lpthread", *LIBS], cwd=folder)
+            out = run([str(folder / "driver")], cwd=folder)
+            results[unit.name] = parse_lines(out, len(unit.cases), from_halves)
+        return results
