@@ -292,7 +292,7 @@ def check(equations: list[Path], vectors: dict[Path, Path] | None = None,
             continue
         unit = Unit(spec, poly, tuple(Case(v.params, v.tmax) for v in vs))
         units.append(unit)
-        by_name[unit.name] = (mxm, vs)
+        by_name[unit.name] = (mxm, path, vs)
     with tempfile.TemporaryDirectory(prefix="max2code-check-") as tmp:
         for lang in langs:
             workdir = Path(tmp) / lang
@@ -303,19 +303,19 @@ def check(equations: list[Path], vectors: dict[Path, Path] | None = None,
                 report.errors.append(f"{lang}: {exc}")
                 continue
             for unit in units:
-                mxm, vs = by_name[unit.name]
+                mxm, path, vs = by_name[unit.name]
                 rows: dict[str, Row] = {}
                 for v, o in zip(vs, outcomes[unit.name]):
                     verdict = judge(v, o.coefficients, o.root)
                     rows.setdefault(v.family, Row(mxm.stem, lang, v.family)).add(verdict)
                     if not verdict.ok:
-                        report.failures.append(_failure(mxm, lang, verdict, o.root))
+                        report.failures.append(_failure(path, lang, verdict, o.root))
                 report.rows += rows.values()
     report.rows.sort(key=lambda r: (r.equation, langs.index(r.lang)))
     return report
 
 
-def _failure(mxm: Path, lang: str, v: Verdict, root: float | None) -> str:
+def _failure(path: Path, lang: str, v: Verdict, root: float | None) -> str:
     vec = v.vector
     what = []
     if v.coef_err > TOLERANCES.coef:
@@ -327,7 +327,7 @@ def _failure(mxm: Path, lang: str, v: Verdict, root: float | None) -> str:
     if v.bound_use > 1:
         what.append(f"root {root!r}, exact {float(vec.first_root):.17g} "  # type: ignore[arg-type]
                     f"(relative error {v.root_err:.3g}, {v.bound_use:.3g} times its bound)")
-    return (f"{default_vectors(mxm).name}:{vec.line}: {lang}: {vec.family} ({vec.note}): "
+    return (f"{path}:{vec.line}: {lang}: {vec.family} ({vec.note}): "
             + "; ".join(what))
 
 

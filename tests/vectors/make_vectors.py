@@ -379,11 +379,16 @@ def header(mxm: Path, names: tuple[str, ...]) -> dict:
     }
 
 
-def write(mxm: Path) -> Path:
+def text(mxm: Path) -> str:
+    """The whole vector file of one equation."""
     _, poly = load(str(mxm))
-    out = HERE / f"{mxm.stem}.jsonl"
     lines = [header(mxm, poly.parameters), *vectors_for(mxm)]
-    out.write_text("".join(json.dumps(line) + "\n" for line in lines))
+    return "".join(json.dumps(line) + "\n" for line in lines)
+
+
+def write(mxm: Path) -> Path:
+    out = HERE / f"{mxm.stem}.jsonl"
+    out.write_text(text(mxm))
     return out
 
 
