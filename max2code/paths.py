@@ -1,10 +1,17 @@
-"""Where the templates and runtimes live: beside the package in a checkout or editable install."""
+"""Where the templates, runtimes and shipped equations live.
+
+In a checkout (or an editable install) they are the top-level folders beside the package; in an
+installed wheel they travel inside it as `max2code/_data/` (see pyproject.toml). Either way a
+build needs nothing but the installed package.
+"""
 
 from __future__ import annotations
 
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parent.parent
+PACKAGE = Path(__file__).resolve().parent
+CHECKOUT = PACKAGE.parent
+ROOT = CHECKOUT if (CHECKOUT / "templates").is_dir() else PACKAGE / "_data"
 
 
 def templates_dir() -> Path:
@@ -13,3 +20,7 @@ def templates_dir() -> Path:
 
 def runtime_dir(lang: str) -> Path:
     return ROOT / "runtime" / lang
+
+
+def equations_dir() -> Path:
+    return ROOT / "equations"
