@@ -95,7 +95,9 @@ class Language:
     def identifier(self, name: str) -> str:
         """A parameter name made safe: keywords and our own reserved names get a trailing '_'."""
         out = name.replace("%", "_")
-        while out in self.keywords or out.startswith("m2c_"):
+        if out.startswith("m2c_"):  # our own temporaries and arguments
+            out = "p_" + out
+        while out in self.keywords:
             out += "_"
         return out
 
@@ -123,7 +125,8 @@ class Language:
             return self.identifier(e.name), P_ATOM
         if isinstance(e, Neg):
             # Negation is exact, so -(a*b) may print as -a*b: a sign never changes a rounding.
-            return "-" + self._wrap(e.arg, P_NEG + 1 if isinstance(e.arg, Neg) else P_MUL), P_NEG
+            inner = self._wrap(e.arg, P_NEG + 1 if isinstance(e.arg, Neg) else P_MUL)
+            return "-" + (f"({inner})" if inner.startswith("-") else inner), P_NEG
         if isinstance(e, Add):
             parts = [self._wrap(e.args[0], P_ADD)]
             for arg in e.args[1:]:
@@ -166,7 +169,7 @@ class Language:
             text = "*".join(self._wrap(f, P_MUL if i == 0 else P_MUL + 1) for i, f in enumerate(factors))
             prec = P_MUL if len(factors) > 1 else self._print(factors[0])[1]
         if negative:
-            return "-" + (text if prec >= P_MUL else f"({text})"), P_NEG
+            return "-" + (text if prec >= P_MUL and not text.startswith("-") else f"({text})"), P_NEG
         return text, prec
 
     def _pow(self, e: Pow) -> tuple[str, int]:

@@ -31,6 +31,10 @@ class C(Language):
         ("asin", "asin"), ("acos", "acos"), ("sinh", "sinh"), ("cosh", "cosh"), ("tanh", "tanh"),
     )
 
+    # No wrapping: a `#line` directive numbers the lines after it, so a statement continued on
+    # more lines would claim .mxm lines past the equation.
+    max_line: int = 1 << 30
+
     def power_call(self, base: str, exponent: str) -> str:
         return f"pow({base}, {exponent})"
 
