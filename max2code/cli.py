@@ -19,6 +19,7 @@ SUBCOMMANDS = {
     "report": "report",
     "roles": "roles",
     "runtime": "runtime_info",
+    "scene": "scene",
 }
 
 
