@@ -2,7 +2,7 @@
 # build/, with a summary) and `make test`. Both install what is missing first (scripts/setup).
 PYTHON ?= python3
 
-.PHONY: all build test setup clean
+.PHONY: all build test setup clean bench
 
 all: build
 
@@ -14,6 +14,11 @@ build: setup
 
 test: setup
 	$(PYTHON) -m pytest
+
+# Speed against accuracy: root methods, Taylor model error, example scenes -> bench/results/
+# (needs numpy and matplotlib: pip install -e .[bench]).
+bench: setup
+	$(PYTHON) bench/roots.py
 
 clean:
 	rm -rf build runtime/rust/target
