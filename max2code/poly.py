@@ -64,7 +64,7 @@ def extraction_script(variable: str,
         f"{E}: ev({E}, nouns)$",
         f'{E}: if not atom({E}) and op({E}) = "=" then lhs({E}) - rhs({E}) else {E}$',
         maxima.marker("EXTRACT"),
-        f"m2c__report(m2c__i, m2c__v) := block([m2c__x, m2c__n],",
+        "m2c__report(m2c__i, m2c__v) := block([m2c__x, m2c__n],",
         f'  printf(true, "~%{m}-VARIANT ~d~%", m2c__i),',
         f'  printf(true, "~%{m}-KIND ~a~%", if stringp(m2c__v) then "a string" '
         f'elseif listp(m2c__v) then "a list" elseif matrixp(m2c__v) then "a matrix" '
@@ -75,7 +75,7 @@ def extraction_script(variable: str,
         # Variants are substitutions into the general equation: its checks cover them.
         f'  printf(true, "~%{m}-DENOM ~a~%", if m2c__i > 0 or freeof({t}, denom(ratsimp(m2c__v))) '
         f"then 0 else 1),",
-        f"  m2c__x: expand(m2c__v),",
+        "  m2c__x: expand(m2c__v),",
         f"  m2c__n: hipow(m2c__x, {t}),",
         f'  for m2c__k: 0 thru m2c__n do printf(true, "~%{m}-COEF ~d ~a~%", m2c__k, '
         f"string(coeff(m2c__x, {t}, m2c__k))),",

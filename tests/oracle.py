@@ -7,7 +7,9 @@ Maxima expands the resulting polynomial in t exactly. Roots come from mpmath at 
 
 from __future__ import annotations
 
+import math
 import random
+import zlib
 import re
 import subprocess
 import tempfile
@@ -107,3 +109,51 @@ def random_samples(names: tuple[str, ...], count: int, seed: int) -> list[tuple[
                 values.append(rng.uniform(-spread, spread))
         out.append(tuple(values))
     return out
+
+
+# Bounds for generated code against the oracle, shared by every language's test.
+TMAX = 10.0
+# Coefficient error, relative to the largest exact coefficient of the same sample: the fully
+# expanded coefficients are sums of up to a few hundred products, each rounded once.
+COEF_TOL = 1e-13
+# Root error: relative 1e-10, plus what perturbing the coefficients by COEF_TOL (relative to
+# the largest) moves a simple root by, |dp| / |p'(t)|.
+ROOT_REL = 1e-10
+
+
+def sampled_equation(path: Path, count: int):
+    """(spec, poly, exact samples) for a shipped equation, with enough collisions and misses
+    among the samples that both outcomes are tested."""
+    from max2code.generate import load
+
+    spec, poly = load(str(path))
+    samples = random_samples(poly.parameters, count, seed=zlib.crc32(path.stem.encode()))
+    exact = exact_coefficients(path, poly.parameters, samples)
+    hits = sum(1 for e in exact if e.first_root(TMAX)[0] is not None)
+    assert 20 <= hits <= count - 20, f"{hits} of {count} samples collide: too one-sided a test"
+    return spec, poly, exact
+
+
+def check_sample(exact: Exact, coefs: list[float], root: float | None, label: str) -> None:
+    """Coefficients within COEF_TOL of the exact ones; the first root within what that allows.
+
+    The generated code may emit coefficients up to the general degree; the exact polynomial of
+    a sample is shorter only where its top coefficients vanish, and those must come out ~0."""
+    scale = max(abs(float(c)) for c in exact.coefficients)
+    assert len(coefs) >= len(exact.coefficients), f"{label}: degree differs"
+    padded = list(exact.coefficients) + [0] * (len(coefs) - len(exact.coefficients))
+    for k, (got, want) in enumerate(zip(coefs, padded)):
+        assert abs(got - float(want)) <= COEF_TOL * scale, (
+            f"{label}: c[{k}] = {got!r}, exact {float(want)!r}")
+    want_root, slope = exact.first_root(TMAX)
+    if want_root is None:
+        assert root is None, f"{label}: found {root!r}, exact polynomial has no root in (0, {TMAX}]"
+        return
+    spread = COEF_TOL * scale * sum(want_root ** k for k in range(len(coefs)))
+    tol = ROOT_REL * want_root + (spread / slope if slope > 0 else math.inf)
+    if root is None:
+        # Only a root within rounding of the window's end, or of a double root, may be missed.
+        assert TMAX - want_root <= tol or slope * want_root <= spread * 1e3, (
+            f"{label}: missed root {want_root!r}")
+        return
+    assert abs(root - want_root) <= tol, f"{label}: root {root!r}, exact {want_root!r}"

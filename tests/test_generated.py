@@ -8,28 +8,19 @@ written) and the exact first root (mpmath, 60 digits).
 from __future__ import annotations
 
 import importlib.util
-import math
 import subprocess
-import zlib
 from pathlib import Path
 
 import pytest
 
 from conftest import ROOT, require
-from oracle import Exact, exact_coefficients, random_samples
+from oracle import TMAX, Exact, check_sample, sampled_equation
 
 from max2code.generate import generate, load
 from max2code.languages import LANGUAGES
 
 EQUATIONS = sorted((ROOT / "equations").glob("*.mxm"))
 SAMPLES = 120
-TMAX = 10.0
-# Coefficient error bound, relative to the largest exact coefficient of the same sample: the
-# fully expanded coefficients are sums of up to a few hundred products, each rounded once.
-COEF_TOL = 1e-13
-# Root error bound: relative 1e-10, plus what a perturbation of the coefficients by COEF_TOL
-# (relative to the largest one) moves a simple root by, |dp| / |p'(t)|.
-ROOT_REL = 1e-10
 
 DRIVER = r"""
 #include <stdio.h>
@@ -53,33 +44,8 @@ int main(void) {{
 
 @pytest.fixture(scope="module", params=EQUATIONS, ids=lambda p: p.stem)
 def equation(request: pytest.FixtureRequest, maxima_exe: str) -> tuple[Path, object, list[Exact]]:
-    path = request.param
-    spec, poly = load(str(path))
-    samples = random_samples(poly.parameters, SAMPLES, seed=zlib.crc32(path.stem.encode()))
-    exact = exact_coefficients(path, poly.parameters, samples)
-    hits = sum(1 for e in exact if e.first_root(TMAX)[0] is not None)
-    assert 20 <= hits <= SAMPLES - 20, f"{hits} of {SAMPLES} samples collide: too one-sided a test"
-    return path, (spec, poly), exact
-
-
-def check_sample(exact: Exact, coefs: list[float], root: float | None, label: str) -> None:
-    scale = max(abs(float(c)) for c in exact.coefficients)
-    assert len(coefs) == len(exact.coefficients), f"{label}: degree differs"
-    for k, (got, want) in enumerate(zip(coefs, exact.coefficients)):
-        assert abs(got - float(want)) <= COEF_TOL * scale, (
-            f"{label}: c[{k}] = {got!r}, exact {float(want)!r}")
-    want_root, slope = exact.first_root(TMAX)
-    if want_root is None:
-        assert root is None, f"{label}: found {root!r}, exact polynomial has no root in (0, {TMAX}]"
-        return
-    spread = COEF_TOL * scale * sum(want_root ** k for k in range(len(coefs)))
-    tol = ROOT_REL * want_root + (spread / slope if slope > 0 else math.inf)
-    if root is None:
-        # Only a root within rounding of the window's end, or of a double root, may be missed.
-        assert TMAX - want_root <= tol or slope * want_root <= spread * 1e3, (
-            f"{label}: missed root {want_root!r}")
-        return
-    assert abs(root - want_root) <= tol, f"{label}: root {root!r}, exact {want_root!r}"
+    spec, poly, exact = sampled_equation(request.param, SAMPLES)
+    return request.param, (spec, poly), exact
 
 
 def test_c_module_matches_oracle(equation, tmp_path: Path) -> None:

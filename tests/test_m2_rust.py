@@ -22,7 +22,6 @@ Tools: gm2, gcc, cargo. Under CI (CI set) a missing tool fails; elsewhere the te
 from __future__ import annotations
 
 import importlib.util
-import math
 import os
 import shutil
 import struct
@@ -33,7 +32,7 @@ from pathlib import Path
 import pytest
 
 from conftest import ROOT, require
-from oracle import Exact, exact_coefficients, random_samples
+from oracle import TMAX, Exact, check_sample, exact_coefficients, random_samples, sampled_equation
 
 from max2code.emit import module_name
 from max2code.generate import generate, load
@@ -42,9 +41,6 @@ from max2code.variants import family
 
 EQUATIONS = sorted((ROOT / "equations").glob("*.mxm"))
 SAMPLES = 120
-TMAX = 10.0
-COEF_TOL = 1e-13  # relative to the largest exact coefficient of the sample (as for C/Python)
-ROOT_REL = 1e-10
 CARGO_TARGET = ROOT / "build" / "test-cargo-target"
 C_RUNTIME = ROOT / "runtime" / "c"
 M2_RUNTIME = ROOT / "runtime" / "m2"
@@ -116,37 +112,8 @@ def c_runtime_object(tmp_path_factory: pytest.TempPathFactory) -> Path:
 
 @pytest.fixture(scope="module", params=EQUATIONS, ids=lambda p: p.stem)
 def equation(request: pytest.FixtureRequest, maxima_exe: str) -> tuple[Path, object, list[Exact]]:
-    path = request.param
-    spec, poly = load(str(path))
-    samples = random_samples(poly.parameters, SAMPLES, seed=zlib.crc32(path.stem.encode()))
-    exact = exact_coefficients(path, poly.parameters, samples)
-    hits = sum(1 for e in exact if e.first_root(TMAX)[0] is not None)
-    assert 20 <= hits <= SAMPLES - 20, f"{hits} of {SAMPLES} samples collide: too one-sided a test"
-    return path, (spec, poly), exact
-
-
-def check_sample(exact: Exact, coefs: list[float], root: float | None, label: str) -> None:
-    """Coefficients within COEF_TOL of the exact ones; the root within what that allows."""
-    scale = max(abs(float(c)) for c in exact.coefficients)
-    # The generated code emits every coefficient up to the general degree; the exact polynomial
-    # of a sample may be shorter only if its top coefficients vanish.
-    assert len(coefs) >= len(exact.coefficients), f"{label}: degree differs"
-    padded = list(exact.coefficients) + [0] * (len(coefs) - len(exact.coefficients))
-    for k, (got, want) in enumerate(zip(coefs, padded)):
-        assert abs(got - float(want)) <= COEF_TOL * scale, (
-            f"{label}: c[{k}] = {got!r}, exact {float(want)!r}")
-    want_root, slope = exact.first_root(TMAX)
-    if want_root is None:
-        assert root is None, f"{label}: found {root!r}, exact polynomial has no root in (0, {TMAX}]"
-        return
-    spread = COEF_TOL * scale * sum(want_root ** k for k in range(len(coefs)))
-    tol = ROOT_REL * want_root + (spread / slope if slope > 0 else math.inf)
-    if root is None:
-        # Only a root within rounding of the window's end, or of a double root, may be missed.
-        assert TMAX - want_root <= tol or slope * want_root <= spread * 1e3, (
-            f"{label}: missed root {want_root!r}")
-        return
-    assert abs(root - want_root) <= tol, f"{label}: root {root!r}, exact {want_root!r}"
+    spec, poly, exact = sampled_equation(request.param, SAMPLES)
+    return request.param, (spec, poly), exact
 
 
 # ---------------------------------------------------------------------------------------------
