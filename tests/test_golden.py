@@ -29,7 +29,7 @@ def test_golden(path: Path, maxima_exe: str, update_golden: bool) -> None:
         result = generate(spec, poly, lang, "module", out)
         files = [(out, result.text)] + [(Path(p).name, t) for p, t in result.companions]
         for name, text in files:
-            golden = GOLDEN / lang_name / name
+            golden = GOLDEN / lang_name / (name + ".golden")  # not picked up as code by tools
             if update_golden:
                 golden.parent.mkdir(parents=True, exist_ok=True)
                 golden.write_text(text)
