@@ -2,8 +2,9 @@
 
 On the three example scenes: every predicted first collision is within the scene's tolerance of
 the exact one (mpmath on the true trigonometric motion), and so is "no collision"; the solves
-ran at the degrees the scene needs (no octic where nothing rotates); and solving took less time
-than always solving the general octic (measured, best of several runs).
+ran at the degrees the scene needs (no octic where nothing rotates). The time saved against
+always solving the general octic is measured by the benchmark (`python bench/roots.py`, table in
+bench/results/), never asserted here: a timed assertion fails on a loaded machine.
 """
 from __future__ import annotations
 
@@ -48,12 +49,6 @@ def test_within_tolerance_of_exact(name: str, reports) -> None:
     # the proved bound holds too, and says no more than the tolerance
     assert all(p.bound <= tol / 2 for p in r.predictions)
     assert any(p.time is not None for p in r.predictions), "a scene without collisions tests little"
-
-
-@pytest.mark.parametrize("name", ["billiards-break", "paddles", "mixed"])
-def test_time_saved_against_general_octic(name: str, reports) -> None:
-    r = reports[name]
-    assert r.seconds < r.baseline_seconds, (r.seconds, r.baseline_seconds)
 
 
 def test_degrees_follow_the_scene(reports) -> None:
