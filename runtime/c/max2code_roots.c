@@ -9,6 +9,8 @@
 #include <limits.h>
 #include <math.h>
 #include <stddef.h>
+#include <stdint.h>
+#include <string.h>
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_poly.h>
@@ -48,6 +50,25 @@ static int input_is_valid(const double c[], int degree, double tmax,
     return 1;
 }
 
+/* ilogb(x) for finite nonzero x, read from the bits: it runs for every
+ * coefficient of every solve, and ilogb is a library call. */
+static int exponent_of(double x)
+{
+    uint64_t b;
+    memcpy(&b, &x, sizeof b);
+    int e = (int)((b >> 52) & 0x7ff);
+    return e != 0 ? e - 1023 : ilogb(x); /* subnormal: rare */
+}
+
+/* 2^e, exact, for DBL_MIN_EXP - 1 <= e <= DBL_MAX_EXP - 1 (normal range). */
+static double pow2(int e)
+{
+    uint64_t b = (uint64_t)(e + 1023) << 52;
+    double x;
+    memcpy(&x, &b, sizeof x);
+    return x;
+}
+
 /* ceil(num / den) for den > 0 and any sign of num. */
 static int ceil_div(int num, int den)
 {
@@ -59,13 +80,13 @@ static int ceil_div(int num, int den)
  * |z| < the result.  c[n] != 0.  Returns 0 when all c_i (i < n) are 0. */
 static double root_bound(const double c[], int n)
 {
-    int en = ilogb(c[n]);
+    int en = exponent_of(c[n]);
     int best = INT_MIN;
     for (int i = 0; i < n; i++) {
         if (c[i] == 0)
             continue;
         /* |c_i / c_n| < 2^(ilogb(c_i) + 1 - en) */
-        int e = ceil_div(ilogb(c[i]) + 1 - en, n - i);
+        int e = ceil_div(exponent_of(c[i]) + 1 - en, n - i);
         if (e > best)
             best = e;
     }
@@ -73,7 +94,7 @@ static double root_bound(const double c[], int n)
         return 0;
     if (best + 1 >= DBL_MAX_EXP)
         return DBL_MAX;
-    return ldexp(1.0, best + 1);
+    return best + 1 >= DBL_MIN_EXP - 1 ? pow2(best + 1) : ldexp(1.0, best + 1);
 }
 
 /* Is the leading term negligible over [0, T] (see header)?  Compared term by
@@ -133,9 +154,16 @@ static void normalise(double c[], int n)
             m = fabs(c[i]);
     if (m == 0)
         return;
-    int e = ilogb(m) + 1;
-    for (int i = 0; i <= n; i++)
-        c[i] = ldexp(c[i], -e);
+    int e = exponent_of(m) + 1;
+    if (e >= DBL_MIN_EXP && e <= DBL_MAX_EXP - 2) {
+        /* multiplying by an exact power of two rounds as ldexp does */
+        double f = pow2(-e);
+        for (int i = 0; i <= n; i++)
+            c[i] *= f;
+    } else {
+        for (int i = 0; i <= n; i++)
+            c[i] = ldexp(c[i], -e);
+    }
 }
 
 /* ------------------------------------------------------------------ */
@@ -148,21 +176,29 @@ static int scale_exponent(double x)
     return fabs(x) <= 0x1p120 ? 0 : ilogb(x) + 1;
 }
 
-/* p(x) / 2^(k n) by Horner with FMA (one rounding per step).  With k != 0 the
- * argument and the coefficients are scaled by exact powers of two, so huge
- * x (roots near 1e154 and beyond) evaluate without overflow. */
-static double horner(const double c[], int n, double x, int k)
+/* p(x) / 2^(k n) by Horner.  precise: with fma, one rounding per step.
+ * Without -mfma, fma() is a library call per step, which would dominate the
+ * solve; so only the last Newton steps of a reported root and the graze check
+ * use it, everything else plain multiply-add (two roundings per step: within
+ * the gamma_{2n} bound used throughout).  With k != 0 the argument and the
+ * coefficients are scaled by exact powers of two, so huge x (roots near 1e154
+ * and beyond) evaluate without overflow. */
+static double horner(const double c[], int n, double x, int k, int precise)
 {
     double acc = c[n];
     if (k == 0) {
-        for (int i = n - 1; i >= 0; i--)
-            acc = fma(acc, x, c[i]);
+        if (precise)
+            for (int i = n - 1; i >= 0; i--)
+                acc = fma(acc, x, c[i]);
+        else
+            for (int i = n - 1; i >= 0; i--)
+                acc = acc * x + c[i];
         return acc;
     }
     double xs = ldexp(x, -k), f = ldexp(1.0, -k), fi = 1.0;
     for (int i = n - 1; i >= 0; i--) {
         fi *= f;
-        acc = fma(acc, xs, c[i] * fi);
+        acc = precise ? fma(acc, xs, c[i] * fi) : acc * xs + c[i] * fi;
     }
     return acc;
 }
@@ -179,19 +215,25 @@ static double horner_abs(const double c[], int n, double x, int k)
     return acc;
 }
 
-/* Is |p(x)| within the rounding noise of its evaluation at x?
- * Bound: 2 gamma_{2n} sum |c_i| |x|^i (see header). */
+/* The graze tolerance 2 gamma_{2n} (see header): |p(x)| at most this times
+ * sum |c_i| |x|^i is within the rounding noise of evaluating p at x. */
+static double noise_factor(int n)
+{
+    double g = 2.0 * n * UNIT_ROUNDOFF / (1.0 - 2.0 * n * UNIT_ROUNDOFF);
+    return 2.0 * g;
+}
+
+/* Is |p(x)| within the rounding noise of its evaluation at x? */
 static int within_noise(const double c[], int n, double x)
 {
     int k = scale_exponent(x);
-    double g = 2.0 * n * UNIT_ROUNDOFF / (1.0 - 2.0 * n * UNIT_ROUNDOFF);
-    return fabs(horner(c, n, x, k)) <= 2.0 * g * horner_abs(c, n, x, k);
+    return fabs(horner(c, n, x, k, 1)) <= noise_factor(n) * horner_abs(c, n, x, k);
 }
 
 /* Sign of p(x) as -1, 0, 1 (scaling does not change it). */
-static int sign_at(const double c[], int n, double x)
+static int sign_at(const double c[], int n, double x, int precise)
 {
-    double v = horner(c, n, x, scale_exponent(x));
+    double v = horner(c, n, x, scale_exponent(x), precise);
     return (v > 0) - (v < 0);
 }
 
@@ -264,8 +306,25 @@ static int first_root_quadratic(const double c[3], double tmax, int graze_check,
 }
 
 /* ------------------------------------------------------------------ */
-/* Safeguarded Newton on a monotone bracket                            */
+/* Safeguarded Newton on a bracket with one root                       */
 /* ------------------------------------------------------------------ */
+
+/* Relative tolerances for roots that are only used to split the window:
+ * roots of p' (critical points of p, where the graze check evaluates p:
+ * p' = 0 there, so an error d in x changes p by O(d^2) -- negligible at
+ * 2^-36) and of the lower derivatives (they only bracket the next level). */
+#define TOL_CRITICAL 0x1p-36
+#define TOL_LEVEL 0x1p-28
+
+/* Full accuracy: Newton with plain evaluation until the step is below this
+ * (relative), then with the precise (fma) one to about an ulp.  Plain
+ * Newton converges quadratically, so after a plain step below 2^-26 the
+ * iterate is within a few ulps and one precise step finishes it. */
+#define PRECISE_FROM 0x1p-26
+
+/* A rejected Newton step this small (relative) in the precise phase means the
+ * evaluation is rounding noise: a few ulps, n u kappa for kappa ~ 2. */
+#define NOISE_STEP (32 * UNIT_ROUNDOFF)
 
 /* Bisection point of [lo, hi] (0 <= lo < hi): geometric when the bracket
  * spans more than a factor 8, so roots near 0 (1e-12) are reached in a few
@@ -279,44 +338,317 @@ static double split_point(double lo, double hi)
     return lo + 0.5 * (hi - lo);
 }
 
-/* Root of P (degree m, derivative D) in (lo, hi), where P changes sign
- * between lo and hi (slo = sign of P(lo), nonzero) and is monotone. */
-static double refine_root(const double P[], const double D[], int m,
-                          double lo, double hi, int slo)
+/* P(x) / 2^(k m) (precise: with fma) and P'(x) / 2^(k (m-1)) = D(x) / ...,
+ * as horner() scales them (so the Newton step is 2^k times their ratio);
+ * for k = 0 in one loop, two independent chains. */
+static double value_and_slope(const double P[], const double D[], int m,
+                              double x, int k, int precise, double *slope)
 {
-    double x = split_point(lo, hi);
+    if (k != 0) {
+        *slope = horner(D, m - 1, x, k, 0);
+        return horner(P, m, x, k, precise);
+    }
+    double f = P[m], df = D[m - 1];
+    if (precise)
+        f = fma(f, x, P[m - 1]);
+    else
+        f = f * x + P[m - 1];
+    for (int i = m - 2; i >= 0; i--) {
+        df = df * x + D[i];
+        f = precise ? fma(f, x, P[i]) : f * x + P[i];
+    }
+    *slope = df;
+    return f;
+}
+
+/* The root of P (degree m, derivative D) in (lo, hi), where P changes sign
+ * exactly once (slo = sign of P(lo), nonzero): P monotone there, or the root
+ * isolated by Budan-Fourier counts.  x0 in (lo, hi) is the first guess.
+ * tol > 0: stop once the bracket or the Newton step is below tol relative.
+ * tol == 0: full relative double accuracy: plain evaluation until the step
+ * (or the bracket) is below PRECISE_FROM, then the precise (fma) one until
+ * the step is a few ulps -- usually a single step -- or until Newton, a few
+ * ulps from the root, stops converging: there the evaluation is all rounding
+ * noise and no point is better than x (bisecting the whole bracket instead
+ * would wander away and back). */
+static double refine_root(const double P[], const double D[], int m,
+                          double lo, double hi, int slo, double tol, double x0)
+{
+    double x = x0;
     double step = hi - lo, step_old = step;
+    int precise = 0;
+    double stop = tol > 0 ? tol : PRECISE_FROM;
     for (int it = 0; it < MAX_ITER; it++) {
         int k = scale_exponent(x);
-        double f = horner(P, m, x, k);
-        if (f == 0)
-            return x;
+        double df, f = value_and_slope(P, D, m, x, k, precise, &df);
+        if (f == 0) {
+            if (precise || tol > 0)
+                return x;
+            precise = 1; /* look again, precisely */
+            stop = 2 * UNIT_ROUNDOFF;
+            continue;
+        }
         if ((f > 0) == (slo > 0))
             lo = x;
         else
             hi = x;
-        if (hi - lo <= 2 * DBL_EPSILON * hi)
+        if (hi - lo <= 2 * DBL_EPSILON * hi || (tol > 0 && hi - lo <= tol * hi))
             return x;
-        double df = horner(D, m - 1, x, k);
-        double xn = x - ldexp(f / df, k);
+        if (tol == 0 && hi - lo <= PRECISE_FROM * hi) {
+            precise = 1;
+            stop = 2 * UNIT_ROUNDOFF;
+        }
+        double xn = x - (k ? ldexp(f / df, k) : f / df);
         double s = x - xn;
         /* Newton must stay inside the bracket and at least halve the step
          * before last; otherwise bisect (rtsafe's rule). */
         if (!(xn > lo && xn < hi) || fabs(s) > 0.5 * fabs(step_old)) {
+            if (precise && fabs(s) <= NOISE_STEP * fabs(x))
+                return x;
             xn = split_point(lo, hi);
             s = x - xn;
         }
         step_old = step;
         step = s;
-        if (fabs(s) <= 2 * UNIT_ROUNDOFF * fabs(xn))
-            return xn; /* converged to about an ulp */
+        if (fabs(s) <= stop * fabs(xn) || (precise && fabs(s) <= NOISE_STEP * fabs(x))) {
+            /* converged; a precise Newton step of a few ulps lands within
+             * O(step^2) of where the precise evaluation puts the root */
+            if (precise || tol > 0)
+                return xn;
+            precise = 1;   /* the last step(s) with fma */
+            stop = 2 * UNIT_ROUNDOFF;
+        }
         x = xn;
     }
     return x;
 }
 
 /* ------------------------------------------------------------------ */
-/* Interval solver                                                      */
+/* Budan-Fourier isolation                                              */
+/* ------------------------------------------------------------------ */
+/*
+ * For p with p(0) > 0 the first event in (0, T] is a root, or a touch: a
+ * point where p comes within the rounding noise of 0 without crossing (the
+ * graze check).  Both lie where the lower envelope
+ *     q(x) = p(x) - 2 gamma_{2n} sum |p_i| x^i      (q_i = p_i - e |p_i|)
+ * is <= 0; q(0) > 0, so if q has no root in (a, b] nothing happens there.
+ * (Without the graze check, q = p.)
+ *
+ * Budan-Fourier: the number of roots in (a, b], counted with multiplicity,
+ * is at most V(a) - V(b) and has its parity, where V(x) is the number of
+ * sign changes of the Taylor coefficients at x (zeros skipped).  V(0) is read
+ * off the coefficients; V(x) needs a Taylor shift, whose signs are trusted
+ * only when each coefficient exceeds its rounding bound.  So:
+ *   q count 0               nothing in (a, b]: move right;
+ *   p count 1 and q count 1 exactly one simple root of p, and any dip of p
+ *                           into the noise before it stays in the noise up
+ *                           to the root (else q would have 3 roots): polish
+ *                           it by safeguarded Newton;
+ *   otherwise               split (a, b] and look at the left half first.
+ * Splits are capped; double roots (touches) and tight clusters never give
+ * count 1 and go to the derivative method, started at the left end of the
+ * unresolved interval (everything before it is cleared).
+ */
+
+/* Windows beyond this go straight to the derivative method (which scales
+ * its evaluations): up to it, Horner and the Taylor shift of normalised
+ * coefficients cannot overflow (9 * 2^(8 * 100) * 2^8 < DBL_MAX). */
+#define FAST_LIMIT 0x1p100
+
+/* Caps on the bisection: number of splits, and the relative width below
+ * which an interval that still holds two or more roots is left to the
+ * derivative method. */
+#define MAX_SPLITS 40
+#define MIN_WIDTH 0x1p-20
+
+/* Sign changes in v[0..n], zeros skipped. */
+static int sign_changes(const double v[], int n)
+{
+    int count = 0, last = 0;
+    for (int i = 0; i <= n; i++) {
+        int s = (v[i] > 0) - (v[i] < 0);
+        if (s != 0) {
+            count += last != 0 && s != last;
+            last = s;
+        }
+    }
+    return count;
+}
+
+/* The Taylor coefficients of p at x are the values at x of the polynomials
+ * p^(k)/k!, whose coefficients C(j+k, k) p_{j+k} are tabulated once per
+ * solve (tk[k][j]; ta the same for |p_i|, whose Taylor coefficients bound
+ * the rounding errors and give the envelope: q^(k)/k! = p^(k)/k! - e |p|^(k)/k!
+ * exactly).  Evaluating the n + 1 of them by Horner side by side keeps the
+ * multiply-adds independent; the textbook synthetic division is one long
+ * dependent chain, three times slower here. */
+typedef struct {
+    double tk[MAXN + 1][MAXN + 1], ta[MAXN + 1][MAXN + 1];
+    double e; /* envelope factor: 2 gamma_{2n} with the graze check, else 0 */
+} Taylor;
+
+/* BINOM[k][j] = C(j + k, k) */
+static const double BINOM[MAXN + 1][MAXN + 1] = {
+    {1, 1, 1, 1, 1, 1, 1, 1, 1},
+    {1, 2, 3, 4, 5, 6, 7, 8, 0},
+    {1, 3, 6, 10, 15, 21, 28, 0, 0},
+    {1, 4, 10, 20, 35, 56, 0, 0, 0},
+    {1, 5, 15, 35, 70, 0, 0, 0, 0},
+    {1, 6, 21, 56, 0, 0, 0, 0, 0},
+    {1, 7, 28, 0, 0, 0, 0, 0, 0},
+    {1, 8, 0, 0, 0, 0, 0, 0, 0},
+    {1, 0, 0, 0, 0, 0, 0, 0, 0},
+};
+
+static void taylor_table(const double p[], int n, double e, Taylor *tb)
+{
+    for (int k = 0; k <= n; k++) {
+        for (int j = 0; j + k <= n; j++) {
+            tb->tk[k][j] = BINOM[k][j] * p[j + k];
+            tb->ta[k][j] = fabs(tb->tk[k][j]);
+        }
+    }
+    tb->e = e;
+}
+
+/* What is known at a point x of the window: Budan-Fourier sign changes of p
+ * and q, p(x), and q's Taylor coefficients at x with bounds on their errors
+ * (for the exclusion test). */
+typedef struct {
+    double x, px;
+    int vp, vq;
+    double qt[MAXN + 1], tol[MAXN + 1];
+} Point;
+
+/* The point 0: the coefficients themselves (q_i = p_i - e |p_i| has the sign
+ * of p_i; its rounding is in tol). */
+static void point_at_zero(const double p[], int n, double e, Point *pt)
+{
+    pt->x = 0;
+    pt->px = p[0];
+    pt->vp = pt->vq = sign_changes(p, n);
+    for (int i = 0; i <= n; i++) {
+        pt->qt[i] = p[i] - e * fabs(p[i]);
+        pt->tol[i] = DBL_EPSILON * fabs(p[i]);
+    }
+}
+
+/* The point x > 0.  Each Taylor coefficient is a sum over paths of at most
+ * 2n + 2 roundings (the tabulated product, then Horner), so gamma_{2n+2}
+ * times the same sum on |p_i| bounds its error; we take twice that (which
+ * also covers forming q's from p's), plus a term for underflow.  Returns 0
+ * when a sign is not certain: the counts would not be trustworthy. */
+static int point_at(const Taylor *tb, int n, double x, Point *pt)
+{
+    double a[MAXN + 1] = {0}, s[MAXN + 1] = {0};
+    for (int d = n; d >= 0; d--) {
+        for (int k = 0; k <= n - d; k++) {
+            a[k] = a[k] * x + tb->tk[k][d];
+            s[k] = s[k] * x + tb->ta[k][d];
+        }
+    }
+    double rel = 8.0 * (n + 1) * UNIT_ROUNDOFF;
+    /* underflow adds at most 2^-1075 per operation: far below DBL_MIN (a
+     * normal number: arithmetic on subnormals is slow) */
+    double tiny = DBL_MIN;
+    for (int k = 0; k <= n; k++) {
+        double b = a[k] - tb->e * s[k];
+        double tol = rel * s[k] + tiny;
+        if (!(fabs(a[k]) > tol && fabs(b) > tol))
+            return 0; /* also catches NaN/Inf */
+        pt->qt[k] = b;
+        pt->tol[k] = tol;
+        s[k] = b; /* q's Taylor coefficients, for the count */
+    }
+    pt->x = x;
+    pt->px = a[0];
+    pt->vp = sign_changes(a, n);
+    pt->vq = sign_changes(s, n);
+    return 1;
+}
+
+/* Is q > 0 on [x, x + w] (dir = 1) or [x - w, x] (dir = -1), x the point pt?
+ * With lower bounds L_k of the Taylor coefficients in the direction dir,
+ * q >= L_0 - sum_{L_k < 0} |L_k| w^k there.  (The computed sum is within
+ * (1 + gamma_{2n}) of the exact one.)  Clears small intervals that Budan-
+ * Fourier cannot: V(a) - V(b) stays 2 on any interval around a point where
+ * a derivative vanishes and two sign changes are lost, root or not. */
+static int clearly_positive(const Point *pt, int n, double w, int dir)
+{
+    double neg = 0;
+    for (int k = n; k >= 1; k--) {
+        double lk = (dir < 0 && k % 2 ? -pt->qt[k] : pt->qt[k]) - pt->tol[k];
+        neg = neg * w + (lk < 0 ? -lk : 0);
+    }
+    neg *= w;
+    return pt->qt[0] - pt->tol[0] > neg + 4.0 * (n + 1) * UNIT_ROUNDOFF * neg;
+}
+
+/* A point of (a, b) to split at: the midpoint, geometric when the interval
+ * spans more than a factor 8 (roots near 0), b / 16 from a = 0. */
+static double isolation_split(double a, double b)
+{
+    if (a == 0)
+        return b * 0.0625;
+    if (b > 8 * a)
+        return sqrt(a) * sqrt(b);
+    return a + 0.5 * (b - a);
+}
+
+#define ISOLATED 1
+#define CLEARED 0
+#define UNRESOLVED (-1)
+
+/* First root of p in (0, T] by Budan-Fourier bisection (T <= FAST_LIMIT,
+ * p(0) > 0, q the envelope above).  Returns ISOLATED with *t the polished
+ * root, CLEARED when there is nothing in (0, T], or UNRESOLVED with *a the
+ * left end of what is left to the derivative method. */
+static int isolate_first_root(const double p[], int n, double e, double T,
+                              double *t, double *a_out)
+{
+    Point a, stack[MAX_SPLITS + 1]; /* a: left end; stack: right ends */
+    int top = 0, splits = 0;
+    *a_out = 0;
+    point_at_zero(p, n, e, &a);
+    if (a.vq == 0 || clearly_positive(&a, n, T, 1))
+        return CLEARED; /* Descartes, or q(0) beats every negative term */
+    Taylor tb;
+    taylor_table(p, n, e, &tb);
+    if (!point_at(&tb, n, T, &stack[top++]))
+        return UNRESOLVED;
+    for (;;) {
+        const Point *b = &stack[top - 1];
+        double w = b->x - a.x;
+        if (a.vq == b->vq || clearly_positive(&a, n, w, 1) ||
+            clearly_positive(b, n, w, -1)) {
+            /* nothing in (a, b]: on to the next interval */
+            a = *b;
+            if (--top == 0)
+                return CLEARED;
+            continue;
+        }
+        if (a.vp - b->vp == 1 && a.vq - b->vq == 1) {
+            double dp[MAXN];
+            for (int i = 0; i < n; i++)
+                dp[i] = (i + 1) * p[i + 1];
+            /* regula falsi start: p(a) > 0 > p(b) */
+            double x0 = a.x + w * (a.px / (a.px - b->px));
+            if (!(x0 > a.x && x0 < b->x))
+                x0 = split_point(a.x, b->x);
+            *t = refine_root(p, dp, n, a.x, b->x, 1, 0, x0);
+            return ISOLATED;
+        }
+        double m = isolation_split(a.x, b->x);
+        *a_out = a.x;
+        if (splits++ == MAX_SPLITS || w <= MIN_WIDTH * b->x ||
+            !(m > a.x && m < b->x) || !point_at(&tb, n, m, &stack[top]))
+            return UNRESOLVED;
+        top++;
+    }
+}
+
+/* ------------------------------------------------------------------ */
+/* Derivative method (Yuksel)                                           */
 /* ------------------------------------------------------------------ */
 
 /* All derivatives: d[m] is the derivative of order n-m, of degree m. */
@@ -330,24 +662,25 @@ static void derivative_chain(const double c[], int n,
             d[m - 1][i] = (i + 1) * d[m][i + 1];
 }
 
-/* Roots in (0, T) of the polynomial P of degree m whose derivative's roots
- * in (0, T) are crit[0..ncrit-1] (ascending): P is monotone between them.
- * Writes them ascending to out and returns their count. */
+/* Roots in (lo, T) of the polynomial P of degree m whose derivative's roots
+ * in (lo, T) are crit[0..ncrit-1] (ascending): P is monotone between them.
+ * Writes them ascending to out, to relative accuracy tol, and returns their
+ * count. */
 static int roots_in_pieces(const double P[], const double D[], int m,
-                           const double crit[], int ncrit, double T,
-                           double out[])
+                           double lo, const double crit[], int ncrit,
+                           double T, double tol, double out[])
 {
     int count = 0;
-    double a = 0;
-    int sa = sign_at(P, m, 0);
+    double a = lo;
+    int sa = sign_at(P, m, lo, 0);
     for (int j = 0; j <= ncrit; j++) {
         double b = j < ncrit ? crit[j] : T;
-        int sb = sign_at(P, m, b);
+        int sb = sign_at(P, m, b, 0);
         if (sb == 0) {
             if (j < ncrit)
                 out[count++] = b;
         } else if (sa != 0 && sa != sb) {
-            out[count++] = refine_root(P, D, m, a, b, sa);
+            out[count++] = refine_root(P, D, m, a, b, sa, tol, split_point(a, b));
         }
         a = b;
         sa = sb;
@@ -355,20 +688,21 @@ static int roots_in_pieces(const double P[], const double D[], int m,
     return count;
 }
 
-/* Roots in (0, T) of the first derivative of d[n], found level by level
+/* Roots in (lo, T) of the first derivative of d[n], found level by level
  * from the quadratic derivative upwards. */
-static int critical_points(double d[MAXN + 1][MAXN + 1], int n, double T,
-                           double crit[])
+static int critical_points(double d[MAXN + 1][MAXN + 1], int n, double lo,
+                           double T, double crit[])
 {
     double r[2], disc, level[MAXN];
     int nl = 0;
     if (quad_roots(d[2][2], d[2][1], d[2][0], r, &disc) == 2)
         for (int i = 0; i < 2; i++)
-            if (r[i] > 0 && r[i] < T && (nl == 0 || r[i] > level[nl - 1]))
+            if (r[i] > lo && r[i] < T && (nl == 0 || r[i] > level[nl - 1]))
                 level[nl++] = r[i];
     for (int m = 3; m < n; m++) {
         double next[MAXN];
-        nl = roots_in_pieces(d[m], d[m - 1], m, level, nl, T, next);
+        double tol = m == n - 1 ? TOL_CRITICAL : TOL_LEVEL;
+        nl = roots_in_pieces(d[m], d[m - 1], m, lo, level, nl, T, tol, next);
         for (int i = 0; i < nl; i++)
             level[i] = next[i];
     }
@@ -377,20 +711,22 @@ static int critical_points(double d[MAXN + 1][MAXN + 1], int n, double T,
     return nl;
 }
 
-/* First root in (0, T] of c (degree n >= 3, normalised, c[0] != 0). */
-static int first_root_interval(const double c[], int n, double T,
-                               int graze_check, double *t, int *graze)
+/* First root in (lo, T] of c (degree n >= 3, normalised, c(lo) > 0): the
+ * critical points split (lo, T] into monotone pieces, scanned left to right
+ * with the graze check at each critical point. */
+static int derivative_method(const double c[], int n, double lo, double T,
+                             int graze_check, double *t, int *graze)
 {
     double d[MAXN + 1][MAXN + 1], crit[MAXN];
     derivative_chain(c, n, d);
-    int nc = critical_points(d, n, T, crit);
-    double a = 0;
-    int sa = c[0] > 0 ? 1 : -1;
+    int nc = critical_points(d, n, lo, T, crit);
+    double a = lo;
+    int sa = 1;
     int sb = 0, sb_known = 0;
     for (int j = 0; j <= nc; j++) {
         double b = j < nc ? crit[j] : T;
         if (!sb_known)
-            sb = sign_at(c, n, b);
+            sb = sign_at(c, n, b, 1);
         sb_known = 0;
         if (sb == 0) { /* exact zero: at a critical point it is a double root */
             *t = b;
@@ -398,14 +734,14 @@ static int first_root_interval(const double c[], int n, double T,
             return 1;
         }
         if (sb != sa) {
-            *t = refine_root(c, d[n - 1], n, a, b, sa);
+            *t = refine_root(c, d[n - 1], n, a, b, sa, 0, split_point(a, b));
             *graze = 0;
             return 1;
         }
         if (graze_check && j < nc && within_noise(c, n, b)) {
             /* touch or cross?  Look at the far end of the next piece. */
             double b2 = j + 1 < nc ? crit[j + 1] : T;
-            sb = sign_at(c, n, b2);
+            sb = sign_at(c, n, b2, 1);
             sb_known = 1;
             if (sb == sa) {
                 *t = b;
@@ -416,6 +752,30 @@ static int first_root_interval(const double c[], int n, double T,
         a = b;
     }
     return 0;
+}
+
+/* ------------------------------------------------------------------ */
+/* Interval solver                                                      */
+/* ------------------------------------------------------------------ */
+
+/* First root in (0, T] of c (degree n >= 3, normalised, c[0] != 0). */
+static int first_root_interval(const double c[], int n, double T,
+                               int graze_check, double *t, int *graze)
+{
+    double p[MAXN + 1];
+    double s = c[0] > 0 ? 1 : -1; /* p = +-c with p(0) > 0: same roots */
+    for (int i = 0; i <= n; i++)
+        p[i] = s * c[i];
+    double lo = 0;
+    if (T <= FAST_LIMIT) {
+        double e = graze_check ? noise_factor(n) : 0;
+        int r = isolate_first_root(p, n, e, T, t, &lo);
+        if (r != UNRESOLVED) {
+            *graze = 0;
+            return r == ISOLATED;
+        }
+    }
+    return derivative_method(p, n, lo, T, graze_check, t, graze);
 }
 
 /* ------------------------------------------------------------------ */

@@ -33,23 +33,42 @@
  *   by a power of two (exact) so that the largest has magnitude in [1/2, 1).
  *
  * Methods
- *   M2C_METHOD_INTERVAL (default)  Yuksel (HPG 2022) style interval solver:
- *     the roots of the derivatives, found recursively, split the window into
- *     monotone pieces; the first piece whose ends change sign is polished by
- *     safeguarded Newton (bisection -- geometric when the bracket spans
- *     decades -- whenever Newton leaves the bracket or stalls) to full
- *     relative double accuracy.  Graze check: at each critical point x
- *     before the first sign change, if |p(x)| <= 2 gamma_{2n} sum |c_i||x|^i
- *     (the standard Horner rounding bound, gamma_k = k u / (1 - k u),
- *     u = 2^-53, times a safety factor 2) and p has the same sign on both
- *     neighbouring pieces, x is reported as a touching (double) root with
- *     *graze = 1.  Degree 1 and 2 use closed forms; the quadratic uses an
- *     FMA-corrected discriminant (Kahan) and the cancellation-free formula;
- *     its graze check is the same bound at the vertex.  An exactly zero
- *     discriminant is always reported as a graze.
- *     With tmax = +INFINITY the window is (0, B] with B the Fujiwara bound.
- *   M2C_METHOD_INTERVAL_NOGRAZE  the same without the graze check (benchmark
- *     baseline: misses double roots, as plain interval solvers do).
+ *   M2C_METHOD_INTERVAL (default)  interval solver with a graze check.
+ *     Window: (0, T], T = min(tmax, B) with B the Fujiwara bound above.
+ *     The first event is the first root, or an earlier touch: a critical
+ *     point x where |p(x)| <= 2 gamma_{2n} sum |c_i||x|^i (the standard
+ *     Horner rounding bound, gamma_k = k u / (1 - k u), u = 2^-53, times a
+ *     safety factor 2) and p has the same sign on both neighbouring pieces;
+ *     a touch is reported as a (double) root with *graze = 1.  Both can only
+ *     lie where the envelope q = p - sign(p(0)) 2 gamma_{2n} sum |c_i| t^i
+ *     has changed sign.
+ *     1. Exclusion and isolation (T <= 2^100): Budan-Fourier counts of the
+ *        roots of p and of q in subintervals of (0, T] (sign changes of the
+ *        Taylor coefficients, each trusted only beyond its rounding bound;
+ *        any doubt goes to step 2), plus a lower bound on q from the Taylor
+ *        coefficients at an end of the interval.  An interval where q has no
+ *        root is cleared; one where p and q have exactly one root each holds
+ *        one simple root of p (with nothing before it but, possibly, a
+ *        stretch where p stays within the noise): it is polished; otherwise
+ *        the leftmost interval is bisected, up to 40 times and down to
+ *        2^-20 relative width.  "No root in the window" usually costs one
+ *        or two such tests.
+ *     2. Otherwise (double roots, tight clusters, windows beyond 2^100), on
+ *        what is left of the window: Yuksel (HPG 2022) style -- the roots
+ *        of the derivatives, found recursively (to 2^-28 relative, those of
+ *        p' to 2^-36: they only bracket, and p' = 0 makes p insensitive to
+ *        them), split the window into monotone pieces, scanned left to
+ *        right with the graze check at each critical point.
+ *     Polishing: safeguarded Newton (bisection -- geometric when the bracket
+ *     spans decades -- whenever Newton leaves the bracket or stalls) with
+ *     plain Horner down to a step of 2^-26, then with FMA Horner to full
+ *     relative double accuracy (roots near 1e-12 keep ~1e-16 relative).
+ *     Degree 1 and 2 use closed forms; the quadratic uses an FMA-corrected
+ *     discriminant (Kahan) and the cancellation-free formula; its graze
+ *     check is the same bound at the vertex.  An exactly zero discriminant
+ *     is always reported as a graze.
+ *   M2C_METHOD_INTERVAL_NOGRAZE  the same without the graze check (q = p;
+ *     benchmark baseline: misses double roots, as plain interval solvers do).
  *   M2C_METHOD_GSL  what the original tool did: gsl_poly_complex_solve
  *     (companion matrix) with GSL's error handler switched off for the call
  *     (and restored), smallest root in (0, tmax] whose imaginary part is at
