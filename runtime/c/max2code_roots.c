@@ -69,10 +69,19 @@ static double pow2(int e)
     return x;
 }
 
-/* ceil(num / den) for den > 0 and any sign of num. */
+/* ceil(num / den) for 0 < den <= MAXN and |num| < 2^12.  The product with
+ * the rounded reciprocal is within 1 of it, and the integer checks fix that:
+ * this runs 2n times per solve, and an integer division is slow. */
 static int ceil_div(int num, int den)
 {
-    return num >= 0 ? (num + den - 1) / den : -((-num) / den);
+    static const double RECIP[MAXN + 1] = {
+        0, 1, 1.0 / 2, 1.0 / 3, 1.0 / 4, 1.0 / 5, 1.0 / 6, 1.0 / 7, 1.0 / 8};
+    int q = (int)(num * RECIP[den]); /* toward zero */
+    if (q * den < num)
+        q++;
+    else if ((q - 1) * den >= num)
+        q--;
+    return q;
 }
 
 /* Fujiwara bound 2 max |c_i/c_n|^(1/(n-i)), each ratio rounded up to a power
@@ -219,8 +228,12 @@ static double horner_abs(const double c[], int n, double x, int k)
  * sum |c_i| |x|^i is within the rounding noise of evaluating p at x. */
 static double noise_factor(int n)
 {
-    double g = 2.0 * n * UNIT_ROUNDOFF / (1.0 - 2.0 * n * UNIT_ROUNDOFF);
-    return 2.0 * g;
+#define NOISE(k) (2.0 * (2.0 * (k) * UNIT_ROUNDOFF / (1.0 - 2.0 * (k) * UNIT_ROUNDOFF)))
+    static const double table[MAXN + 1] = {NOISE(0), NOISE(1), NOISE(2),
+                                           NOISE(3), NOISE(4), NOISE(5),
+                                           NOISE(6), NOISE(7), NOISE(8)};
+#undef NOISE
+    return table[n]; /* constants: a division per solve is not free */
 }
 
 /* Is |p(x)| within the rounding noise of its evaluation at x? */
@@ -392,8 +405,13 @@ static double refine_root(const double P[], const double D[], int m,
             lo = x;
         else
             hi = x;
-        if (hi - lo <= 2 * DBL_EPSILON * hi || (tol > 0 && hi - lo <= tol * hi))
-            return x;
+        if (hi - lo <= 2 * DBL_EPSILON * hi || (tol > 0 && hi - lo <= tol * hi)) {
+            if (precise || tol > 0)
+                return x;
+            precise = 1; /* the plain signs closed the bracket: check them */
+            stop = 2 * UNIT_ROUNDOFF;
+            continue;
+        }
         if (tol == 0 && hi - lo <= PRECISE_FROM * hi) {
             precise = 1;
             stop = 2 * UNIT_ROUNDOFF;
@@ -619,8 +637,10 @@ static int isolate_first_root(const double p[], int n, double e, double T,
     for (;;) {
         const Point *b = &stack[top - 1];
         double w = b->x - a.x;
-        if (a.vq == b->vq || clearly_positive(&a, n, w, 1) ||
-            clearly_positive(b, n, w, -1)) {
+        /* (an odd count for p means a sign change: no bound can clear it) */
+        int odd = (a.vp - b->vp) % 2 != 0;
+        if (a.vq == b->vq || (!odd && (clearly_positive(&a, n, w, 1) ||
+                                       clearly_positive(b, n, w, -1)))) {
             /* nothing in (a, b]: on to the next interval */
             a = *b;
             if (--top == 0)
@@ -1254,7 +1274,8 @@ int m2c_first_root_ex(const double c_in[], int degree, double tmax, double *t,
         found = first_root_closed(c, n, tmax, &root, &g);
     } else {
         /* all roots lie below the bound: a smaller window, fewer steps */
-        double T = fmin(tmax, root_bound(c, n));
+        double B = root_bound(c, n);
+        double T = tmax < B ? tmax : B; /* (fmin is a library call) */
         if (T > 0)
             found = first_root_interval(c, n, T, graze_check, &root, &g);
     }
