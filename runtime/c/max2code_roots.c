@@ -77,10 +77,8 @@ static int ceil_div(int num, int den)
     static const double RECIP[MAXN + 1] = {
         0, 1, 1.0 / 2, 1.0 / 3, 1.0 / 4, 1.0 / 5, 1.0 / 6, 1.0 / 7, 1.0 / 8};
     int q = (int)(num * RECIP[den]); /* toward zero */
-    if (q * den < num)
-        q++;
-    else if ((q - 1) * den >= num)
-        q--;
+    q += q * den < num;                /* (no branches: unpredictable) */
+    q -= (q - 1) * den >= num;
     return q;
 }
 
@@ -96,8 +94,7 @@ static double root_bound(const double c[], int n)
             continue;
         /* |c_i / c_n| < 2^(ilogb(c_i) + 1 - en) */
         int e = ceil_div(exponent_of(c[i]) + 1 - en, n - i);
-        if (e > best)
-            best = e;
+        best = e > best ? e : best;
     }
     if (best == INT_MIN)
         return 0;
@@ -159,8 +156,7 @@ static void normalise(double c[], int n)
 {
     double m = 0;
     for (int i = 0; i <= n; i++)
-        if (fabs(c[i]) > m)
-            m = fabs(c[i]);
+        m = fabs(c[i]) > m ? fabs(c[i]) : m;
     if (m == 0)
         return;
     int e = exponent_of(m) + 1;
@@ -479,16 +475,15 @@ static double refine_root(const double P[], const double D[], int m,
 #define MAX_SPLITS 40
 #define MIN_WIDTH 0x1p-20
 
-/* Sign changes in v[0..n], zeros skipped. */
+/* Sign changes in v[0..n], zeros skipped (branch-free: the signs are
+ * data, and mispredictions would cost more than the loop). */
 static int sign_changes(const double v[], int n)
 {
     int count = 0, last = 0;
     for (int i = 0; i <= n; i++) {
         int s = (v[i] > 0) - (v[i] < 0);
-        if (s != 0) {
-            count += last != 0 && s != last;
-            last = s;
-        }
+        count += s * last < 0;
+        last = s != 0 ? s : last;
     }
     return count;
 }
@@ -617,13 +612,17 @@ static double isolation_split(double a, double b)
 #define CLEARED 0
 #define UNRESOLVED (-1)
 
-/* First root of p in (0, T] by Budan-Fourier bisection (T <= FAST_LIMIT,
- * p(0) > 0, q the envelope above).  Returns ISOLATED with *t the polished
- * root, CLEARED when there is nothing in (0, T], or UNRESOLVED with *a the
- * left end of what is left to the derivative method. */
-static int isolate_first_root(const double p[], int n, double e, double T,
-                              double *t, double *a_out)
+static int derivative_method(const double c[], int n, double lo, double T,
+                             int graze_check, double *t, int *graze);
+
+/* First event in (0, T] for p (T <= FAST_LIMIT, p(0) > 0) by Budan-Fourier
+ * bisection.  Returns ISOLATED with *t (and *graze) set, CLEARED when there
+ * is nothing in (0, T], or UNRESOLVED with *a the left end of what is left
+ * to the derivative method. */
+static int isolate_first_root(const double p[], int n, int graze_check,
+                              double T, double *t, int *graze, double *a_out)
 {
+    double e = graze_check ? noise_factor(n) : 0;
     Point a, stack[MAX_SPLITS + 1]; /* a: left end; stack: right ends */
     int top = 0, splits = 0;
     *a_out = 0;
@@ -656,14 +655,30 @@ static int isolate_first_root(const double p[], int n, double e, double T,
             if (!(x0 > a.x && x0 < b->x))
                 x0 = split_point(a.x, b->x);
             *t = refine_root(p, dp, n, a.x, b->x, 1, 0, x0);
+            *graze = 0;
             return ISOLATED;
         }
         double m = isolation_split(a.x, b->x);
-        *a_out = a.x;
-        if (splits++ == MAX_SPLITS || w <= MIN_WIDTH * b->x ||
-            !(m > a.x && m < b->x) || !point_at(&tb, n, m, &stack[top]))
+        if (splits < MAX_SPLITS && w > MIN_WIDTH * b->x && m > a.x &&
+            m < b->x && point_at(&tb, n, m, &stack[top])) {
+            splits++;
+            top++;
+            continue;
+        }
+        /* The counts do not resolve (a, b] (a double root, a tight cluster)
+         * or cannot be trusted at m: the derivative method, on (a, b] only
+         * (small: few critical points). */
+        if (derivative_method(p, n, a.x, b->x, graze_check, t, graze))
+            return ISOLATED;
+        if (!(b->qt[0] - b->tol[0] > 0)) {
+            /* p has no root in (a, b], so p(b) > 0, but q(b) is not: the
+             * counts for q cannot go on from b */
+            *a_out = b->x;
             return UNRESOLVED;
-        top++;
+        }
+        a = *b;
+        if (--top == 0)
+            return CLEARED;
     }
 }
 
@@ -788,12 +803,9 @@ static int first_root_interval(const double c[], int n, double T,
         p[i] = s * c[i];
     double lo = 0;
     if (T <= FAST_LIMIT) {
-        double e = graze_check ? noise_factor(n) : 0;
-        int r = isolate_first_root(p, n, e, T, t, &lo);
-        if (r != UNRESOLVED) {
-            *graze = 0;
+        int r = isolate_first_root(p, n, graze_check, T, t, graze, &lo);
+        if (r != UNRESOLVED)
             return r == ISOLATED;
-        }
     }
     return derivative_method(p, n, lo, T, graze_check, t, graze);
 }

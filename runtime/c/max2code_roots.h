@@ -50,15 +50,18 @@
  *        root is cleared; one where p and q have exactly one root each holds
  *        one simple root of p (with nothing before it but, possibly, a
  *        stretch where p stays within the noise): it is polished; otherwise
- *        the leftmost interval is bisected, up to 40 times and down to
- *        2^-20 relative width.  "No root in the window" usually costs one
- *        or two such tests.
- *     2. Otherwise (double roots, tight clusters, windows beyond 2^100), on
- *        what is left of the window: Yuksel (HPG 2022) style -- the roots
- *        of the derivatives, found recursively (to 2^-28 relative, those of
- *        p' to 2^-36: they only bracket, and p' = 0 makes p insensitive to
- *        them), split the window into monotone pieces, scanned left to
- *        right with the graze check at each critical point.
+ *        the leftmost interval is bisected, up to 40 times in all and down
+ *        to 2^-20 relative width.  "No root in the window" usually costs
+ *        one or two such tests.
+ *     2. An interval the counts do not resolve (a double root, a tight
+ *        cluster, a sign too close to call) goes to the derivative method,
+ *        which handles the whole window when it exceeds 2^100 or when step
+ *        1 cannot start or go on: Yuksel (HPG 2022) style -- the roots of
+ *        the derivatives in the interval, found recursively (to 2^-28
+ *        relative, those of p' to 2^-36: they only bracket, and p' = 0 makes
+ *        p insensitive to them), split it into monotone pieces, scanned left
+ *        to right with the graze check at each critical point.  If it finds
+ *        nothing there, step 1 goes on to the right of the interval.
  *     Polishing: safeguarded Newton (bisection -- geometric when the bracket
  *     spans decades -- whenever Newton leaves the bracket or stalls) with
  *     plain Horner down to a step of 2^-26, then with FMA Horner to full
