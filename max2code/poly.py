@@ -19,6 +19,8 @@ from .spec import Spec
 
 CONSTANTS = frozenset({"%pi", "%e"})
 E = "m2c__e"
+# Every subset of the roles is derived: 2^MAX_ROLES variants at most.
+MAX_ROLES = 10
 X = "m2c__x"
 
 
@@ -117,9 +119,12 @@ def polynomial(spec: Spec, timeout: float = maxima.DEFAULT_TIMEOUT,
             raise error(role.pos, f"role '{role.name}' names {', '.join(unknown)}, not a parameter "
                         f"of the equation")
     variants = []
-    for (index, body), (roles, zeros) in zip(blocks[1:], combos[1:]):
+    bodies = {int(index): body for index, body in blocks}
+    for index, (roles, zeros) in enumerate(combos[1:], start=1):
+        if index not in bodies:
+            continue
         try:
-            v = _read(spec, body, where, spec.variable)
+            v = _read(spec, bodies[index], where, spec.variable)
         except Max2CodeError:
             continue  # e.g. everything vanishes: that combination is no variant
         variants.append(replace(v, parameters=params, roles=roles, zeros=zeros))
@@ -132,6 +137,9 @@ def role_combinations(spec: Spec) -> list[tuple[tuple[str, ...], tuple[str, ...]
     subset (the general equation) first."""
     out: list[tuple[tuple[str, ...], tuple[str, ...]]] = [((), ())]
     roles = spec.roles
+    if len(roles) > MAX_ROLES:
+        raise error(roles[MAX_ROLES].pos, f"more than {MAX_ROLES} roles: {2 ** len(roles)} "
+                    f"combinations are too many to derive; group parameters into fewer roles")
     for size in range(1, len(roles) + 1):
         for combo in itertools.combinations(roles, size):
             zeros = tuple(sorted({p for r in combo for p in r.params}))
