@@ -347,27 +347,60 @@ static double split_point(double lo, double hi)
     return lo + 0.5 * (hi - lo);
 }
 
-/* P(x) / 2^(k m) (precise: with fma) and P'(x) / 2^(k (m-1)) = D(x) / ...,
- * as horner() scales them (so the Newton step is 2^k times their ratio);
- * for k = 0 in one loop, two independent chains. */
+/* P(x) to about an ulp of |P(x)| plus gamma_{2m}^2 sum |P_i| |x|^i:
+ * compensated Horner (Graillat, Langlois & Louvet 2005), so the root comes
+ * out correct to about an ulp unless its condition number nears 1/u (plain or
+ * fma Horner leave m u kappa: 1e-13 at kappa 1e3).  The error-free product
+ * is fma(s, x, -s x) where fma is an instruction, else Dekker's splitting
+ * (without -mfma, fma() is a library call per step).  Needs |x| and the
+ * partial sums far below 2^996 (the splitting): true for |x| <= FAST_LIMIT. */
+static double horner_compensated(const double P[], int m, double x)
+{
+#ifndef FP_FAST_FMA
+    const double split = 134217729.0; /* 2^27 + 1 */
+    double tx = split * x, xh = tx - (tx - x), xl = x - xh;
+#endif
+    double s = P[m], c = 0;
+    for (int i = m - 1; i >= 0; i--) {
+        double p = s * x;
+#ifdef FP_FAST_FMA
+        double pe = fma(s, x, -p); /* s x = p + pe exactly */
+#else
+        double ts = split * s, sh = ts - (ts - s), sl = s - sh;
+        double pe = ((sh * xh - p) + sh * xl + sl * xh) + sl * xl;
+#endif
+        double sn = p + P[i], bb = sn - p;
+        double se = (p - (sn - bb)) + (P[i] - bb); /* p + P_i = sn + se */
+        c = c * x + (pe + se);
+        s = sn;
+    }
+    return s + c;
+}
+
+/* P(x) / 2^(k m) (precise: compensated for k = 0, with fma otherwise) and
+ * P'(x) / 2^(k (m-1)) = D(x) / ..., as horner() scales them (so the Newton
+ * step is 2^k times their ratio); *size gets sum |P_i| |x|^i / 2^(k m), the
+ * scale of the rounding error.  For k = 0 in one loop: independent chains. */
 static double value_and_slope(const double P[], const double D[], int m,
-                              double x, int k, int precise, double *slope)
+                              double x, int k, int precise, double *slope,
+                              double *size)
 {
     if (k != 0) {
         *slope = horner(D, m - 1, x, k, 0);
+        *size = horner_abs(P, m, x, k);
         return horner(P, m, x, k, precise);
     }
-    double f = P[m], df = D[m - 1];
-    if (precise)
-        f = fma(f, x, P[m - 1]);
-    else
-        f = f * x + P[m - 1];
+    double f = P[m], df = D[m - 1], ax = fabs(x), sz = fabs(P[m]);
+    f = f * x + P[m - 1];
+    sz = sz * ax + fabs(P[m - 1]);
     for (int i = m - 2; i >= 0; i--) {
         df = df * x + D[i];
-        f = precise ? fma(f, x, P[i]) : f * x + P[i];
+        sz = sz * ax + fabs(P[i]);
+        f = f * x + P[i];
     }
     *slope = df;
-    return f;
+    *size = sz;
+    return precise ? horner_compensated(P, m, x) : f;
 }
 
 /* The root of P (degree m, derivative D) in (lo, hi), where P changes sign
@@ -375,7 +408,9 @@ static double value_and_slope(const double P[], const double D[], int m,
  * isolated by Budan-Fourier counts.  x0 in (lo, hi) is the first guess.
  * tol > 0: stop once the bracket or the Newton step is below tol relative.
  * tol == 0: full relative double accuracy: plain evaluation until the step
- * (or the bracket) is below PRECISE_FROM, then the precise (fma) one until
+ * (or the bracket) is below PRECISE_FROM or the value is within its rounding
+ * bound (so the bracket ends always have the right sign: the precise phase
+ * can only sharpen them), then the precise (fma) one until
  * the step is a few ulps -- usually a single step -- or until Newton, a few
  * ulps from the root, stops converging: there the evaluation is all rounding
  * noise and no point is better than x (bisecting the whole bracket instead
@@ -389,14 +424,16 @@ static double refine_root(const double P[], const double D[], int m,
     double stop = tol > 0 ? tol : PRECISE_FROM;
     for (int it = 0; it < MAX_ITER; it++) {
         int k = scale_exponent(x);
-        double df, f = value_and_slope(P, D, m, x, k, precise, &df);
-        if (f == 0) {
-            if (precise || tol > 0)
-                return x;
-            precise = 1; /* look again, precisely */
+        double df, size, f = value_and_slope(P, D, m, x, k, precise, &df, &size);
+        if (tol == 0 && !precise && fabs(f) <= noise_factor(m) * size) {
+            /* plain evaluation cannot tell the sign here: look again,
+             * precisely (and keep the bracket ends to trusted signs) */
+            precise = 1;
             stop = 2 * UNIT_ROUNDOFF;
             continue;
         }
+        if (f == 0)
+            return x;
         if ((f > 0) == (slo > 0))
             lo = x;
         else

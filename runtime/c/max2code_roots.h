@@ -64,8 +64,13 @@
  *        nothing there, step 1 goes on to the right of the interval.
  *     Polishing: safeguarded Newton (bisection -- geometric when the bracket
  *     spans decades -- whenever Newton leaves the bracket or stalls) with
- *     plain Horner down to a step of 2^-26, then with FMA Horner to full
- *     relative double accuracy (roots near 1e-12 keep ~1e-16 relative).
+ *     plain Horner down to a step of 2^-26, then one or two steps with
+ *     compensated Horner (Graillat, Langlois & Louvet; error-free products
+ *     by fma where it is an instruction, else Dekker's splitting): the root
+ *     is then correct to about an ulp unless its condition number nears
+ *     1/u -- also roots near 1e-12, and moderately ill-conditioned ones
+ *     (plain or FMA Horner would leave n u kappa).  Beyond 2^100 FMA Horner
+ *     with power-of-two scaling.
  *     Degree 1 and 2 use closed forms; the quadratic uses an FMA-corrected
  *     discriminant (Kahan) and the cancellation-free formula; its graze
  *     check is the same bound at the vertex.  An exactly zero discriminant
