@@ -326,9 +326,9 @@ static int first_root_quadratic(const double c[3], double tmax, int graze_check,
 #define TOL_LEVEL 0x1p-28
 
 /* Full accuracy: Newton with plain evaluation until the step is below this
- * (relative), then with the precise (fma) one to about an ulp.  Plain
- * Newton converges quadratically, so after a plain step below 2^-26 the
- * iterate is within a few ulps and one precise step finishes it. */
+ * (relative), then with the precise one (compensated Horner) to about an
+ * ulp.  Newton converges quadratically, so after a plain step below 2^-26
+ * the iterate is within a few ulps and one precise step finishes it. */
 #define PRECISE_FROM 0x1p-26
 
 /* A rejected Newton step this small (relative) in the precise phase means the
@@ -410,11 +410,12 @@ static double value_and_slope(const double P[], const double D[], int m,
  * tol == 0: full relative double accuracy: plain evaluation until the step
  * (or the bracket) is below PRECISE_FROM or the value is within its rounding
  * bound (so the bracket ends always have the right sign: the precise phase
- * can only sharpen them), then the precise (fma) one until
- * the step is a few ulps -- usually a single step -- or until Newton, a few
- * ulps from the root, stops converging: there the evaluation is all rounding
- * noise and no point is better than x (bisecting the whole bracket instead
- * would wander away and back). */
+ * can only sharpen them), then the precise one (compensated Horner; fma
+ * Horner for scaled arguments) until the step is a few ulps -- usually a
+ * single step -- or until Newton, a few ulps from the root, stops
+ * converging: there the evaluation is all rounding noise and no point is
+ * better than x (bisecting the whole bracket instead would wander away and
+ * back). */
 static double refine_root(const double P[], const double D[], int m,
                           double lo, double hi, int slo, double tol, double x0)
 {
@@ -466,7 +467,7 @@ static double refine_root(const double P[], const double D[], int m,
              * O(step^2) of where the precise evaluation puts the root */
             if (precise || tol > 0)
                 return xn;
-            precise = 1;   /* the last step(s) with fma */
+            precise = 1;   /* the last step(s), precisely */
             stop = 2 * UNIT_ROUNDOFF;
         }
         x = xn;
@@ -497,8 +498,9 @@ static double refine_root(const double P[], const double D[], int m,
  *                           it by safeguarded Newton;
  *   otherwise               split (a, b] and look at the left half first.
  * Splits are capped; double roots (touches) and tight clusters never give
- * count 1 and go to the derivative method, started at the left end of the
- * unresolved interval (everything before it is cleared).
+ * count 1 and go to the derivative method on the unresolved interval
+ * (everything before it is cleared); if it finds nothing there, the
+ * isolation goes on to the right.
  */
 
 /* Windows beyond this go straight to the derivative method (which scales
