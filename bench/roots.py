@@ -195,15 +195,19 @@ def _key(c: tuple[float, ...], tmax: float) -> str:
 
 
 def _truth(item: tuple[tuple[float, ...], float]) -> dict:
+    import mpmath
+
     c, tmax = item
     o = cases.oracle(c, tmax)
-    return {"root": None if o.root is None else str(o.root), "kind": o.kind,
-            "touches": [str(x) for x in o.touches], "kappa": o.kappa, "degree": len(c) - 1}
+    # 40 digits: str() of an mpf outside the oracle's working precision keeps only 15, which
+    # would hide every error below ~4e-15.
+    return {"root": None if o.root is None else mpmath.nstr(o.root, 40), "kind": o.kind,
+            "touches": [mpmath.nstr(x, 40) for x in o.touches], "kappa": o.kappa, "degree": len(c) - 1}
 
 
 def oracles(polys: list[tuple[str, tuple[float, ...], float]], jobs: int) -> list[dict]:
     CACHE.mkdir(parents=True, exist_ok=True)
-    path = CACHE / "oracle-v2.json"
+    path = CACHE / "oracle-v3.json"
     cache = json.loads(path.read_text()) if path.exists() else {}
     keys = [_key(c, t) for _, c, t in polys]
     todo = sorted({k: (c, t) for k, (_, c, t) in zip(keys, polys) if k not in cache}.items())
