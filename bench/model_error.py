@@ -39,6 +39,7 @@ sys.path.insert(0, str(ROOT))
 from max2code import expr as E  # noqa: E402
 from max2code.generate import load  # noqa: E402
 from max2code.variants import family  # noqa: E402
+from max2code.scene import bisect_crossing  # noqa: E402
 
 MODELS_DIR = ROOT / "bench" / "models"
 RESULTS = ROOT / "bench" / "results"
@@ -174,16 +175,7 @@ def first_root(f, tmax: float, grid: int = 800) -> mpmath.mpf | None:
             t = mpmath.mpf(tmax) * i / grid
             v = f(t)
             if v <= 0:
-                lo, hi = prev_t, t
-                for _ in range(140):
-                    mid = (lo + hi) / 2
-                    if f(mid) > 0:
-                        lo = mid
-                    else:
-                        hi = mid
-                    if hi - lo <= hi * mpmath.mpf(10) ** -35:
-                        break
-                return (lo + hi) / 2
+                return bisect_crossing(f, prev_t, t, 35)
             prev_t, prev = t, v
         return None
 

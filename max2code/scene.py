@@ -297,16 +297,34 @@ def predict_pair(b1: Body, b2: Body, horizon: float, tol: float, ij: tuple[int, 
     return pred
 
 
-def predict(scene: Scene) -> list[Prediction]:
-    out = []
+def pairs(scene: Scene):
+    """Every pair of bodies that can collide (parts of one rigid group cannot), with indices."""
     bodies = scene.bodies
     for i in range(len(bodies)):
         for j in range(i + 1, len(bodies)):
             a, b = bodies[i], bodies[j]
-            if a.group is not None and a.group == b.group:
-                continue
-            out.append(predict_pair(a, b, scene.horizon, scene.tolerance, (i, j)))
-    return out
+            if a.group is None or a.group != b.group:
+                yield i, j, a, b
+
+
+def bisect_crossing(f, lo, hi, digits: int = 30):
+    """Where f crosses zero between lo (f > 0) and hi (f <= 0), to `digits` relative digits."""
+    import mpmath
+
+    lo, hi = mpmath.mpf(lo), mpmath.mpf(hi)
+    for _ in range(4 * digits + 40):
+        mid = (lo + hi) / 2
+        if f(mid) > 0:
+            lo = mid
+        else:
+            hi = mid
+        if hi - lo <= hi * mpmath.mpf(10) ** -digits:
+            break
+    return (lo + hi) / 2
+
+
+def predict(scene: Scene) -> list[Prediction]:
+    return [predict_pair(a, b, scene.horizon, scene.tolerance, (i, j)) for i, j, a, b in pairs(scene)]
 
 
 def baseline_calls(scene: Scene) -> list[tuple[object, list[float], float]]:
@@ -314,15 +332,7 @@ def baseline_calls(scene: Scene) -> list[tuple[object, list[float], float]]:
     dispatch) for every pair, over the whole horizon: (coefficient function, parameters, window)."""
     mod = module(4)
     coefficients = getattr(mod, f"coefficients_v{len(mod.VARIANTS) - 1}")
-    out = []
-    bodies = scene.bodies
-    for i in range(len(bodies)):
-        for j in range(i + 1, len(bodies)):
-            a, b = bodies[i], bodies[j]
-            if a.group is not None and a.group == b.group:
-                continue
-            out.append((coefficients, params(a, b), scene.horizon))
-    return out
+    return [(coefficients, params(a, b), scene.horizon) for _, _, a, b in pairs(scene)]
 
 
 def _replay(calls: list[tuple[object, list[float], float]]) -> list[float | None]:
@@ -392,16 +402,7 @@ def exact_first_contact(b1: Body, b2: Body, horizon: float, grid: int = 4000) ->
                     break
         if hit is None:
             return None
-        lo, hi = mpmath.mpf(hit[0]), mpmath.mpf(hit[1])
-        for _ in range(200):
-            mid = (lo + hi) / 2
-            if gap_mp(mid) > 0:
-                lo = mid
-            else:
-                hi = mid
-            if hi - lo <= hi * mpmath.mpf(10) ** -30:
-                break
-        return float((lo + hi) / 2)
+        return float(bisect_crossing(gap_mp, hit[0], hit[1], 30))
 
 
 # ---------------------------------------------------------------------------
