@@ -38,3 +38,22 @@ def update_golden(request: pytest.FixtureRequest) -> bool:
 @pytest.fixture(scope="session")
 def maxima_exe() -> str:
     return require("maxima")
+
+
+def corrected_paper_point_line(folder: Path) -> tuple[Path, list[int]]:
+    """equations/paper/point-line.mxm with the declared term count fixed (5 coefficients, not
+    4) and the coefficient array renamed from `a`, which is also a parameter of the equation;
+    and the lines of its 5 `term` blocks."""
+    text = (ROOT / "equations" / "paper" / "point-line.mxm").read_text()
+    text = text.replace("polynomial terms 4", "polynomial terms 5")
+    text = text.replace("a: ARRAY [0..3] OF REAL", "coef: ARRAY [0..4] OF REAL")
+    text = text.replace("term 3 { a[3] := }", "term 3 { a[3] := }\nterm 4 { a[4] := }")
+    for k in range(5):
+        text = text.replace(f"{{ a[{k}] := }}", f"{{ coef[{k}] := }}")
+    text = text.replace("findSmallestPositiveRoot(a)", "findSmallestPositiveRoot(coef)")
+    assert text.count("coef[") == 5
+    out = folder / "point-line.mxm"
+    out.write_text(text)
+    lines = text.splitlines()
+    return out, [1 + next(i for i, ln in enumerate(lines) if ln.startswith(f"term {k} "))
+                 for k in range(5)]

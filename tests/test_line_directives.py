@@ -22,7 +22,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import ROOT, require
+from conftest import corrected_paper_point_line, ROOT, require
 
 from max2code.emit import module_name
 from max2code.generate import generate, load
@@ -217,21 +217,6 @@ def test_gm2_still_maps_line_n_to_n_minus_1(tmp_path: Path) -> None:
 # ---------------------------------------------------------------------------------------------
 # Fragments: each term's directive points at its `term K { ... }` line
 # ---------------------------------------------------------------------------------------------
-
-def corrected_paper_point_line(folder: Path) -> tuple[Path, list[int]]:
-    """The paper's point-line figure with 5 declared terms (its equation has degree 4) and the
-    coefficient array renamed from `a` (also a parameter); and the lines of its 5 terms."""
-    text = (ROOT / "equations" / "paper" / "point-line.mxm").read_text()
-    text = text.replace("polynomial terms 4", "polynomial terms 5")
-    text = text.replace("a: ARRAY [0..3] OF REAL", "coef: ARRAY [0..4] OF REAL")
-    text = text.replace("term 3 { a[3] := }", "term 3 { a[3] := }\nterm 4 { a[4] := }")
-    for k in range(5):
-        text = text.replace(f"{{ a[{k}] := }}", f"{{ coef[{k}] := }}")
-    text = text.replace("findSmallestPositiveRoot(a)", "findSmallestPositiveRoot(coef)")
-    out = folder / "point-line.mxm"
-    out.write_text(text)
-    return out, [line_of(text, rf"^term {k} ") for k in range(5)]
-
 
 def test_m2_fragment_lines(tmp_path: Path) -> None:
     gm2 = require("gm2")

@@ -31,7 +31,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import ROOT, require
+from conftest import corrected_paper_point_line, ROOT, require
 from oracle import TMAX, Exact, check_sample, exact_coefficients, random_samples, sampled_equation
 
 from max2code.emit import module_name
@@ -550,25 +550,9 @@ def test_output_is_deterministic(lang: str, mxm: Path, maxima_exe: str) -> None:
 # The paper's use: a Modula-2 fragment pasted into a procedure
 # ---------------------------------------------------------------------------------------------
 
-def corrected_paper_point_line(folder: Path) -> Path:
-    """equations/paper/point-line.mxm with the declared term count fixed (5 coefficients, not
-    4) and the coefficient array renamed from `a`, which is also a parameter of the equation."""
-    text = (ROOT / "equations" / "paper" / "point-line.mxm").read_text()
-    text = text.replace("polynomial terms 4", "polynomial terms 5")
-    text = text.replace("a: ARRAY [0..3] OF REAL", "coef: ARRAY [0..4] OF REAL")
-    text = text.replace("term 3 { a[3] := }", "term 3 { a[3] := }\nterm 4 { a[4] := }")
-    for k in range(5):
-        text = text.replace(f"{{ a[{k}] := }}", f"{{ coef[{k}] := }}")
-    text = text.replace("findSmallestPositiveRoot(a)", "findSmallestPositiveRoot(coef)")
-    assert text.count("coef[") == 5
-    out = folder / "point-line.mxm"
-    out.write_text(text)
-    return out
-
-
 def test_m2_fragment_compiles_as_the_paper_used_it(tmp_path: Path) -> None:
     gm2 = require("gm2")
-    mxm = corrected_paper_point_line(tmp_path)
+    mxm, _ = corrected_paper_point_line(tmp_path)
     spec, poly = load(str(mxm))
     fragment = tmp_path / "fragment.inc"
     result = generate(spec, poly, LANGUAGES["m2"], "fragment", str(fragment))
