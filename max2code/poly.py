@@ -21,7 +21,6 @@ CONSTANTS = frozenset({"%pi", "%e"})
 E = "m2c__e"
 # Every subset of the roles is derived: 2^MAX_ROLES variants at most.
 MAX_ROLES = 10
-X = "m2c__x"
 
 
 @dataclass(frozen=True)

@@ -16,7 +16,6 @@ from fractions import Fraction
 from .expr import ZERO, Add, Call, Div, Expr, Float, Mul, Neg, Num, Pow, Ref, Sym, children
 
 ONE = Num(Fraction(1))
-TWO = Num(Fraction(2))
 
 
 @dataclass(frozen=True)

@@ -57,9 +57,6 @@ class Language:
         """A line saying the next line is `line` of the generated `file`; None if not needed."""
         return None
 
-    def comment(self, text: str) -> str:
-        raise NotImplementedError
-
     # Generated lines longer than this are broken before a top-level + or -.
     max_line: int = 100
 

@@ -43,6 +43,3 @@ class C(Language):
 
     def resume_directive(self, line: int, file: str) -> str | None:
         return f"#line {line} {c_string(file)}"
-
-    def comment(self, text: str) -> str:
-        return "/* " + text.replace("*/", "* /") + " */"

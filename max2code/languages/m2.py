@@ -126,6 +126,3 @@ class Modula2(SignedOperands):
         codes = [code for v in ctx.variants for _, code in v.temps]
         codes += [c.code for v in ctx.variants for c in v.coefficients]
         return any("RealMath." in code for code in codes)
-
-    def comment(self, text: str) -> str:
-        return "(* " + text.replace("*)", "* )").replace("(*", "( *") + " *)"

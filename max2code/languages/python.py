@@ -34,6 +34,3 @@ class Python(Language):
 
     def line_directive(self, pos: Pos) -> str:
         return f"# {pos.file}:{pos.line}"
-
-    def comment(self, text: str) -> str:
-        return "# " + text

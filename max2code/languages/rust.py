@@ -74,9 +74,6 @@ class Rust(SignedOperands):
     def line_directive(self, pos: Pos) -> str:
         return f"// {pos.file}:{pos.line}"
 
-    def comment(self, text: str) -> str:
-        return "// " + text
-
     def lint_allows(self, idents: list[str]) -> str:
         """An `#[allow(...)]` line for a function binding these names, or '' if none is needed."""
         if all(is_snake_case(i) for i in idents):
