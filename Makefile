@@ -1,5 +1,5 @@
 # The two commands of the README: `make` (generate every shipped equation in every language into
-# build/, with a summary) and `make test`. Both install what is missing first (scripts/setup).
+# build/, with a summary, and the variant report in build/report/) and `make test`. Both install what is missing first (scripts/setup).
 PYTHON ?= python3
 
 .PHONY: all build test setup clean bench
@@ -11,6 +11,8 @@ setup:
 
 build: setup
 	$(PYTHON) -m max2code build -o build
+	$(PYTHON) -m max2code report -o build/report > /dev/null
+	@echo "variant report: build/report/report.md (also .json, .html)"
 
 test: setup
 	$(PYTHON) -m pytest

@@ -23,7 +23,7 @@ from pathlib import Path
 from . import cache, depfile, maxima
 from .diagnostics import Max2CodeError
 from .output import write_if_changed
-from .paths import ROOT
+from .paths import shipped_equations
 
 
 @dataclass(frozen=True)
@@ -121,12 +121,6 @@ def _run(path: str, out: Path, langs: list[str] | None, timeout: float) -> Outco
     return outcome
 
 
-def _display(path: Path) -> str:
-    """A path as short as it can be: relative to the working folder when it lies below it."""
-    rel = os.path.relpath(path)
-    return str(path) if rel.startswith("..") else rel
-
-
 def summary(rows: list[Row], failed: list[str], langs: list[str]) -> str:
     head = "| equation | function | degree | parameters | Maxima s | " + " | ".join(
         f"{lang} lines" for lang in langs) + " |"
@@ -162,7 +156,7 @@ def main(argv: list[str]) -> int:
     if opts.jobs < 0:
         ap.error("--jobs must be 0 or more")
     jobs = opts.jobs or os.cpu_count() or 1
-    inputs = opts.inputs or sorted(_display(p) for p in (ROOT / "equations").glob("*.mxm"))
+    inputs = opts.inputs or shipped_equations()
     langs: list[str] | None = None  # None: every registered language (looked up only if needed)
     if opts.lang:
         known = _languages()

@@ -7,6 +7,7 @@ build needs nothing but the installed package.
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 PACKAGE = Path(__file__).resolve().parent
@@ -22,5 +23,13 @@ def runtime_dir(lang: str) -> Path:
     return ROOT / "runtime" / lang
 
 
-def equations_dir() -> Path:
-    return ROOT / "equations"
+def display(path: Path) -> str:
+    """A path as short as it can be: relative to the working folder when it lies below it, so
+    diagnostics and `#line` directives read naturally."""
+    rel = os.path.relpath(path)
+    return str(path) if rel.startswith("..") else rel
+
+
+def shipped_equations() -> list[str]:
+    """The shipped equations/*.mxm, as `display` paths."""
+    return [display(p) for p in sorted((ROOT / "equations").glob("*.mxm"))]

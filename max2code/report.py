@@ -19,7 +19,7 @@ from .diagnostics import Max2CodeError
 from .generate import generate, load
 from .languages import LANGUAGES
 from .output import write_if_changed
-from .paths import ROOT
+from .paths import ROOT, display, shipped_equations
 from .variants import STRATEGIES, family
 
 # The paper's figure 6: lines of max2code input, of Maxima output, of generated Modula-2.
@@ -61,6 +61,7 @@ class Figure6Row:
     maxima_lines: dict[str, int]
     m2_lines: dict[str, int]  # general polynomial only, as the paper had
     paper: tuple[int, int, int]
+    ops: dict[str, int]  # floating-point operations of the general polynomial
 
 
 def _lines(result) -> int:
@@ -82,15 +83,16 @@ def equation_report(path: str, timeout: float) -> EquationReport:
 
 
 def figure6_row(label: str, path: str, paper: str, timeout: float) -> Figure6Row:
-    spec, poly = load(path, timeout)
+    """`path` is relative to the shipped data (the checkout, or the installed package)."""
+    source = ROOT / path
+    spec, poly = load(display(source), timeout)
     m2 = LANGUAGES["m2"]
     m2_lines = {s: _lines(generate(spec, poly, m2, "module", "out.mod", s, with_variants=False))
                 for s in STRATEGIES}
-    mxm_lines = (ROOT / path).read_text().count("\n") if not Path(path).is_absolute() else \
-        Path(path).read_text().count("\n")
-    return Figure6Row(label, mxm_lines, {"optimised": poly.maxima_lines,
-                                         "expanded": poly.maxima_lines_expanded},
-                      m2_lines, PAPER_FIGURE_6[paper])
+    ops = {s: family(poly, s, with_variants=False)[0].ops.total for s in STRATEGIES}
+    return Figure6Row(label, source.read_text().count("\n"),
+                      {"optimised": poly.maxima_lines, "expanded": poly.maxima_lines_expanded},
+                      m2_lines, PAPER_FIGURE_6[paper], ops)
 
 
 def markdown(equations: list[EquationReport], fig6: list[Figure6Row]) -> str:
@@ -100,13 +102,18 @@ def markdown(equations: list[EquationReport], fig6: list[Figure6Row]) -> str:
                 "Lines of .mxm input, of Maxima output (at Maxima's 79 columns: the equation as "
                 "the program leaves it for `optimised`, the expanded polynomial for `expanded`) "
                 "and of the generated Modula-2 module for the general polynomial (`.def` + "
-                "`.mod`, without variants, as the paper had).", "",
+                "`.mod`, without variants, as the paper had). Lines flatter the expanded form, whose "
+                "coefficients are one long line each (gm2 numbers continuation lines, so "
+                "Modula-2 expressions are never wrapped) while the optimised form is one "
+                "shared subexpression per line: the operation count says what each costs.", "",
                 "| expression | .mxm | Maxima (optimised / expanded) | Modula-2 (optimised / "
-                "expanded) | paper: max2code / maxima / Modula-2 |", "|---|---|---|---|---|"]
+                "expanded) | operations (optimised / expanded) | paper: max2code / maxima / "
+                "Modula-2 |", "|---|---|---|---|---|---|"]
         for r in fig6:
             out.append(f"| {r.label} | {r.mxm_lines} | {r.maxima_lines['optimised']} / "
                        f"{r.maxima_lines['expanded']} | {r.m2_lines['optimised']} / "
-                       f"{r.m2_lines['expanded']} | {' / '.join(map(str, r.paper))} |")
+                       f"{r.m2_lines['expanded']} | {r.ops['optimised']} / {r.ops['expanded']} | "
+                       f"{' / '.join(map(str, r.paper))} |")
         out.append("")
     for eq in equations:
         out += [f"## {eq.source}", "",
@@ -169,7 +176,7 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--timeout", type=float, default=maxima.DEFAULT_TIMEOUT)
     ap.add_argument("--no-figure6", action="store_true", help="skip the paper's figure 6 table")
     opts = ap.parse_args(argv)
-    inputs = opts.inputs or sorted(str(p.relative_to(ROOT)) for p in (ROOT / "equations").glob("*.mxm"))
+    inputs = opts.inputs or shipped_equations()
     try:
         equations = [equation_report(p, opts.timeout) for p in inputs]
         fig6 = [] if opts.no_figure6 else [figure6_row(label, path, paper, opts.timeout)
