@@ -1,5 +1,6 @@
 # The two commands of the README: `make` (generate every shipped equation in every language into
-# build/, with a summary, and the variant report in build/report/) and `make test`. Both install what is missing first (scripts/setup).
+# build/, with a summary, and the variant report in build/report/) and `make test`. Both install
+# what is missing first (scripts/setup).
 PYTHON ?= python3
 
 .PHONY: all build test setup clean bench
