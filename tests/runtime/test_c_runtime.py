@@ -12,7 +12,7 @@ import os
 import shutil
 import subprocess
 from pathlib import Path
-from typing import Iterator, Sequence
+from typing import Sequence
 
 import pytest
 
@@ -138,20 +138,6 @@ def test_header_usable_from_static_code(tmp_path: Path, driver: Path) -> None:
 # Random polynomials
 # ---------------------------------------------------------------------------
 
-# Bounds relative to the root's condition number kappa (see cases.Oracle):
-# a backward-stable evaluation (error gamma_n sum|c_i| r^i) places the root
-# within about n u kappa.  The constant covers Newton stopping at an ulp.
-# Measured worst (3000 cases, seed in cases.random_cases): 2.4 for ours.
-# GSL's error follows the scale of the largest root rather than kappa
-# (measured worst 1.3e4, i.e. 1.3e-10 relative), hence its own constant.
-RANDOM_BOUND = {"interval": 8.0, "interval-nograze": 8.0, "closed": 64.0, "gsl": 1e5}
-
-
-def random_bound(method: str, degree: int, kappa: float) -> float:
-    k = RANDOM_BOUND["interval"] if method == "closed" and degree > 4 else RANDOM_BOUND[method]
-    return k * cases.U * max(1.0, degree * kappa)
-
-
 @pytest.fixture(scope="module")
 def random_results(driver: Path) -> list[tuple[cases.RandomCase, str, Result]]:
     rc = cases.random_cases(RANDOM_COUNT)
@@ -163,26 +149,8 @@ def random_results(driver: Path) -> list[tuple[cases.RandomCase, str, Result]]:
     return [(c, m, r) for (c, m), r in zip(keys, run_driver(driver, lines))]
 
 
-def _random_failures(results: Sequence[tuple[cases.RandomCase, str, Result]]) -> Iterator[str]:
-    for case, method, (st, t, g) in results:
-        o = cases.oracle(case.coeffs, case.tmax)
-        if st not in (0, 1):
-            yield f"{case}: [{method}] status {st}"
-            continue
-        if o.kind != "simple" or o.touches:
-            continue  # near-double: the families above test those
-        bound = random_bound(method, len(case.coeffs) - 1, o.kappa)
-        if o.root is None:
-            if st != 0:
-                yield f"{case}: [{method}] spurious root {t!r}"
-        elif st != 1:
-            yield f"{case}: [{method}] missed {float(o.root)!r}"
-        elif cases.rel_error(t, o.root) > bound:
-            yield f"{case}: [{method}] rel err {cases.rel_error(t, o.root):.3g} > {bound:.3g}"
-
-
 def test_random(random_results: list[tuple[cases.RandomCase, str, Result]]) -> None:
-    bad = list(_random_failures(random_results))
+    bad = list(cases.random_failures(random_results))
     assert not bad, f"{len(bad)} failures, first: " + "\n".join(bad[:10])
 
 

@@ -335,7 +335,7 @@ def test_random(drivers: tuple[Path, Path]) -> None:
     rc = cases.random_cases(RANDOM_COUNT)
     keys = [(case, m) for case in rc for m in METHODS]
     res = run_m2(drivers[0], [m2_line(m, case.coeffs, case.tmax) for case, m in keys])
-    bad = list(c_test._random_failures([(case, m, r) for (case, m), r in zip(keys, res)]))
+    bad = list(cases.random_failures([(case, m, r) for (case, m), r in zip(keys, res)]))
     assert not bad, f"{len(bad)} failures, first: " + "\n".join(bad[:10])
 
 

@@ -7,7 +7,6 @@ import math
 import os
 import sys
 from pathlib import Path
-from typing import Iterator, Sequence
 
 import pytest
 
@@ -65,36 +64,10 @@ def test_python_matches_c_algorithm_on_kahan_discriminant() -> None:
 
 
 # Same kappa-relative bounds as for C (see test_c_runtime.random_bound).
-RANDOM_BOUND = {"interval": 8.0, "interval-nograze": 8.0, "closed": 64.0}
-
-
-def random_bound(method: str, degree: int, kappa: float) -> float:
-    k = RANDOM_BOUND["interval"] if method == "closed" and degree > 4 else RANDOM_BOUND[method]
-    return k * cases.U * max(1.0, degree * kappa)
-
-
-def _random_failures(rc: Sequence[cases.RandomCase]) -> Iterator[str]:
-    for case in rc:
-        o = cases.oracle(case.coeffs, case.tmax)
-        for method in PY_METHODS:
-            st, t, g = rt.first_root_status(case.coeffs, case.tmax, method)
-            if st not in (0, 1):
-                yield f"{case}: [{method}] status {st}"
-                continue
-            if o.kind != "simple" or o.touches:
-                continue
-            bound = random_bound(method, len(case.coeffs) - 1, o.kappa)
-            if o.root is None:
-                if st != 0:
-                    yield f"{case}: [{method}] spurious root {t!r}"
-            elif st != 1:
-                yield f"{case}: [{method}] missed {float(o.root)!r}"
-            elif cases.rel_error(t, o.root) > bound:
-                yield f"{case}: [{method}] rel err {cases.rel_error(t, o.root):.3g} > {bound:.3g}"
-
-
 def test_random() -> None:
-    bad = list(_random_failures(cases.random_cases(RANDOM_COUNT)))
+    results = [(case, method, rt.first_root_status(case.coeffs, case.tmax, method))
+               for case in cases.random_cases(RANDOM_COUNT) for method in PY_METHODS]
+    bad = list(cases.random_failures(results))
     assert not bad, f"{len(bad)} failures, first: " + "\n".join(bad[:10])
 
 
