@@ -104,6 +104,11 @@ def module_name(spec: Spec) -> str:
     return stem if re.match(r"[A-Za-z_]", stem) else "eq_" + stem
 
 
+def template(lang_name: str, name: str) -> jinja2.Template:
+    """`templates/<lang>/<name>.j2`, from one cached environment per language folder."""
+    return _environment(str(templates_dir() / lang_name)).get_template(f"{name}.j2")
+
+
 @lru_cache(maxsize=None)
 def _environment(folder: str) -> jinja2.Environment:
     return jinja2.Environment(
@@ -194,8 +199,7 @@ def render(spec: Spec, poly: Polynomial, lang: Language, form: str, out_name: st
     if form == "module" and poly.degree > MAX_MODULE_DEGREE:
         raise error(spec.program.last_pos, f"degree {poly.degree} is above {MAX_MODULE_DEGREE}, "
                     f"the most the runtimes solve; emit a fragment instead")
-    template = _environment(str(templates_dir() / lang.name)).get_template(f"{form}.j2")
-    text = template.render(ctx=context(spec, poly, lang, strategy, with_variants))
+    text = template(lang.name, form).render(ctx=context(spec, poly, lang, strategy, with_variants))
     return _resume_lines(text, lang, out_name)
 
 
@@ -210,8 +214,7 @@ def render_companions(spec: Spec, poly: Polynomial, lang: Language, form: str,
     out = []
     for extension, stem in lang.companions:
         path = "-" if out_name in ("-", "<stdout>") else str(Path(out_name).with_suffix(extension))
-        template = _environment(str(templates_dir() / lang.name)).get_template(f"{stem}.j2")
-        text = template.render(ctx=ctx)
+        text = template(lang.name, stem).render(ctx=ctx)
         out.append((path, _resume_lines(text, lang, path)))
     return tuple(out)
 

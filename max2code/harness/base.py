@@ -14,10 +14,9 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
 
-from ..emit import _environment, module_name
+from ..emit import module_name, template
 from ..generate import generate
 from ..languages import LANGUAGES
-from ..paths import templates_dir
 from ..poly import Polynomial
 from ..spec import Spec
 from ..variants import DEFAULT_STRATEGY
@@ -72,9 +71,20 @@ class Harness:
                           DEFAULT_STRATEGY, True)
         return result.text, result.companions
 
+    def write_module(self, unit: Unit, workdir: Path, extension: str) -> tuple[Path, Path]:
+        """A fresh folder for the unit holding its generated module (and any companion, such as
+        a Modula-2 .def): (folder, module path)."""
+        folder = workdir / unit.name
+        folder.mkdir()
+        module = folder / f"{unit.name}{extension}"
+        text, companions = self.module_text(unit, module)
+        module.write_text(text)
+        for path, companion in companions:
+            Path(path).write_text(companion)
+        return folder, module
+
     def render(self, **data: object) -> str:
-        template = _environment(str(templates_dir() / self.lang)).get_template("harness.j2")
-        return template.render(**data)
+        return template(self.lang, "harness").render(**data)
 
 
 def tool(name: str) -> str:

@@ -30,10 +30,7 @@ class CHarness(Harness):
         obj = runtime_object(gcc, workdir)
         results = {}
         for unit in units:
-            folder = workdir / unit.name
-            folder.mkdir()
-            header = folder / f"{unit.name}.h"
-            header.write_text(self.module_text(unit, header)[0])
+            folder, header = self.write_module(unit, workdir, ".h")
             (folder / "driver.c").write_text(self.render(name=unit.name, header=header.name))
             exe = folder / "driver"
             run([gcc, *CFLAGS, f"-I{runtime_dir('c')}", f"-I{folder}", str(folder / "driver.c"),

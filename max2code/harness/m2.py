@@ -34,13 +34,7 @@ class M2Harness(Harness):
         iso = run([gm2, "-print-file-name=m2/m2iso"]).strip()
         results = {}
         for unit in units:
-            folder = workdir / unit.name
-            folder.mkdir()
-            module = folder / f"{unit.name}.mod"
-            text, companions = self.module_text(unit, module)
-            module.write_text(text)
-            for path, companion in companions:
-                Path(path).write_text(companion)
+            folder, module = self.write_module(unit, workdir, ".mod")
             shutil.copy(runtime_dir("m2") / "Max2codeRoots.def", folder)
             cases = [{"tmax": halves(case.tmax), "params": [halves(x) for x in case.params]}
                      for case in unit.cases]

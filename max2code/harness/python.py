@@ -17,10 +17,7 @@ class PythonHarness(Harness):
     def run(self, units: list[Unit], workdir: Path, build_dir: Path) -> dict[str, list[Outcome]]:
         results = {}
         for unit in units:
-            folder = workdir / unit.name
-            folder.mkdir()
-            module = folder / f"{unit.name}.py"
-            module.write_text(self.module_text(unit, module)[0])
+            folder, _ = self.write_module(unit, workdir, ".py")
             driver = folder / "driver.py"
             driver.write_text(self.render(module=unit.name, paths=[str(runtime_dir("python")),
                                                                    str(folder)]))
