@@ -57,12 +57,16 @@ def choose(params: tuple[str, ...], lang: Language, module: str | None,
         if p in idents:
             continue
         why = reasons[p] or "duplicate"
-        ident = _base(p) if why == "duplicate" else lang.escape(_base(p), why)
-        for _ in range(100):
+        first = _base(p) if why == "duplicate" else lang.escape(_base(p), why)
+        ident = first
+        for k in range(2, 1000):
             problem = lang.reserved(ident, module)
+            if problem in ("pattern", "invalid"):
+                ident = first = lang.escape(ident, problem)
+                continue
             if problem is None and ident not in taken:
                 break
-            ident = lang.escape(ident, problem) if problem in ("pattern", "invalid") else ident + "_"
+            ident = f"{first.rstrip('_')}_{k}"  # never `__`, which C reserves
         else:  # pragma: no cover - every escape ends in an ordinary name within a few steps
             raise AssertionError(f"no identifier for {p!r} in {lang.name}")
         idents[p] = ident

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 
 from ..diagnostics import Pos
@@ -71,6 +72,13 @@ class C(Language):
 
     def power_call(self, base: str, exponent: str) -> str:
         return f"pow({base}, {exponent})"
+
+    def escape(self, ident: str, why: str) -> str:
+        """Out of a reserved family by a `p_` prefix, with runs of `_` made one (C reserves any
+        name with `__` in it, and `_` followed by a capital)."""
+        if why in ("pattern", "invalid"):
+            return "p_" + re.sub(r"_+", "_", ident).strip("_")
+        return super().escape(ident, why)
 
     def module_name_problem(self, module: str) -> str | None:
         """Every name of a C module starts `NAME_`: `m2c` would redefine the runtime's

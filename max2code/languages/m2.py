@@ -35,14 +35,16 @@ QUALIFIED RECORD REM REPEAT RETRY RETURN SET THEN TO TYPE UNTIL VAR WHILE WITH U
 VOLATILE
 """.split())
 
-# Pervasive identifiers (ISO and GNU), and the library modules and procedures the generated
-# module imports: a local of that name would hide what the module's code uses.
+# Pervasive identifiers (ISO and GNU), the library modules and procedures the generated module
+# imports (a local of that name would hide what the module's code uses), and the macros the C
+# preprocessor of `gm2 -fcpp` predefines (`linux` would become 1).
 M2_PREDECLARED = frozenset("""
 ABS BITSET BOOLEAN CAP CARDINAL CHAR CHR CMPLX COMPLEX DEC DISPOSE EXCL FALSE FLOAT HALT HIGH
 IM INC INCL INT INTEGER INTERRUPTIBLE LENGTH LFLOAT LONGCOMPLEX LONGREAL MAX MIN NEW NIL ODD ORD
 PROC PROTECTION RE REAL SIZE TRUE TRUNC UNINTERRUPTIBLE VAL LONGINT LONGCARD SHORTINT SHORTCARD
 SHORTREAL SHORTCOMPLEX LOC BYTE WORD ADDRESS ADR TSIZE SYSTEM CAST THROW M2RTS
 RealMath Strings Max2codeRoots STextIO SWholeIO SRealIO
+linux unix i386 i686 sparc mips vax
 """.split())
 
 # The module's own names (module.j2, definition.j2), beyond the `m2c_` prefix.
@@ -50,6 +52,11 @@ M2_GENERATED = frozenset("""
 NParams Degree NVariants Coefficients FirstRoot Variant VariantName ParamName Params
 ParamsArray CoefficientsNamed FirstRootNamed VariantNamed
 """.split())
+
+# The formal parameters and locals of the exported procedures, which bind no parameter (the
+# ones that do are CoefficientsVk and m2c_variant, with `m2c_` formals): a parameter may keep
+# such a name, and Params may have a field `c`.
+M2_FORMALS = frozenset("p c t tmax name i q degree".split())
 
 
 class SignedOperands(Language):

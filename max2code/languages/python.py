@@ -15,7 +15,7 @@ for from global if import in is lambda nonlocal not or pass raise return try whi
 """.split())
 
 # The builtins (Python 3.13's; tests/test_names.py checks the running Python has no others),
-# and the module the generated code imports.
+# and the modules (and names) the generated code imports.
 PY_PREDECLARED = frozenset("""
 ArithmeticError AssertionError AttributeError BaseException BaseExceptionGroup BlockingIOError
 BrokenPipeError BufferError BytesWarning ChildProcessError ConnectionAbortedError ConnectionError
@@ -36,7 +36,7 @@ copyright credits delattr dict dir divmod enumerate eval exec exit filter float 
 getattr globals hasattr hash help hex id input int isinstance issubclass iter len license list
 locals map max memoryview min next object oct open ord pow print property quit range repr
 reversed round set setattr slice sorted staticmethod str sum super tuple type vars zip
-math
+math collections Mapping max2code_runtime
 """.split())
 
 # The module's public names (module.j2); its private ones begin `m2c_`.

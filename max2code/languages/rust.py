@@ -26,16 +26,21 @@ await dyn abstract become box do final macro override priv typeof unsized virtua
 NOT_RAW = frozenset({"self", "Self", "super", "crate", "_"})
 
 # What a `let` pattern would read as something other than a new binding (the prelude's enum
-# variants), the primitive types and the crates a module names in paths.
+# variants), the primitive types, the crates a module names in paths, and the prelude's traits
+# and types the module's code names.
 RUST_PREDECLARED = frozenset("""
-None Some Ok Err
+None Some Ok Err Option From Into Clone Copy Debug Default PartialEq
 f32 f64 i8 i16 i32 i64 i128 isize u8 u16 u32 u64 u128 usize bool char str std core alloc
 max2code_runtime
 """.split())
 
-# The module's own items (module.j2); its private names begin `m2c_`.
-RUST_GENERATED = frozenset("NAME PARAMS DEGREE STRATEGY VARIANTS Params coefficients "
-                           "coefficients_degree first_root variant".split())
+# The module's own constants and types (module.j2); its private names begin `m2c_`.
+RUST_GENERATED = frozenset("NAME PARAMS DEGREE STRATEGY VARIANTS Params".split())
+# Its public functions and methods (and their formals): a parameter may keep such a name (a
+# `Params` field `variant`), since a `let` binding shadows a function and the functions that
+# bind parameters call none of these.
+RUST_FUNCTIONS = frozenset("coefficients coefficients_degree first_root variant from p "
+                           "tmax".split())
 
 # Values clippy's `approx_constant` knows, by the name Rust gives them.
 F64_CONSTS = (
