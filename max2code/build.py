@@ -64,7 +64,7 @@ def build_one(path: str, out: Path, langs: list[str] | None, timeout: float) -> 
         folder = out / lang_name
         target = folder / f"{name}{lang.extension}"
         result = generate(spec, poly, lang, "module", str(target))
-        messages += [str(w) for w in result.warnings]
+        messages += [str(w) for w in result.warnings if str(w) not in messages]
         outputs += [*result.companions, (str(target), result.text)]
         lines.append((lang_name, result.text.count("\n") + sum(t.count("\n") for _, t in result.companions)))
     row = Row(path, name, poly.degree, len(poly.parameters), poly.maxima_seconds, tuple(lines))

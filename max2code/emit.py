@@ -20,7 +20,7 @@ from .paths import templates_dir
 from .expr import symbols
 from .poly import Polynomial
 from .spec import CodeBlock, Spec
-from .variants import DEFAULT_STRATEGY, Variant, family
+from .variants import DEFAULT_STRATEGY, Variant, family, role_notes
 
 RESUME = "@@M2C_RESUME@@"
 MAX_MODULE_DEGREE = 8
@@ -167,8 +167,14 @@ def context(spec: Spec, poly: Polynomial, lang: Language, strategy: str = DEFAUL
         coefs.append(Coef(k, code, lang.line_directive(pos)))
         if term:
             terms.append(FragmentTerm(term.prefix.text.strip(), code, lang.line_directive(term.prefix.pos)))
-    variants = tuple(_variant(spec, v, params, lang, prefixes)
-                     for v in family(poly, strategy, lang.temp_prefix, with_variants))
+    kept = family(poly, strategy, lang.temp_prefix, with_variants)
+    variants = tuple(_variant(spec, v, params, lang, prefixes) for v in kept)
+    notes: tuple[Diagnostic, ...] = ()
+    if form == "module" and with_variants:
+        why = role_notes(poly, {r.name: r.params for r in spec.roles}, kept, strategy,
+                         lang.temp_prefix)
+        notes = tuple(Diagnostic(r.pos, f"role '{r.name}' gives no variant: {why[r.name]}",
+                                 "note") for r in spec.roles if r.name in why)
     return Context(
         name=name, source=spec.path, version=__version__, lang=lang, params=params,
         degree=poly.degree, coefficients=tuple(coefs),
@@ -177,7 +183,7 @@ def context(spec: Spec, poly: Polynomial, lang: Language, strategy: str = DEFAUL
         finalise=_block(spec.block_for(spec.finalise, lang.name), lang),
         variants=variants, strategy=strategy,
         tested=tuple(p for p in params if any(p in v.zeros for v in variants)),
-        warnings=naming.warnings,
+        warnings=naming.warnings + notes,
     )
 
 

@@ -78,4 +78,4 @@ def choose(params: tuple[str, ...], lang: Language, module: str | None,
             form = "module" if module is not None else "fragment"
             warnings.append(Diagnostic(where, f"parameter '{p}' is written '{ident}' in the "
                                        f"{lang.title} {form}: {reason}", "warning"))
-    return Naming(idents, tuple(warnings))
+    return Naming({p: idents[p] for p in params}, tuple(warnings))
