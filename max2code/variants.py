@@ -58,10 +58,15 @@ def straight(poly: Polynomial, strategy: str, prefix: str = "m2c_t") -> Straight
     return Straight((), poly.coefficients)
 
 
+def cheaper(degree: int, ops: int, than_degree: int, than_ops: int) -> bool:
+    """Worth a branch of its own: a lower degree, or at least 10% and 3 operations fewer."""
+    if degree != than_degree:
+        return degree < than_degree
+    return ops <= 0.9 * than_ops and ops <= than_ops - 3
+
+
 def _cheaper(v: Variant, u: Variant) -> bool:
-    if v.degree != u.degree:
-        return v.degree < u.degree
-    return v.ops.total <= 0.9 * u.ops.total and v.ops.total <= u.ops.total - 3
+    return cheaper(v.degree, v.ops.total, u.degree, u.ops.total)
 
 
 def family(poly: Polynomial, strategy: str = DEFAULT_STRATEGY, prefix: str = "m2c_t",
