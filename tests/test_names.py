@@ -19,6 +19,7 @@ from __future__ import annotations
 import builtins
 import io
 import re
+import shutil
 import subprocess
 import tokenize
 from pathlib import Path
@@ -253,3 +254,83 @@ def test_the_names_corpus_compiles_and_agrees_with_the_oracle(tmp_path: Path,
     assert {(r.equation, r.lang) for r in report.rows} == {
         (m.stem, lang) for m in equations for lang in ("c", "python", "m2", "rust")}
     assert {r.family for r in report.rows} >= {"generic", "variant"}
+
+
+# ---------------------------------------------------------------------------------------------
+# Fragments keep the user's names
+# ---------------------------------------------------------------------------------------------
+
+FRAGMENT_MXM = """\
+function frag
+parameters p, c, lambda, type, int, x
+initialise python {
+a = [0.0] * 3
+}
+initialise rust { let mut a = [0.0f64; 3]; }
+initialise c { double a[3]; }
+term 0 python { a[0] = }
+term 1 python { a[1] = }
+term 2 python { a[2] = }
+term 0 rust { a[0] = }
+term 1 rust { a[1] = }
+term 2 rust { a[2] = }
+term 0 c { a[0] = }
+term 1 c { a[1] = }
+term 2 c { a[2] = }
+begin
+p*t^2 - c*t + lambda - x*type*int;
+end
+"""
+VALUES = {"p": 1.5, "c": -2.25, "lambda": 0.75, "type": 3.0, "int": -0.5, "x": 1.25}
+WANT = [0.75 - 1.25 * 3.0 * -0.5, 2.25, 1.5]  # lambda - x type int, -c, p
+
+
+@pytest.fixture
+def fragment_spec(tmp_path: Path, maxima_exe: str):
+    mxm = tmp_path / "frag.mxm"
+    mxm.write_text(FRAGMENT_MXM)
+    return load(str(mxm))
+
+
+def test_python_fragment_keeps_names(fragment_spec) -> None:
+    spec, poly = fragment_spec
+    result = generate(spec, poly, LANGUAGES["python"], "fragment", "frag.py")
+    assert [w.message for w in result.warnings] == [
+        "parameter 'lambda' is written 'lambda_' in the Python fragment: 'lambda' is a Python "
+        "keyword"]
+    assert "p_" not in result.text and "c_" not in result.text
+    scope = {("lambda_" if n == "lambda" else n): v for n, v in VALUES.items()}
+    exec(compile(result.text, "frag.py", "exec"), scope)  # the user's code, names and all
+    assert scope["a"] == WANT
+
+
+def test_c_and_rust_fragments_keep_names(fragment_spec, tmp_path: Path) -> None:
+    spec, poly = fragment_spec
+    gcc = require("gcc")
+    c = generate(spec, poly, LANGUAGES["c"], "fragment", "frag.c")
+    assert [w.message for w in c.warnings] == [
+        "parameter 'int' is written 'int_' in the C fragment: 'int' is a C keyword"]
+    (tmp_path / "frag.c").write_text(c.text + "\n")
+    (tmp_path / "main.c").write_text(
+        "#include <stdio.h>\nint main(void) {\n"
+        + "".join(f"    double {'int_' if n == 'int' else n} = {v!r};\n" for n, v in VALUES.items())
+        + '#include "frag.c"\n    printf("%a %a %a\\n", a[0], a[1], a[2]);\n    return 0;\n}\n')
+    subprocess.run([gcc, "-std=c11", "-Wall", "-Werror", str(tmp_path / "main.c"), "-o",
+                    str(tmp_path / "c")], check=True, cwd=tmp_path)
+    out = subprocess.run([str(tmp_path / "c")], capture_output=True, text=True, check=True).stdout
+    assert [float.fromhex(x) for x in out.split()] == WANT
+    rust = generate(spec, poly, LANGUAGES["rust"], "fragment", "frag.rs")
+    assert rust.warnings == ()  # `r#type` is how Rust writes the name type
+    assert "r#type" in rust.text and "lambda" in rust.text and "p_" not in rust.text
+    rustc = shutil.which("rustc") or str(Path.home() / ".cargo" / "bin" / "rustc")
+    if not Path(rustc).exists():
+        require("rustc")
+    (tmp_path / "main.rs").write_text(
+        "fn main() {\n"
+        + "".join(f"    let {'r#type' if n == 'type' else n} = {v!r}_f64;\n"
+                  for n, v in VALUES.items())
+        + rust.text + '\n    println!("{:?}", a);\n}\n')
+    subprocess.run([rustc, "-D", "warnings", "-A", "unused_mut", str(tmp_path / "main.rs"),
+                    "-o", str(tmp_path / "r")], check=True, cwd=tmp_path)
+    out = subprocess.run([str(tmp_path / "r")], capture_output=True, text=True, check=True).stdout
+    assert [float(x) for x in out.strip("[]\n").split(",")] == WANT
