@@ -109,11 +109,11 @@ def role_notes(poly: Polynomial, roles: dict[str, tuple[str, ...]], kept: tuple[
                          f"(the equation vanishes or no longer depends on {poly.variable})")
             continue
         if candidate.coefficients == poly.coefficients:
-            out[name] = f"its polynomial is the general one ({zeros} zero changes nothing)"
+            out[name] = f"it is the general polynomial ({zeros} zero changes nothing)"
             continue
         same = [v for v in kept if v.poly.coefficients == candidate.coefficients]
         if same:
-            out[name] = f"its polynomial is the same as variant '{same[0].label}''s"
+            out[name] = f"it is the same polynomial as variant '{same[0].label}'"
             continue
         ops = straight(candidate, strategy, prefix).ops.total
         out[name] = (f"it is not cheaper than the general polynomial: degree {candidate.degree} "
