@@ -86,9 +86,10 @@ def report(exc: Max2CodeError) -> int:
 def main(argv: list[str] | None = None) -> int:
     """Entry point; an unexpected failure is reported in one line, not as a traceback."""
     try:
-        status = _main(argv)
-        sys.stdout.flush()
-        return status
+        try:
+            return _main(argv)
+        finally:  # also after --help's SystemExit: a closed pipe shows here at the latest
+            sys.stdout.flush()
     except BrokenPipeError:
         return closed_pipe()
     except Max2CodeError as exc:
