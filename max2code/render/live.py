@@ -9,6 +9,7 @@ on the screen and reports a closed window or Escape, which end the show early.
 from __future__ import annotations
 
 import importlib
+import os
 import time
 from collections.abc import Callable, Iterable, Sequence
 
@@ -17,6 +18,7 @@ from .write import RenderUnavailable, _check_fps, _imports
 
 
 def _pygame():
+    os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")  # no greeting on our standard output
     try:
         return importlib.import_module("pygame")
     except ImportError:
