@@ -1,0 +1,396 @@
+#!/usr/bin/env python3
+"""Our predictive engine against the frame-based engines people use: pymunk (Chipmunk2D) and Box2D.
+
+    python bench/engine.py            # everything, ~3 minutes on 2 shared cores
+    python bench/engine.py --quick    # fewer trials and shorter runs (for trying things out)
+
+Needs the bench extra (pip install -e '.[bench]': pymunk 7.3.1, Box2D 2.3.10, numpy,
+matplotlib). Every measure runs, in one run, for pymunk and Box2D at dt = 1/60 and 1/240 and for
+our engine (bench/engine_ours.py; its column says "not run" and why when max2code.engine is not
+there). The scenes are bench/engine_scenes.py: the same bodies for every engine; what an engine
+cannot model exactly is listed in bench/engine_anchors.py and in the results.
+
+Measures:
+  tunnel     a ball of radius 0.01 against a thin wall: tunnelled of 200, at 1 .. 1000 m/s
+  contact    two discs on a collision course: |reported - exact| first contact time (50 pairs)
+  rotation   a spinning square against a wall: the same against the exact trigonometric motion
+  energy     20 elastic discs in a box with gravity, 60 s: |E(t) - E(0)| / E(0)
+  cost       wall seconds per simulated second, gases of N = 10 / 100 / 1000 discs, sparse and
+             dense (engine_scenes.GAS), best of 3 runs; and contacts per simulated second
+  idle       wall seconds per simulated second when nothing collides (100 drifting discs)
+
+Writes bench/results/engine.md (table), engine.json (all figures) and one chart per measure,
+bench/results/engine_<measure>.png. Wall times are noisy on a shared machine: compare the engines
+within one run (they run interleaved), not across runs.
+"""
+from __future__ import annotations
+
+import argparse
+import datetime
+import json
+import math
+import platform
+import statistics
+import sys
+import time
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))
+
+import engine_anchors  # noqa: E402
+import engine_ours  # noqa: E402
+import engine_scenes as S  # noqa: E402
+from roots import machine  # noqa: E402
+
+RESULTS = HERE / "results"
+SIZES = (10, 100, 1000)
+KINDS = ("sparse", "dense")
+
+
+def engines(quick: bool) -> tuple[list, dict]:
+    """The engines to run, and why any was left out."""
+    out = list(engine_anchors.anchors())
+    skipped = {}
+    reason = engine_ours.unavailable()
+    if reason is None:
+        out.append(engine_ours.Ours())
+    else:
+        skipped["ours"] = reason
+    return out, skipped
+
+
+# --- the measures ------------------------------------------------------------------------------
+
+def tunnel(engine, quick: bool) -> dict:
+    trials = 40 if quick else 200
+    out = {}
+    for speed in S.TUNNEL_SPEEDS:
+        count = 0
+        for scene, t_end in S.tunnel_trials(speed, trials):
+            sim = engine.build(scene)
+            sim.advance(t_end)
+            count += S.tunnelled(sim.states()[0][0])
+        out[str(speed)] = count
+    return {"trials": trials, "tunnelled": out}
+
+
+def contact_errors(engine, trials, pair=(0, 1)) -> dict:
+    """|first reported contact of the pair - exact| over the trials (a missed contact: inf)."""
+    errors, relative = [], []
+    for scene, exact in trials:
+        sim = engine.build(scene, record=True)
+        sim.advance(exact + 0.25)
+        times = [t for t, i, j in sim.contacts if (i, j) == pair]
+        err = abs(times[0] - exact) if times else math.inf
+        errors.append(err)
+        relative.append(err / exact)
+    finite = [e for e in errors if math.isfinite(e)]
+    return {"median": statistics.median(errors), "max": max(errors), "max_relative": max(relative),
+            "missed": len(errors) - len(finite), "errors": errors}
+
+
+def energy(engine, quick: bool) -> dict:
+    scene = S.energy_box()
+    sim = engine.build(scene)
+    e0 = S.energy(scene, sim.states())
+    seconds = 10 if quick else 60
+    series = []
+    for t in range(1, seconds + 1):
+        sim.advance(float(t))
+        series.append(abs(S.energy(scene, sim.states()) - e0) / e0)
+    return {"seconds": seconds, "final": series[-1], "max": max(series), "series": series}
+
+
+def timed(engine, scene, seconds: float, repeats: int) -> float:
+    """Best (least disturbed) wall time per simulated second over `repeats` fresh runs."""
+    best = math.inf
+    for _ in range(repeats):
+        sim = engine.build(scene)
+        start = time.perf_counter()
+        sim.advance(seconds)
+        best = min(best, time.perf_counter() - start)
+    return best / seconds
+
+
+def sim_seconds(n: int, quick: bool) -> float:
+    return {10: 20.0, 100: 10.0, 1000: 3.0}[n] / (4 if quick else 1)
+
+
+def cost(engine, quick: bool) -> dict:
+    out = {}
+    for kind in KINDS:
+        for n in SIZES:
+            scene = S.gas(n, kind)
+            seconds = sim_seconds(n, quick)
+            wall = timed(engine, scene, seconds, 1 if quick else 3)
+            sim = engine.build(scene, record=True)
+            sim.advance(seconds)
+            rate = len(sim.contacts) / seconds
+            events = getattr(sim, "events", None)
+            out[f"{kind} {n}"] = {"wall_per_sim_s": wall, "contacts_per_s": rate,
+                                  "events_per_s": events / seconds if events is not None else None,
+                                  "us_per_event": 1e6 * wall * seconds / events if events else None}
+    return out
+
+
+def idle(engine, quick: bool) -> dict:
+    scene = S.idle(100)
+    seconds = 5.0 if quick else 20.0
+    wall = timed(engine, scene, seconds, 1 if quick else 3)
+    sim = engine.build(scene, record=True)
+    sim.advance(seconds)
+    return {"n": 100, "wall_per_sim_s": wall, "contacts": len(sim.contacts)}
+
+
+MEASURES = ("tunnel", "contact", "rotation", "energy", "cost", "idle")
+
+
+def run(quick: bool) -> dict:
+    chosen, skipped = engines(quick)
+    two = S.two_disc_trials(15 if quick else 50)
+    spin = S.square_wall_trials(10 if quick else 30)
+    results = {"date": datetime.date.today().isoformat(), "machine": machine(),
+               "python": platform.python_version(), "versions": engine_anchors.versions(),
+               "quick": quick, "skipped": skipped, "engines": [e.label for e in chosen], "by": {}}
+    for engine in chosen:
+        start = time.perf_counter()
+        r = results["by"][engine.label] = {}
+        r["tunnel"] = tunnel(engine, quick)
+        r["contact"] = contact_errors(engine, two)
+        r["rotation"] = contact_errors(engine, spin, pair=(-1, 0))
+        r["energy"] = energy(engine, quick)
+        r["cost"] = cost(engine, quick)
+        r["idle"] = idle(engine, quick)
+        print(f"bench/engine: {engine.label} done in {time.perf_counter() - start:.0f} s", flush=True)
+    return results
+
+
+# --- output ------------------------------------------------------------------------------------
+
+def _e(x) -> str:
+    if x is None:
+        return "–"
+    if isinstance(x, float) and math.isinf(x):
+        return "missed"
+    return "0" if x == 0 else f"{x:.1e}"
+
+
+def _t(x) -> str:
+    """Wall seconds, to two significant digits."""
+    return "–" if x is None else f"{x:.2g}"
+
+
+def table(results: dict) -> str:
+    labels = results["engines"]
+    by = results["by"]
+    cols = labels + (["ours"] if "ours" in results["skipped"] else [])
+
+    def row(name: str, cell) -> str:
+        cells = []
+        for label in cols:
+            cells.append(cell(by[label]) if label in by else "not run")
+        return f"| {name} | " + " | ".join(cells) + " |"
+
+    trials = by[labels[0]]["tunnel"]["trials"]
+    lines = [f"| measure | {' | '.join(cols)} |", "|---" * (len(cols) + 1) + "|"]
+    lines.append(row(f"tunnelled of {trials}, r 0.01 at 100 m/s",
+                     lambda r: str(r["tunnel"]["tunnelled"]["100.0"])))
+    lines.append(row("tunnelled at " + " / ".join(f"{s:g}" for s in S.TUNNEL_SPEEDS) + " m/s",
+                     lambda r: " / ".join(str(r["tunnel"]["tunnelled"][str(s)]) for s in S.TUNNEL_SPEEDS)))
+    lines.append(row("contact time error, two discs: median / max (s)",
+                     lambda r: f"{_e(r['contact']['median'])} / {_e(r['contact']['max'])}"))
+    lines.append(row("contact time error, two discs: max relative",
+                     lambda r: _e(r["contact"]["max_relative"])))
+    lines.append(row("contact time error, spinning square: median / max (s)",
+                     lambda r: f"{_e(r['rotation']['median'])} / {_e(r['rotation']['max'])}"))
+    lines.append(row("energy drift, 20 discs, gravity, 60 s: final / max",
+                     lambda r: f"{_e(r['energy']['final'])} / {_e(r['energy']['max'])}"))
+    for kind in KINDS:
+        lines.append(row(f"wall s per simulated s, {kind}, N = 10 / 100 / 1000",
+                         lambda r, k=kind: " / ".join(_t(r["cost"][f"{k} {n}"]["wall_per_sim_s"]) for n in SIZES)))
+    for kind in KINDS:
+        lines.append(row(f"contacts per simulated s, {kind}, N = 10 / 100 / 1000",
+                         lambda r, k=kind: " / ".join(f"{r['cost'][f'{k} {n}']['contacts_per_s']:.0f}" for n in SIZES)))
+    for kind in KINDS:
+        lines.append(row(f"events per simulated s, {kind} (ours: all events)",
+                         lambda r, k=kind: " / ".join(f"{r['cost'][f'{k} {n}']['events_per_s']:.0f}"
+                                                      if r["cost"][f"{k} {n}"]["events_per_s"] is not None else "–"
+                                                      for n in SIZES)))
+    for kind in KINDS:
+        lines.append(row(f"µs per event, {kind}, N = 10 / 100 / 1000",
+                         lambda r, k=kind: " / ".join(f"{r['cost'][f'{k} {n}']['us_per_event']:.1f}"
+                                                      if r["cost"][f"{k} {n}"]["us_per_event"] else "–"
+                                                      for n in SIZES)))
+    lines.append(row("idle scene (100 discs, no contact): wall s per simulated s",
+                     lambda r: _t(r["idle"]["wall_per_sim_s"])))
+    return "\n".join(lines)
+
+
+def markdown(results: dict) -> str:
+    v = results["versions"]
+    head = [
+        "# Predictive engine against frame-based engines",
+        "",
+        f"`python bench/engine.py`{' --quick' if results['quick'] else ''} on {results['date']}: "
+        f"{results['machine']}, Python {results['python']}, pymunk {v['pymunk']} (Chipmunk "
+        f"{v['chipmunk']}), Box2D {v['Box2D']}. Every engine in one run; wall times are the best of "
+        "3 runs on a machine shared with other work: compare the columns, not runs.",
+        "",
+        table(results),
+        "",
+    ]
+    for name, why in results["skipped"].items():
+        head += [f"Not run: **{name}**: {why}.", ""]
+    head += [
+        "Scenes (bench/engine_scenes.py, the same bodies in every engine, friction 0, e = 1):",
+        "",
+        "* tunnel: a disc of radius 0.01 m, 0.01 kg, at 1 .. 1000 m/s along +x at a wall x = 0 "
+        "(a segment of zero thickness), 200 starts spread over one frame of travel; tunnelled = "
+        "past the wall when an unhindered ball would be 1 m beyond it.",
+        "* contact: discs of radius 0.3 and 0.5 (1 and 2 kg) meeting after 0.5..1.5 s at 1..4 m/s "
+        "relative speed, impact parameter up to 0.8 of the radius sum; exact time: the quadratic's "
+        "root. Reported time: the time of the state in which the engine finds the contact "
+        "(pymunk: end of the step; Box2D: start of the step, or its end for a time-of-impact "
+        "contact).",
+        "* rotation: a square of half side 0.25 m (1 kg) at 0.5..3 m/s spinning at 2..12 rad/s "
+        "towards a wall; exact time on the trigonometric motion (conservative advancement and "
+        "bisection in mpmath, 40 digits).",
+        "* energy: 20 discs (r 0.3 m, 1 kg) at 2..6 m/s in a 10 m box, gravity 9.81; potential "
+        "energy zero at the floor; sampled every simulated second.",
+        "* cost: a gas of discs (r 0.25 m, 1 kg) in a square box, no gravity; sparse: area "
+        "fraction 0.02 at 1 m/s, dense: 0.25 at 1.38 m/s (contact rates of DESIGN.md §8, "
+        "calibrated with pymunk at 1/240). Contacts: new touching pairs (disc-disc and "
+        "disc-wall) per simulated second.",
+        "* idle: 100 discs 2 m apart drifting at 0.01 m/s: no contact; ours draws 60 frames per "
+        "simulated second.",
+        "",
+        "What the anchors cannot model exactly: Box2D gives polygons and edges a skin of 0.01 m "
+        "(a disc or a square touches a wall 0.01 m early: the negative errors of its rotation "
+        "row), ignores restitution below 1 m/s closing speed (inelastic then: part of its energy "
+        "drift), and moves no body more than 2 m in a step (at 1/60 it caps speed at 120 m/s). "
+        "pymunk detects contacts at the step's positions only (no continuous collision).",
+        "",
+    ]
+    return "\n".join(head)
+
+
+def charts(results: dict) -> list[Path]:
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    by, labels = results["by"], results["engines"]
+    colours = {"pymunk 1/60": "#4c72b0", "pymunk 1/240": "#8fb0de", "Box2D 1/60": "#dd8452",
+               "Box2D 1/240": "#f0b98f", "ours": "#2ca02c"}
+    written = []
+
+    def save(fig, name: str) -> None:
+        path = RESULTS / f"engine_{name}.png"
+        fig.tight_layout()
+        fig.savefig(path, dpi=110)
+        plt.close(fig)
+        written.append(path)
+
+    # tunnel: tunnelled against speed
+    fig, ax = plt.subplots(figsize=(6.4, 4))
+    speeds = list(S.TUNNEL_SPEEDS)
+    for k, label in enumerate(labels):
+        counts = [by[label]["tunnel"]["tunnelled"][str(s)] for s in speeds]
+        ax.plot(speeds, counts, "o-", color=colours.get(label), label=label, alpha=0.9,
+                markersize=6 - k * 0.6)
+    ax.set_xscale("log")
+    ax.set_xlabel("ball speed (m/s), radius 0.01 m")
+    ax.set_ylabel(f"tunnelled of {by[labels[0]]['tunnel']['trials']}")
+    ax.set_title("Thin wall: balls that went through")
+    ax.legend()
+    ax.grid(alpha=0.3)
+    save(fig, "tunnel")
+
+    # contact time and rotation: error distributions
+    for measure, title in (("contact", "Two discs: first contact time error"),
+                           ("rotation", "Spinning square against a wall: contact time error")):
+        fig, ax = plt.subplots(figsize=(6.4, 4))
+        data = [[max(e, 1e-17) for e in by[label][measure]["errors"] if math.isfinite(e)] for label in labels]
+        ax.boxplot(data, whis=(0, 100))
+        ax.set_xticks(range(1, len(labels) + 1), labels)
+        ax.set_yscale("log")
+        ax.set_ylabel("|reported - exact| (s)")
+        ax.set_title(title)
+        ax.grid(alpha=0.3, axis="y")
+        save(fig, measure)
+
+    # energy: drift over time
+    fig, ax = plt.subplots(figsize=(6.4, 4))
+    for label in labels:
+        series = by[label]["energy"]["series"]
+        ax.plot(range(1, len(series) + 1), [max(s, 1e-17) for s in series], color=colours.get(label), label=label)
+    ax.set_yscale("log")
+    ax.set_xlabel("simulated time (s)")
+    ax.set_ylabel("|E(t) - E(0)| / E(0)")
+    ax.set_title("20 elastic discs in a box with gravity: energy drift")
+    ax.legend()
+    ax.grid(alpha=0.3)
+    save(fig, "energy")
+
+    # cost: wall s per simulated s against N
+    fig, axes = plt.subplots(1, 2, figsize=(9, 4), sharey=True)
+    for ax, kind in zip(axes, KINDS):
+        for label in labels:
+            ax.plot(SIZES, [by[label]["cost"][f"{kind} {n}"]["wall_per_sim_s"] for n in SIZES], "o-",
+                    color=colours.get(label), label=label)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("N discs")
+        ax.set_title(f"{kind} gas")
+        ax.grid(alpha=0.3)
+    axes[0].set_ylabel("wall s per simulated s")
+    axes[0].legend()
+    save(fig, "cost")
+
+    # events: contacts (anchors) and events (ours) per simulated second
+    fig, axes = plt.subplots(1, 2, figsize=(9, 4), sharey=True)
+    for ax, kind in zip(axes, KINDS):
+        for label in labels:
+            ax.plot(SIZES, [by[label]["cost"][f"{kind} {n}"]["contacts_per_s"] for n in SIZES], "o-",
+                    color=colours.get(label), label=f"{label}: contacts")
+            ev = [by[label]["cost"][f"{kind} {n}"]["events_per_s"] for n in SIZES]
+            if all(e is not None for e in ev):
+                ax.plot(SIZES, ev, "s--", color=colours.get(label), label=f"{label}: all events")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("N discs")
+        ax.set_title(f"{kind} gas")
+        ax.grid(alpha=0.3)
+    axes[0].set_ylabel("per simulated second")
+    axes[0].legend(fontsize=8)
+    save(fig, "events")
+
+    # idle
+    fig, ax = plt.subplots(figsize=(6.4, 4))
+    ax.bar(labels, [by[label]["idle"]["wall_per_sim_s"] for label in labels],
+           color=[colours.get(label) for label in labels])
+    ax.set_yscale("log")
+    ax.set_ylabel("wall s per simulated s")
+    ax.set_title("Idle scene: 100 discs, nothing collides")
+    ax.grid(alpha=0.3, axis="y")
+    save(fig, "idle")
+    return written
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--quick", action="store_true", help="fewer trials, shorter runs")
+    args = parser.parse_args(argv)
+    results = run(args.quick)
+    RESULTS.mkdir(parents=True, exist_ok=True)
+    (RESULTS / "engine.json").write_text(json.dumps(results, indent=1) + "\n")
+    (RESULTS / "engine.md").write_text(markdown(results))
+    for path in charts(results):
+        print(f"bench/engine: wrote {path.relative_to(HERE.parent)}")
+    print(table(results))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
