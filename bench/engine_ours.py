@@ -2,8 +2,9 @@
 API and drives it like the anchors (advance to a time, read the states, the contacts with their
 times, the number of events).
 
-This file is the only place that knows the engine's API: when the API changes, only `OursSim`
-changes. Until max2code.engine is importable, `unavailable()` says why and bench/engine.py leaves
+This file is the only place that knows the engine's API (max2code/engine/__init__.py's docstring:
+World, add_segment / add_circle / add_polygon, step_to, pose, velocity, poses, stats): when the
+API changes, only `OursSim` changes. Until max2code.engine is importable, `unavailable()` says why and bench/engine.py leaves
 our column empty ("not run"), never filled with made-up numbers.
 """
 
@@ -23,11 +24,65 @@ def unavailable() -> str | None:
     return None
 
 
+TOLERANCE = 1e-9   # the engine's default tolerance on contact times (World(tolerance=))
+
+
 class OursSim:
-    """Adapter: written against the engine's documented API once it is on main."""
+    """A scene in max2code.engine.World, driven like the anchors.
+
+    Walls are static segments, discs circles, blocks polygons, all with the scene's mass,
+    moment of inertia and restitution (the engine multiplies two bodies' restitutions: 1 here).
+    With `fps`, advancing reads every body's pose at each frame time on the way (what a game
+    loop draws), so the cost includes the frames; contacts are the engine's collision events
+    with their own (predicted) times."""
 
     def __init__(self, scene, record: bool, fps: float | None) -> None:
-        raise NotImplementedError("max2code.engine adapter: the engine's API is not on main yet")
+        from max2code.engine import World
+        from engine_scenes import Disc
+
+        self.world = w = World(gravity=scene.gravity, tolerance=TOLERANCE)
+        self.index: dict[int, int] = {}
+        for k, wall in enumerate(scene.walls):
+            self.index[w.add_segment(wall.a, wall.b, restitution=wall.e)] = -(k + 1)
+        self.ids = []
+        for i, b in enumerate(scene.bodies):
+            common = dict(angle=b.angle, velocity=(b.vx, b.vy), omega=b.w, mass=b.m, inertia=b.moment,
+                          restitution=b.e)
+            if isinstance(b, Disc):
+                body = w.add_circle((b.x, b.y), b.r, **common)
+            else:
+                body = w.add_polygon(list(b.vertices), position=(b.x, b.y), **common)
+            self.index[body] = i
+            self.ids.append(body)
+        self.record = record
+        self.frame = 1.0 / fps if fps else None
+        self.frames = 0
+        self.now = 0.0
+        self.contacts: list[tuple[float, int, int]] = []
+        self.events = 0
+
+    def _step(self, t: float) -> None:
+        events = self.world.step_to(t)
+        if self.record:
+            for ev in events:
+                if ev.kind == "collision":
+                    i, j = sorted((self.index[ev.a], self.index[ev.b]))
+                    self.contacts.append((ev.time, i, j))
+
+    def advance(self, t_end: float) -> None:
+        if self.frame:
+            while (self.frames + 1) * self.frame <= t_end + 1e-12:
+                self.frames += 1
+                t = self.frames * self.frame
+                self._step(t)
+                self.world.poses(t)
+        self._step(t_end)
+        self.now = t_end
+        self.events = self.world.stats()["events"]
+
+    def states(self) -> list[tuple[float, float, float, float, float, float]]:
+        w = self.world
+        return [w.pose(i) + w.velocity(i) for i in self.ids]
 
 
 class Ours:
@@ -40,3 +95,6 @@ class Ours:
 
     def build(self, scene, record: bool = False) -> OursSim:
         return OursSim(scene, record, self.fps)
+
+    def without_frames(self) -> "Ours":
+        return Ours(fps=None)
