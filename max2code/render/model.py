@@ -79,13 +79,18 @@ class Circle:
 
 @dataclass(frozen=True)
 class Polygon:
-    """A convex polygon; vertices in order (either winding: renderers do not care)."""
+    """A convex polygon; vertices in order (either winding: renderers do not care). A `radius`
+    rounds it: every point within radius of the polygon (the engine's rounded polygons)."""
 
     vertices: tuple[Point, ...]
+    radius: float = 0.0
 
     def __post_init__(self) -> None:
         vs = tuple(_point(f"polygon vertex {i}", v) for i, v in enumerate(self.vertices))
         _set(self, "vertices", vs)
+        _set(self, "radius", _finite("polygon radius", self.radius))
+        if self.radius < 0:
+            raise RenderModelError(f"polygon radius must not be negative, not {self.radius!r}")
         if len(vs) < 3:
             raise RenderModelError(f"a polygon needs at least 3 vertices, not {len(vs)}")
         signs, turning = set(), 0.0

@@ -118,9 +118,10 @@ class _Outline:
             self.distance = lambda x, y: np.hypot(x - c[0], y - c[1]) - r
         elif isinstance(shape, Polygon):
             pts = [px(v) for v in shape.vertices]
-            self.box = (min(p[0] for p in pts), min(p[1] for p in pts),
-                        max(p[0] for p in pts), max(p[1] for p in pts))
-            self.distance = lambda x, y: _polygon_distance(x, y, pts)
+            r = shape.radius * s
+            self.box = (min(p[0] for p in pts) - r, min(p[1] for p in pts) - r,
+                        max(p[0] for p in pts) + r, max(p[1] for p in pts) + r)
+            self.distance = lambda x, y: _polygon_distance(x, y, pts) - r
         elif isinstance(shape, (Capsule, Segment)):
             a, b = px(shape.a), px(shape.b)
             r = shape.radius * s if isinstance(shape, Capsule) else 0.0

@@ -47,6 +47,30 @@ def _capsule_path(a: Point, b: Point, r: float) -> str:
             f"A {rr} {rr} 0 0 0 {num(p1[0])} {num(p1[1])} Z")
 
 
+def _rounded_path(pts: list[Point], r: float) -> str:
+    """A convex polygon grown by r: each edge moved out by r, joined by arcs about the vertices
+    (pixel space, either winding)."""
+    area2 = sum(pts[i - 1][0] * pts[i][1] - pts[i][0] * pts[i - 1][1] for i in range(len(pts)))
+    sign = 1.0 if area2 > 0 else -1.0          # outward normal of edge (dx, dy): sign * (dy, -dx)
+    rr = num(r)
+    parts = []
+    n = len(pts)
+    for i in range(n):
+        a, b = pts[i], pts[(i + 1) % n]
+        dx, dy = b[0] - a[0], b[1] - a[1]
+        length = math.hypot(dx, dy)
+        ox, oy = sign * dy / length * r, -sign * dx / length * r
+        start, end = (a[0] + ox, a[1] + oy), (b[0] + ox, b[1] + oy)
+        parts.append(f"{'M' if i == 0 else 'A'} " + (f"{rr} {rr} 0 0 {1 if sign > 0 else 0} " if i else "")
+                     + f"{num(start[0])} {num(start[1])} L {num(end[0])} {num(end[1])}")
+    first = pts[0]
+    dx, dy = pts[1][0] - first[0], pts[1][1] - first[1]
+    length = math.hypot(dx, dy)
+    close = (first[0] + sign * dy / length * r, first[1] - sign * dx / length * r)
+    parts.append(f"A {rr} {rr} 0 0 {1 if sign > 0 else 0} {num(close[0])} {num(close[1])} Z")
+    return " ".join(parts)
+
+
 def _body(i: int, body: Body, pose, view: View) -> list[str]:
     style, shape, s = body.style, body.shape, view.scale
     px = lambda p: view.to_pixel(pose.apply(p))  # noqa: E731
@@ -62,6 +86,8 @@ def _body(i: int, body: Body, pose, view: View) -> list[str]:
             out.append(f'<line class="spoke" x1="{num(c[0])}" y1="{num(c[1])}" x2="{num(rim[0])}" '
                        f'y2="{num(rim[1])}"{_paint("stroke", colour)} '
                        f'stroke-width="{num(max(style.stroke_width, 1.0))}"/>')
+    elif isinstance(shape, Polygon) and shape.radius > 0:
+        out = [head, f'<path d="{_rounded_path([px(v) for v in shape.vertices], shape.radius * s)}"{paint}/>']
     elif isinstance(shape, Polygon):
         points = " ".join(f"{num(x)},{num(y)}" for x, y in (px(v) for v in shape.vertices))
         out = [head, f'<polygon points="{points}"{paint} stroke-linejoin="round"/>']

@@ -24,6 +24,7 @@ from max2code.render import (Body, Capsule, Circle, Contact, Frame, Polygon, Pos
     lambda: Polygon(tuple((math.cos(4 * math.pi * k / 5), math.sin(4 * math.pi * k / 5))
                           for k in range(5))),                       # pentagram: turns twice
     lambda: Polygon(((0, 0), (1, 0), (float("inf"), 1))),
+    lambda: Polygon(((0, 0), (1, 0), (0, 1)), radius=-0.1),
     lambda: Pose(0, float("nan")),
     lambda: Style(fill="red"),
     lambda: Style(fill='#ffffff" onload="alert(1)'),

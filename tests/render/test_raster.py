@@ -144,3 +144,26 @@ def test_hostile_labels_are_drawn_as_text() -> None:
     for label in ["</text><script>alert(1)</script>", "\x00\x1b[31m\ud800", "&amp; \u202e" * 50, "a\nb\tc"]:
         img = pixels([Body(Circle(1.5), Style(fill="#ffffff", label=label, spoke=False))], [Pose(5, 5)])
         assert (img[85:115, 75:125] < 128).any()            # some dark text near the body's centre
+
+
+def test_rounded_polygon_is_every_point_within_its_radius() -> None:
+    tri = ((-1.0, -1.0), (1.5, -1.0), (0.0, 1.2))
+    r = 0.4
+    img = pixels([Body(Polygon(tri, radius=r), Style(fill="#00ffff", stroke=None))], [Pose(5, 5, 0.8)])
+    c, s = math.cos(0.8), math.sin(0.8)
+    verts = [(5 + c * u - s * v, 5 + s * u + c * v) for u, v in tri]
+    wx, wy = centres()
+
+    def seg(a, b):
+        ex, ey = b[0] - a[0], b[1] - a[1]
+        t = np.clip(((wx - a[0]) * ex + (wy - a[1]) * ey) / (ex * ex + ey * ey), 0, 1)
+        return np.hypot(wx - a[0] - t * ex, wy - a[1] - t * ey)
+
+    edge = np.min([seg(verts[i], verts[(i + 1) % 3]) for i in range(3)], axis=0)
+    inside = np.ones_like(edge, dtype=bool)
+    for i in range(3):
+        (ax, ay), (bx, by) = verts[i], verts[(i + 1) % 3]
+        inside &= (bx - ax) * (wy - ay) - (by - ay) * (wx - ax) >= 0      # counter-clockwise
+    d = np.where(inside, -edge, edge) * 20 - r * 20
+    assert (img[d <= -0.5] == (0, 255, 255)).all()
+    assert (img[d >= 0.5] == WHITE).all()

@@ -100,3 +100,44 @@ def test_same_frame_same_bytes() -> None:
     bodies = [Body(Circle(1)), Body(Polygon(((0, 0), (1, 0), (0, 1))))]
     frame = Frame(0.1, (Pose(0.1, 0.2, 0.3), Pose(-1, -2, 3)))
     assert svg_text(bodies, frame, VIEW) == svg_text(bodies, frame, VIEW)
+
+
+def _arc_centre(p1, p2, r, large, sweep):
+    """The centre of an SVG arc (a circle, no rotation), by the SVG specification's formulas."""
+    x1p, y1p = (p1[0] - p2[0]) / 2, (p1[1] - p2[1]) / 2
+    coef = math.sqrt(max(r * r - x1p * x1p - y1p * y1p, 0.0) / (x1p * x1p + y1p * y1p))
+    coef = coef if large != sweep else -coef
+    return (coef * y1p + (p1[0] + p2[0]) / 2, -coef * x1p + (p1[1] + p2[1]) / 2)
+
+
+@pytest.mark.parametrize("winding", [1, -1])
+def test_rounded_polygon_path_arcs_turn_about_the_vertices(winding: int) -> None:
+    tri = ((-1.0, -1.0), (1.5, -1.0), (0.0, 1.2))[::winding]
+    body = Body(Polygon(tri, radius=0.5))
+    pose = Pose(0.5, -0.5, 0.3)
+    root = parse(svg_text([body], Frame(0, (pose,)), VIEW))
+    tokens = root.find("s:g/s:path", NS).get("d").split()
+    verts = [px(*pose.apply(v)) for v in tri]
+    # walk the path: M p L q (A r r 0 0 f p L q)* A r r 0 0 f p0 Z
+    k, points, arcs = 0, [], []
+    while k < len(tokens):
+        op = tokens[k]
+        if op in ("M", "L"):
+            points.append((float(tokens[k + 1]), float(tokens[k + 2])))
+            k += 3
+        elif op == "A":
+            r, large, sweep = float(tokens[k + 1]), int(tokens[k + 4]), int(tokens[k + 5])
+            end = (float(tokens[k + 6]), float(tokens[k + 7]))
+            arcs.append(_arc_centre(points[-1], end, r, large, sweep))
+            points.append(end)
+            k += 8
+        else:
+            assert op == "Z"
+            k += 1
+    assert r == pytest.approx(20)
+    # every point on the path is 20 px from the nearest vertex's edge; arcs turn about vertices
+    assert len(arcs) == 3
+    for centre in arcs:
+        assert min(math.dist(centre, v) for v in verts) < 1e-2
+    for p in points:
+        assert min(abs(math.dist(p, v) - 20) for v in verts) < 1e-2
