@@ -84,3 +84,22 @@ def test_fit_view_holds_every_body_in_every_frame() -> None:
     assert (v.xmin, v.ymin, v.xmax, v.ymax) == (-1.0, -4.0, 11.0, 5.0)  # the segment spans x 4..6 at y 5
     with pytest.raises(RenderModelError):
         fit_view(bodies, [Frame(0, (Pose(0, 0),))])
+
+
+def test_shape_from_vertices_follows_the_engine_convention() -> None:
+    from max2code.render import shape_from_vertices
+    assert shape_from_vertices([(0.5, 0)], 0.2) == Circle(0.2, (0.5, 0))
+    assert shape_from_vertices([(0, 0), (1, 0)]) == Segment((0, 0), (1, 0))
+    assert shape_from_vertices([(0, 0), (1, 0)], 0.1) == Capsule((0, 0), (1, 0), 0.1)
+    assert shape_from_vertices([(0, 0), (1, 0), (0, 1)], 0.05) == Polygon(((0, 0), (1, 0), (0, 1)), 0.05)
+    with pytest.raises(RenderModelError):
+        shape_from_vertices([(0, 0)], 0.0)          # a point is no circle
+
+
+def test_colour_names_and_forms() -> None:
+    from max2code.render import colour
+    assert colour("Red") == "#ff0000" and colour(" navy ") == "#000080"
+    assert colour("#1aF") == "#11aaff" and colour("#11223344") == "#11223344"
+    for bad in ("reddish", "#12", "rgb(1,2,3)", "#fff\" onload=\"x", 7):
+        with pytest.raises(RenderModelError, match="use #rrggbb"):
+            colour(bad)
