@@ -281,6 +281,7 @@ def markdown(results: dict) -> str:
     for line in failures(results):
         head += [f"\\* failed: {line}", ""]
     head += [
+        "Ours: max2code.engine's World with tolerance 1e-9 on contact times (bench/engine_ours.py). "
         "Scenes (bench/engine_scenes.py, the same bodies in every engine, friction 0, e = 1):",
         "",
         "* tunnel: a disc of radius 0.01 m, 0.01 kg, at 1 .. 1000 m/s along +x at a wall x = 0 "
@@ -296,16 +297,16 @@ def markdown(results: dict) -> str:
         "bisection in mpmath, 40 digits).",
         "* energy: 20 discs (r 0.3 m, 1 kg) at 2..6 m/s in a 10 m box, gravity 9.81; potential "
         "energy zero at the floor; sampled every simulated second.",
-        "* cost: a gas of discs (r 0.25 m, 1 kg) in a square box, no gravity; sparse: area "
-        "fraction 0.02 at 1 m/s, dense: 0.25 at 1.38 m/s (contact rates of DESIGN.md §8, "
-        "calibrated with pymunk at 1/240). Contacts: new touching pairs (disc-disc and "
-        "disc-wall) per simulated second.",
-        "* idle: 100 discs 2 m apart drifting at 0.01 m/s: no contact; ours draws 60 frames per "
-        "simulated second.",
+        "* cost: a gas of discs (r 1 m, 1 kg) scattered uniformly in a square box, no gravity; "
+        "sparse: area fraction 0.02 at 4 m/s, dense: 0.25 at 5.5 m/s (the contact rates of "
+        "DESIGN.md §8, calibrated with pymunk at 1/240). Contacts: new touching pairs (disc-disc "
+        "and disc-wall) per simulated second; ours: collision events.",
+        "* idle: 100 discs (r 1 m) 8 m apart drifting at 0.01 m/s: no contact; ours reads every "
+        "pose 60 times per simulated second (a game's frames), and is also timed without frames.",
         "",
         "What the anchors cannot model exactly: Box2D gives polygons and edges a skin of 0.01 m "
-        "(a disc or a square touches a wall 0.01 m early: the negative errors of its rotation "
-        "row), ignores restitution below 1 m/s closing speed (inelastic then: part of its energy "
+        "(a disc or a square touches a wall 0.01 m early: most of its error in the rotation row is "
+        "early contacts), ignores restitution below 1 m/s closing speed (inelastic then: part of its energy "
         "drift), and moves no body more than 2 m in a step (at 1/60 it caps speed at 120 m/s). "
         "pymunk detects contacts at the step's positions only (no continuous collision).",
         "",
@@ -375,41 +376,33 @@ def charts(results: dict) -> list[Path]:
     ax.grid(alpha=0.3)
     save(fig, "energy")
 
-    # cost: wall s per simulated s against N
-    fig, axes = plt.subplots(1, 2, figsize=(9, 4), sharey=True)
-    for ax, kind in zip(axes, KINDS):
-        for label in ran("cost"):
-            ax.plot(SIZES, [by[label]["cost"][f"{kind} {n}"]["wall_per_sim_s"] for n in SIZES], "o-",
-                    color=colours.get(label), label=label + (" (60 frames/s)" if label == "ours" else ""))
-            bare = [by[label]["cost"][f"{kind} {n}"].get("wall_per_sim_s_events_only") for n in SIZES]
-            if all(b is not None for b in bare):
-                ax.plot(SIZES, bare, "s--", color=colours.get(label), label=f"{label} (events only)")
-        ax.set_xscale("log")
-        ax.set_yscale("log")
-        ax.set_xlabel("N discs")
-        ax.set_title(f"{kind} gas")
-        ax.grid(alpha=0.3)
-    axes[0].set_ylabel("wall s per simulated s")
-    axes[0].legend()
-    save(fig, "cost")
+    def per_n(name: str, ylabel: str, series, legend_size: float = 10) -> None:
+        """Two log-log panels (sparse, dense) against N; series(label, kind) gives
+        (values, style, legend) lines, values None where there are none."""
+        fig, axes = plt.subplots(1, 2, figsize=(9, 4), sharey=True)
+        for ax, kind in zip(axes, KINDS):
+            for label in ran("cost"):
+                for values, style, legend in series(label, kind):
+                    if all(v is not None for v in values):
+                        ax.plot(SIZES, values, style, color=colours.get(label), label=legend)
+            ax.set_xscale("log")
+            ax.set_yscale("log")
+            ax.set_xlabel("N discs")
+            ax.set_title(f"{kind} gas")
+            ax.grid(alpha=0.3)
+        axes[0].set_ylabel(ylabel)
+        axes[0].legend(fontsize=legend_size)
+        save(fig, name)
 
-    # events: contacts (anchors) and events (ours) per simulated second
-    fig, axes = plt.subplots(1, 2, figsize=(9, 4), sharey=True)
-    for ax, kind in zip(axes, KINDS):
-        for label in ran("cost"):
-            ax.plot(SIZES, [by[label]["cost"][f"{kind} {n}"]["contacts_per_s"] for n in SIZES], "o-",
-                    color=colours.get(label), label=f"{label}: contacts")
-            ev = [by[label]["cost"][f"{kind} {n}"]["events_per_s"] for n in SIZES]
-            if all(e is not None for e in ev):
-                ax.plot(SIZES, ev, "s--", color=colours.get(label), label=f"{label}: all events")
-        ax.set_xscale("log")
-        ax.set_yscale("log")
-        ax.set_xlabel("N discs")
-        ax.set_title(f"{kind} gas")
-        ax.grid(alpha=0.3)
-    axes[0].set_ylabel("per simulated second")
-    axes[0].legend(fontsize=8)
-    save(fig, "events")
+    def cost_of(label: str, kind: str, key: str) -> list:
+        return [by[label]["cost"][f"{kind} {n}"].get(key) for n in SIZES]
+
+    per_n("cost", "wall s per simulated s", lambda label, kind: [
+        (cost_of(label, kind, "wall_per_sim_s"), "o-", label + (" (60 frames/s)" if label == "ours" else "")),
+        (cost_of(label, kind, "wall_per_sim_s_events_only"), "s--", f"{label} (events only)")])
+    per_n("events", "per simulated second", lambda label, kind: [
+        (cost_of(label, kind, "contacts_per_s"), "o-", f"{label}: contacts"),
+        (cost_of(label, kind, "events_per_s"), "s--", f"{label}: all events")], legend_size=8)
 
     # idle
     fig, ax = plt.subplots(figsize=(6.4, 4))

@@ -23,9 +23,10 @@ from dataclasses import dataclass, field
 G = 9.81
 
 
-@dataclass(frozen=True)
-class Disc:
-    r: float
+@dataclass(frozen=True, kw_only=True)
+class Rigid:
+    """What every body has: mass, state (position, angle, velocity, spin) and restitution."""
+
     m: float
     x: float
     y: float
@@ -34,6 +35,11 @@ class Disc:
     angle: float = 0.0
     w: float = 0.0
     e: float = 1.0
+
+
+@dataclass(frozen=True)
+class Disc(Rigid):
+    r: float
 
     @property
     def moment(self) -> float:
@@ -42,18 +48,10 @@ class Disc:
 
 
 @dataclass(frozen=True)
-class Block:
+class Block(Rigid):
     """A convex polygon; vertices relative to its centroid, counter-clockwise."""
 
     vertices: tuple[tuple[float, float], ...]
-    m: float
-    x: float
-    y: float
-    vx: float = 0.0
-    vy: float = 0.0
-    angle: float = 0.0
-    w: float = 0.0
-    e: float = 1.0
 
     @property
     def area(self) -> float:
@@ -133,7 +131,7 @@ def tunnel_trials(speed: float, trials: int = 200, seed: int = 1) -> list[tuple[
     out = []
     for _ in range(trials):
         gap = 0.5 + rng.random() * max(speed / 60.0, 0.05)
-        ball = Disc(TUNNEL_RADIUS, 0.01, -gap - TUNNEL_RADIUS, rng.uniform(-0.5, 0.5), speed, 0.0)
+        ball = Disc(TUNNEL_RADIUS, m=0.01, x=-gap - TUNNEL_RADIUS, y=rng.uniform(-0.5, 0.5), vx=speed)
         out.append((Scene("tunnel", (ball,), (Wall((0.0, -1.0), (0.0, 1.0)),)), (gap + 1.0) / speed))
     return out
 
@@ -171,14 +169,14 @@ def two_disc_trials(trials: int = 50, seed: int = 2) -> list[tuple[Scene, float]
         speed = rng.uniform(1.0, 4.0)
         heading = rng.uniform(0, 2 * math.pi)
         s = rng.uniform(-0.8, 0.8)                   # impact parameter / (r_a + r_b)
-        a = Disc(0.3, 1.0, 0.0, 0.0, 0.5 * math.cos(heading + 1), 0.5 * math.sin(heading + 1))
+        a = Disc(0.3, m=1.0, x=0.0, y=0.0, vx=0.5 * math.cos(heading + 1), vy=0.5 * math.sin(heading + 1))
         ux, uy = speed * math.cos(heading), speed * math.sin(heading)   # velocity of b relative to a
         hx, hy, nx, ny = ux / speed, uy / speed, -uy / speed, ux / speed
         rr = a.r + 0.5
         # relative position at contact: on the circle of radius r_a + r_b, on the side b comes from
         cx = rr * (-hx * math.sqrt(1 - s * s) + nx * s)
         cy = rr * (-hy * math.sqrt(1 - s * s) + ny * s)
-        b = Disc(0.5, 2.0, a.x + cx - ux * t_hit, a.y + cy - uy * t_hit, a.vx + ux, a.vy + uy)
+        b = Disc(0.5, m=2.0, x=a.x + cx - ux * t_hit, y=a.y + cy - uy * t_hit, vx=a.vx + ux, vy=a.vy + uy)
         t = disc_contact_time(a, b)
         if t is not None and abs(t - t_hit) < 1e-9:
             out.append((Scene("two discs", (a, b)), t))
@@ -197,7 +195,7 @@ def square_wall_trials(trials: int = 30, seed: int = 3) -> list[tuple[Scene, flo
         half = 0.25
         v = rng.uniform(0.5, 3.0)
         w = rng.choice((-1, 1)) * rng.uniform(2.0, 12.0)
-        body = Block(square(half), 1.0, 0.0, 0.0, v, 0.0, rng.uniform(0, math.pi / 2), w)
+        body = Block(square(half), m=1.0, x=0.0, y=0.0, vx=v, angle=rng.uniform(0, math.pi / 2), w=w)
         wall_x = half * math.sqrt(2) + v * rng.uniform(0.4, 1.2)
         t = square_wall_contact(body, wall_x)
         if t is not None:
@@ -285,7 +283,7 @@ def energy_box(n: int = 20, seed: int = 4) -> Scene:
         x = pitch * (i + 0.5) + rng.uniform(-0.15, 0.15) * pitch
         y = pitch * (j + 0.5) + rng.uniform(-0.15, 0.15) * pitch
         speed, heading = rng.uniform(2, 6), rng.uniform(0, 2 * math.pi)
-        bodies.append(Disc(0.3, 1.0, x, y, speed * math.cos(heading), speed * math.sin(heading)))
+        bodies.append(Disc(0.3, m=1.0, x=x, y=y, vx=speed * math.cos(heading), vy=speed * math.sin(heading)))
     return Scene("energy box", tuple(bodies), box_walls(0, 0, side, side), (0.0, -G))
 
 
@@ -333,7 +331,7 @@ def gas(n: int, kind: str, speed: float | None = None, seed: int = 5) -> Scene:
     bodies = []
     for x, y in scatter(n, GAS_RADIUS, side, rng):
         heading = rng.uniform(0, 2 * math.pi)
-        bodies.append(Disc(GAS_RADIUS, 1.0, x, y, speed * math.cos(heading), speed * math.sin(heading)))
+        bodies.append(Disc(GAS_RADIUS, m=1.0, x=x, y=y, vx=speed * math.cos(heading), vy=speed * math.sin(heading)))
     return Scene(f"{kind} gas N={n}", tuple(bodies), box_walls(0, 0, side, side),
                  notes={"side": side, "speed": speed})
 
@@ -347,6 +345,6 @@ def idle(n: int = 100, seed: int = 6) -> Scene:
     for k in range(n):
         i, j = k % cols, k // cols
         heading = rng.uniform(0, 2 * math.pi)
-        bodies.append(Disc(GAS_RADIUS, 1.0, 8.0 * i + 4, 8.0 * j + 4, 0.01 * math.cos(heading),
-                           0.01 * math.sin(heading)))
+        bodies.append(Disc(GAS_RADIUS, m=1.0, x=8.0 * i + 4, y=8.0 * j + 4, vx=0.01 * math.cos(heading),
+                           vy=0.01 * math.sin(heading)))
     return Scene(f"idle N={n}", tuple(bodies), box_walls(0, 0, 8.0 * cols, 8.0 * cols))

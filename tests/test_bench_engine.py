@@ -32,15 +32,15 @@ def test_disc_contact_time_is_the_first_touch() -> None:
 
 
 def test_disc_contact_time_misses_and_separating() -> None:
-    a = S.Disc(1, 1, 0, 0)
-    assert S.disc_contact_time(a, S.Disc(1, 1, 5, 0, 1, 0)) is None          # moving away
-    assert S.disc_contact_time(a, S.Disc(1, 1, 5, 3, -1, 0)) is None         # passes above
-    assert S.disc_contact_time(a, S.Disc(1, 1, 5, 0, -1, 0)) == pytest.approx(3.0, rel=1e-15)
-    assert S.disc_contact_time(a, S.Disc(1, 1, 5, 0, 0, 0)) is None          # at rest
+    a = S.Disc(1, m=1, x=0, y=0)
+    assert S.disc_contact_time(a, S.Disc(1, m=1, x=5, y=0, vx=1)) is None          # moving away
+    assert S.disc_contact_time(a, S.Disc(1, m=1, x=5, y=3, vx=-1)) is None         # passes above
+    assert S.disc_contact_time(a, S.Disc(1, m=1, x=5, y=0, vx=-1)) == pytest.approx(3.0, rel=1e-15)
+    assert S.disc_contact_time(a, S.Disc(1, m=1, x=5, y=0)) is None          # at rest
 
 
 def test_square_wall_contact_without_spin_is_the_closed_form() -> None:
-    body = S.Block(S.square(0.25), 1.0, 0.0, 0.0, 2.0, 0.0, 0.3, 0.0)
+    body = S.Block(S.square(0.25), m=1.0, x=0.0, y=0.0, vx=2.0, angle=0.3)
     far = max(math.cos(0.3) * x - math.sin(0.3) * y for x, y in S.square(0.25))
     assert S.square_wall_contact(body, 1.5) == pytest.approx((1.5 - far) / 2.0, rel=1e-14)
 
@@ -63,7 +63,7 @@ def test_square_wall_contact_against_dense_sampling() -> None:
 def test_square_wall_graze_is_not_a_contact() -> None:
     # a spinning square at rest whose corner sweeps exactly up to the wall: touches, never crosses
     half = 0.25
-    body = S.Block(S.square(half), 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 3.0)
+    body = S.Block(S.square(half), m=1.0, x=0.0, y=0.0, w=3.0)
     assert S.square_wall_contact(body, half * math.sqrt(2) + 1e-9) is None
     assert S.square_wall_contact(body, half * math.sqrt(2) - 1e-3) is not None
 
@@ -81,7 +81,7 @@ def test_polygon_moment_and_area() -> None:
 
 
 def test_energy_counts_kinetic_rotational_and_potential() -> None:
-    scene = S.Scene("e", (S.Disc(0.5, 2.0, 1.0, 3.0), S.Block(S.square(0.5), 3.0, 0.0, 1.0)), gravity=(0.0, -10.0))
+    scene = S.Scene("e", (S.Disc(0.5, m=2.0, x=1.0, y=3.0), S.Block(S.square(0.5), m=3.0, x=0.0, y=1.0)), gravity=(0.0, -10.0))
     states = [(1.0, 3.0, 0.0, 3.0, 4.0, 2.0), (0.0, 1.0, 0.0, 0.0, 1.0, 1.0)]
     kinetic = 0.5 * 2 * 25 + 0.5 * (0.5 * 2 * 0.25) * 4 + 0.5 * 3 * 1 + 0.5 * (3 * 2 / 12) * 1
     assert S.energy(scene, states) == pytest.approx(kinetic + 2 * 10 * 3 + 3 * 10 * 1, rel=1e-15)
