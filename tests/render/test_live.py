@@ -7,7 +7,7 @@ import sys
 
 import pytest
 
-from conftest import need
+from conftest import require_module as need
 from max2code.render import Body, Circle, Frame, Pose, RenderUnavailable, Style, View
 from max2code.render import live
 

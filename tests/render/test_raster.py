@@ -7,7 +7,7 @@ import math
 
 import pytest
 
-from conftest import need
+from conftest import require_module as need
 from max2code.render import Body, Capsule, Circle, Contact, Frame, Polygon, Pose, Segment, Style, View
 
 np = need("numpy")

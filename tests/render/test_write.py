@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import need
+from conftest import require_module as need
 from max2code.diagnostics import Max2CodeError
 from max2code.render import (Body, Circle, Frame, Pose, RenderModelError, Segment, Style, View, save,
                              write_gif, write_mp4, write_png, write_png_dir)
