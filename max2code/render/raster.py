@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from functools import lru_cache
 
 import numpy as np
 from PIL import Image, ImageDraw, ImageFont
@@ -27,6 +28,7 @@ CONTACT_COLOUR = "#d62728"
 TEXT_COLOUR = "#000000"
 
 
+@lru_cache(maxsize=1024)
 def rgba(colour: str) -> tuple[float, float, float, float]:
     """'#rrggbb[aa]' (checked by the model) to floats in 0..1."""
     v = [int(colour[i:i + 2], 16) / 255 for i in range(1, len(colour), 2)]
@@ -44,7 +46,7 @@ class Canvas:
 
     def __init__(self, view: View) -> None:
         self.view = view
-        self.rgb = np.empty((view.height, view.width, 3), dtype=np.float64)
+        self.rgb = np.empty((view.height, view.width, 3), dtype=np.float32)
         self.rgb[:] = rgba(view.background)[:3]
 
     def grid(self, box: tuple[float, float, float, float]) -> tuple[slice, slice, np.ndarray, np.ndarray] | None:
@@ -55,18 +57,16 @@ class Canvas:
         j1 = min(int(math.ceil(box[3])), self.view.height)
         if i0 >= i1 or j0 >= j1:
             return None
-        xs = np.arange(i0, i1) + 0.5
-        ys = np.arange(j0, j1) + 0.5
+        xs = np.arange(i0, i1, dtype=np.float32) + np.float32(0.5)
+        ys = np.arange(j0, j1, dtype=np.float32) + np.float32(0.5)
         return slice(j0, j1), slice(i0, i1), xs[None, :], ys[:, None]
 
     def paint(self, rows: slice, cols: slice, coverage: np.ndarray, colour: str) -> None:
+        """Blend `colour` over the region by coverage x the colour's alpha."""
         r, g, b, a = rgba(colour)
-        alpha = (coverage * a)[..., None]
-        if not alpha.any():
-            return
+        alpha = coverage[..., None] if a == 1.0 else (coverage * np.float32(a))[..., None]
         region = self.rgb[rows, cols]
-        region *= 1 - alpha
-        region += alpha * np.array((r, g, b))
+        region += alpha * (np.array((r, g, b), dtype=np.float32) - region)
 
     def image(self) -> Image.Image:
         return Image.fromarray(np.rint(np.clip(self.rgb, 0, 1) * 255).astype(np.uint8), "RGB")
@@ -165,10 +165,11 @@ def draw_body(canvas: Canvas, body: Body, pose) -> None:
     line_colour = style.stroke if style.stroke is not None else (None if outline.area else style.fill)
     if line_colour is not None and width > 0:
         canvas.paint(rows, cols, _stroke(d, width), line_colour)
-    if isinstance(shape, Circle) and style.spoke:
+    if isinstance(shape, Circle) and style.spoke:   # the spoke lies inside the circle's box
         centre = view.to_pixel(pose.apply(shape.centre))
         rim = view.to_pixel(pose.apply((shape.centre[0] + shape.radius, shape.centre[1])))
-        _line(canvas, centre, rim, max(width, 1.0), style.stroke or _contrast(style.fill))
+        canvas.paint(rows, cols, _stroke(_segment_distance(x, y, centre, rim), max(width, 1.0)),
+                     style.stroke or _contrast(style.fill))
 
 
 def draw_contact(canvas: Canvas, contact: Contact, size: float) -> None:
