@@ -76,6 +76,10 @@ class PymunkSim:
         return [(b.position.x, b.position.y, b.angle, b.velocity.x, b.velocity.y, b.angular_velocity)
                 for b in self.bodies]
 
+    def poses(self) -> list[tuple[float, float, float]]:
+        """Every body's pose now: what a frame draws."""
+        return [(b.position.x, b.position.y, b.angle) for b in self.bodies]
+
 
 class Box2DSim:
     VELOCITY_ITERATIONS = 8
@@ -137,6 +141,10 @@ class Box2DSim:
             p, v = b.position, b.linearVelocity
             out.append((p[0], p[1], b.angle, v[0], v[1], b.angularVelocity))
         return out
+
+    def poses(self) -> list[tuple[float, float, float]]:
+        """Every body's pose now: what a frame draws."""
+        return [(b.position[0], b.position[1], b.angle) for b in self.bodies]
 
 
 class Anchor:

@@ -13,6 +13,19 @@ from __future__ import annotations
 import importlib
 
 
+def version() -> str:
+    """Where max2code.engine was loaded from, and the git commit of that checkout if it is one."""
+    import subprocess
+    from pathlib import Path
+    folder = Path(importlib.import_module("max2code.engine").__file__).resolve().parent.parent.parent
+    try:
+        commit = subprocess.run(["git", "-C", str(folder), "rev-parse", "--short", "HEAD"],
+                                capture_output=True, text=True, timeout=10).stdout.strip()
+    except (OSError, subprocess.SubprocessError):
+        commit = ""
+    return f"{folder}" + (f" at {commit}" if commit else " (not a git checkout)")
+
+
 def unavailable() -> str | None:
     """None when max2code.engine can be used; else the reason it cannot."""
     try:
@@ -32,11 +45,9 @@ class OursSim:
 
     Walls are static segments, discs circles, blocks polygons, all with the scene's mass,
     moment of inertia and restitution (the engine multiplies two bodies' restitutions: 1 here).
-    With `fps`, advancing reads every body's pose at each frame time on the way (what a game
-    loop draws), so the cost includes the frames; contacts are the engine's collision events
-    with their own (predicted) times."""
+    Contacts are the engine's collision events with their own (predicted) times."""
 
-    def __init__(self, scene, record: bool, fps: float | None) -> None:
+    def __init__(self, scene, record: bool) -> None:
         from max2code.engine import World
         from engine_scenes import Disc
 
@@ -55,30 +66,27 @@ class OursSim:
             self.index[body] = i
             self.ids.append(body)
         self.record = record
-        self.frame = 1.0 / fps if fps else None
-        self.frames = 0
         self.now = 0.0
         self.contacts: list[tuple[float, int, int]] = []
-        self.events = 0
 
-    def _step(self, t: float) -> None:
-        events = self.world.step_to(t)
+    def advance(self, t_end: float) -> None:
+        """Every event up to t_end (no Event objects are made unless contacts are recorded)."""
+        events = self.world.step_to(t_end, events=self.record)
+        self.now = t_end
         if self.record:
             for ev in events:
                 if ev.kind == "collision":
                     i, j = sorted((self.index[ev.a], self.index[ev.b]))
                     self.contacts.append((ev.time, i, j))
 
-    def advance(self, t_end: float) -> None:
-        if self.frame:
-            while (self.frames + 1) * self.frame <= t_end + 1e-12:
-                self.frames += 1
-                t = self.frames * self.frame
-                self._step(t)
-                self.world.poses(t)
-        self._step(t_end)
-        self.now = t_end
-        self.events = self.world.stats()["events"]
+    @property
+    def events(self) -> int:
+        """Every event processed so far (collisions, cell crossings, windows, ...)."""
+        return self.world.stats()["events"]
+
+    def poses(self) -> list[tuple[float, float, float]]:
+        """Every body's pose now: what a frame draws (walls included, as the engine has them)."""
+        return self.world.poses(self.now)
 
     def states(self) -> list[tuple[float, float, float, float, float, float]]:
         w = self.world
@@ -90,11 +98,5 @@ class Ours:
     label = "ours"
     dt = None
 
-    def __init__(self, fps: float | None = 60.0) -> None:
-        self.fps = fps
-
     def build(self, scene, record: bool = False) -> OursSim:
-        return OursSim(scene, record, self.fps)
-
-    def without_frames(self) -> "Ours":
-        return Ours(fps=None)
+        return OursSim(scene, record)
