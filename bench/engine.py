@@ -341,9 +341,13 @@ def charts(results: dict) -> list[Path]:
     def ran(measure: str) -> list[str]:
         return [label for label in labels if "error" not in by[label][measure]]
 
-    def save(fig, name: str) -> None:
+    def save(fig, name: str, measure: str) -> None:
+        failed = [label for label in labels if "error" in by[label][measure]]
+        if failed:   # say who is missing and why, on the chart itself
+            fig.text(0.01, 0.005, "not shown: " + "; ".join(
+                f"{label} (failed: {by[label][measure]['error'][:100]})" for label in failed), fontsize=7)
         path = RESULTS / f"engine_{name}.png"
-        fig.tight_layout()
+        fig.tight_layout(rect=(0, 0.03 if failed else 0, 1, 1))
         fig.savefig(path, dpi=110)
         plt.close(fig)
         written.append(path)
@@ -361,7 +365,7 @@ def charts(results: dict) -> list[Path]:
     ax.set_title("Thin wall: balls that went through")
     ax.legend()
     ax.grid(alpha=0.3)
-    save(fig, "tunnel")
+    save(fig, "tunnel", "tunnel")
 
     # contact time and rotation: error distributions
     for measure, title in (("contact", "Two discs: first contact time error"),
@@ -375,7 +379,7 @@ def charts(results: dict) -> list[Path]:
         ax.set_ylabel("|reported - exact| (s); 0 drawn at 1e-17")
         ax.set_title(title)
         ax.grid(alpha=0.3, axis="y")
-        save(fig, measure)
+        save(fig, measure, measure)
 
     # energy: drift over time
     fig, ax = plt.subplots(figsize=(6.4, 4))
@@ -388,7 +392,7 @@ def charts(results: dict) -> list[Path]:
     ax.set_title("20 elastic discs in a box with gravity: energy drift")
     ax.legend()
     ax.grid(alpha=0.3)
-    save(fig, "energy")
+    save(fig, "energy", "energy")
 
     def per_n(name: str, ylabel: str, series, legend_size: float = 10) -> None:
         """Two log-log panels (sparse, dense) against N; series(label, kind) gives
@@ -406,7 +410,7 @@ def charts(results: dict) -> list[Path]:
             ax.grid(alpha=0.3)
         axes[0].set_ylabel(ylabel)
         axes[0].legend(fontsize=legend_size)
-        save(fig, name)
+        save(fig, name, "cost")
 
     def cost_of(label: str, kind: str, key: str) -> list:
         return [by[label]["cost"][f"{kind} {n}"].get(key) for n in SIZES]
@@ -433,7 +437,7 @@ def charts(results: dict) -> list[Path]:
     ax.set_ylabel("wall s per simulated s")
     ax.set_title("Idle scene: 100 discs, nothing collides")
     ax.grid(alpha=0.3, axis="y")
-    save(fig, "idle")
+    save(fig, "idle", "idle")
     return written
 
 
