@@ -241,10 +241,6 @@ def render(spec: Spec, poly: Polynomial, lang: Language, form: str, out_name: st
     if form == "module" and poly.degree > MAX_MODULE_DEGREE:
         raise error(spec.program.last_pos, f"degree {poly.degree} is above {MAX_MODULE_DEGREE}, "
                     f"the most the runtimes solve; emit a fragment instead")
-    if form == "module" and not poly.parameters:
-        raise error(spec.program.last_pos, "the equation has no parameters: a module would "
-                    "compute the same constant polynomial every time (C and Modula-2 have no "
-                    "empty arrays for it); emit a fragment instead")
     ctx = context(spec, poly, lang, strategy, with_variants, form)
     text = _resume_lines(template(lang.name, form).render(ctx=ctx), lang, out_name)
     companions = []

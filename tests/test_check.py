@@ -273,3 +273,17 @@ def test_the_original_pge_files_pass_check(tmp_path: Path) -> None:
     assert result.ok, result.text()
     assert {(r.equation, r.lang) for r in result.rows} == {
         (f.stem, lang) for f in files for lang in LANGS}
+
+
+def test_no_parameters_and_a_variant_that_reads_none(tmp_path: Path) -> None:
+    """Edge cases of a user's equation: no parameters at all (C and Modula-2 have no empty
+    arrays), and a variant whose coefficients read no parameter (gm2 -Wall: unused `p`)."""
+    require_tools()
+    nop = tmp_path / "nop.mxm"
+    nop.write_text("function nop\nbegin\nt^2 - 2*t - 3;\nend\n")
+    novar = tmp_path / "novar.mxm"
+    novar.write_text("function novar\nparameters a\nrole still = a\nbegin\nt^2 - 1 + a*t^3;\nend\n")
+    result = chk.check([nop, novar], langs=LANGS, build_dir=BUILD_DIR)
+    assert result.ok, result.text()
+    assert {(r.equation, r.family) for r in result.rows if r.lang == "m2"} >= {
+        ("nop", "generic"), ("novar", "variant")}
