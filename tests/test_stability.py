@@ -10,7 +10,7 @@ grazing contacts, losing roots near 0 and mishandling degree drops. Here the C r
 * never report a collision where the oracle has none, and never return NaN or a time outside
   (0, tmax];
 * degrade with a clear result code where no answer can be trusted: -1 for NaN/Inf input, a NaN
-  or non-positive tmax, a degree outside 0..8 -- for every method.
+  or non-positive tmax, a degree outside 0..16 -- for every method.
 """
 from __future__ import annotations
 
@@ -124,7 +124,7 @@ BAD = [
     ("zero-tmax", (1.0, -3.0, 2.0), 0.0, 2),
     ("negative-tmax", (1.0, -3.0, 2.0), -1.0, 2),
     ("negative-infinite-tmax", (1.0, -3.0, 2.0), -math.inf, 2),
-    ("degree-9", (1.0,) * 10, 1.0, 9),
+    ("degree-17", (1.0,) * 18, 1.0, 17),
     ("degree-negative", (1.0,), 1.0, -1),
 ]
 

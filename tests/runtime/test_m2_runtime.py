@@ -319,7 +319,7 @@ def test_invalid_degree_and_method(drivers: tuple[Path, Path]) -> None:
     c = (1.0, -3.0, 2.0)
     lines = [
         m2_line(0, (1.0,), math.inf, degree=-1),
-        m2_line(0, (1.0,) * 10, math.inf, degree=9),
+        m2_line(0, (1.0,) * 18, math.inf, degree=17),
         m2_line(7, c, math.inf),
         m2_line(-1, c, math.inf),
         m2_line(0, c, math.inf),  # the same polynomial, valid: root 0.5
