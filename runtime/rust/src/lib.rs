@@ -125,7 +125,7 @@ pub fn first_root_skin(c: &[f64], tmax: f64, eps: f64) -> Status {
 /// when `degree > 16`, `c.len()` is not a multiple of `degree + 1` or `out` is too short.
 pub fn first_roots(c: &[f64], degree: usize, tmax: f64, eps: f64, out: &mut [f64]) -> Result<usize, InvalidInput> {
     let w = degree + 1;
-    if degree > MAX_DEGREE || c.len() % w != 0 || out.len() < c.len() / w {
+    if degree > MAX_DEGREE || c.len() / w * w != c.len() || out.len() < c.len() / w {
         return Err(InvalidInput);
     }
     let mut found = 0;
@@ -148,7 +148,7 @@ fn solve(coef: &[f64], tmax: f64, method: Method, eps: f64) -> Status {
         || tmax.is_nan()
         || tmax <= 0.0
         || coef.iter().any(|v| !v.is_finite())
-        || !(eps >= 0.0 && eps < f64::INFINITY)
+        || !(0.0..f64::INFINITY).contains(&eps)
     {
         return Status::Invalid;
     }
@@ -164,7 +164,7 @@ fn solve(coef: &[f64], tmax: f64, method: Method, eps: f64) -> Status {
     if flushed {
         tu = fp::ldexp(tmax, -i64::from(k));
         let n2 = solver::reduce(&mut c, n, tu);
-        if n2 <= 0 || !(tu > 0.0) {
+        if n2 <= 0 || tu.is_nan() || tu <= 0.0 {
             return Status::NoRoot;
         }
         n = n2 as usize;

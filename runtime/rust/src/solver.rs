@@ -8,6 +8,10 @@
 //!
 //! The comments of the C source explain the why of each step; they are not repeated here.
 
+// Indexed loops and negated comparisons mirror the C source line by line (a negated
+// comparison is also true for NaN, which the C code relies on).
+#![allow(clippy::needless_range_loop, clippy::neg_cmp_op_on_partial_ord)]
+
 use crate::fp::{ilogb, ldexp};
 
 pub(crate) const MAXN: usize = 16;
@@ -180,7 +184,7 @@ pub(crate) fn normalise(c: &mut Coeffs, n: usize) -> (bool, i32, i32) {
         }
         big_e = top + 1;
     }
-    if k == 0 && big_e >= -1021 && big_e <= 1022 {
+    if k == 0 && (-1021..=1022).contains(&big_e) {
         let f = pow2(-big_e);
         for v in c.iter_mut().take(n + 1) {
             *v *= f;
