@@ -12,8 +12,10 @@
 #include <stdint.h>
 #include <string.h>
 
+#ifndef M2C_NO_GSL
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_poly.h>
+#endif
 
 #define MAXN M2C_MAX_DEGREE
 #define UNIT_ROUNDOFF (DBL_EPSILON / 2)
@@ -1003,6 +1005,7 @@ static int pick_first_real(const double zr[], const double zi[], int m,
 /* GSL companion-matrix method                                          */
 /* ------------------------------------------------------------------ */
 
+#ifndef M2C_NO_GSL
 static int first_root_gsl(const double c[], int n, double tmax, double *t,
                           int *graze)
 {
@@ -1023,6 +1026,15 @@ static int first_root_gsl(const double c[], int n, double tmax, double *t,
     }
     return pick_first_real(zr, zi, n, tmax, t, graze);
 }
+#else
+/* Built without GSL: solve() refuses the method (-1) before this. */
+static int first_root_gsl(const double c[], int n, double tmax, double *t,
+                          int *graze)
+{
+    (void)c; (void)n; (void)tmax; (void)t; (void)graze;
+    return 0;
+}
+#endif
 
 /* ------------------------------------------------------------------ */
 /* Closed-form quartic (Orellana & De Michele, ACM TOMS Algorithm 1010) */
@@ -1424,6 +1436,10 @@ static int solve(const double c_in[], int degree, double tmax, int method,
         return -1;
     if (method < M2C_METHOD_INTERVAL || method > M2C_METHOD_CLOSED)
         return -1;
+#ifdef M2C_NO_GSL
+    if (method == M2C_METHOD_GSL)
+        return -1; /* not built in */
+#endif
     if (!(eps >= 0 && eps < INFINITY))
         return -1;
     double c[MAXN + 1];

@@ -5,7 +5,8 @@
  * Plain C11 functions with int/double/pointer arguments only, so that the
  * header works from generated `static` C code and from Modula-2 through a
  * DEFINITION MODULE FOR "C".  A program compiles runtime/c/max2code_roots.c and
- * links -lgsl -lgslcblas -lm (GSL is used only by M2C_METHOD_GSL).
+ * links -lgsl -lgslcblas -lm (GSL is used only by M2C_METHOD_GSL; compiled with
+ * -DM2C_NO_GSL it needs only -lm, and M2C_METHOD_GSL is then invalid input, -1).
  *
  * Contract (all functions)
  *   return  1  a root was found: 0 < *t <= tmax, *t finite, *t set;

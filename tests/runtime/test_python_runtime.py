@@ -55,7 +55,7 @@ def test_graze_flag_and_nograze() -> None:
 def test_python_matches_c_algorithm_on_kahan_discriminant() -> None:
     """Dekker's two-product gives the exact error fma would: the corrected
     discriminant of Kahan's quadratic is exactly h^2 - a c = 1 (scaled)."""
-    from max2code_runtime.roots import quad_roots
+    from max2code_runtime.solver import quad_roots
 
     roots, disc = quad_roots(94906266.375, -2 * 94906267.375, 94906268.375)
     assert roots[0] == 1.0
