@@ -12,6 +12,23 @@ from typing import Any, Sequence
 
 from ._roots_c import ffi, lib  # type: ignore[import-not-found]
 
+
+def _check_fresh() -> None:
+    """In a checkout (the C sources beside this package), a build from other sources is stale:
+    refuse it, so that the caller falls back to the pure-Python port instead."""
+    from pathlib import Path
+
+    from ._source import STAMP, source_digest
+
+    src = Path(__file__).resolve().parent.parent.parent / "c"
+    if (src / "max2code_roots.c").exists():
+        stamp = STAMP.read_text().strip() if STAMP.exists() else ""
+        if stamp != source_digest(src):
+            raise ImportError("max2code_runtime._roots_c is stale: run python -m max2code_runtime.build")
+
+
+_check_fresh()
+
 MAX_COEFFS = 17
 _local = threading.local()
 

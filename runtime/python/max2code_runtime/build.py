@@ -16,6 +16,8 @@ import sys
 import tempfile
 from pathlib import Path
 
+from ._source import STAMP, source_digest
+
 HERE = Path(__file__).resolve().parent
 
 CDEF = """
@@ -57,6 +59,7 @@ def main() -> int:
         tmp_dest = dest.with_suffix(".tmp")
         shutil.copyfile(lib, tmp_dest)
         tmp_dest.replace(dest)
+    STAMP.write_text(source_digest(src) + "\n")
     print(f"max2code_runtime.build: wrote {dest}")
     return 0
 
