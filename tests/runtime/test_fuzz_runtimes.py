@@ -4,13 +4,16 @@ Python, and the C runtime once under -fsanitize=address,undefined.
 For every vector (tests/runtime/fuzz.py: NaN, +-Inf, subnormals, +-1e308, 1e-200/1e200
 mixtures, (t - a)^k, tmax 0 / negative / NaN / inf / tiny) and every method:
 
-* no crash, no sanitizer report, no call over 1 ms of CPU time (C and Rust time each call
-  themselves; a call over the limit is timed again three times and only fails if it stays
-  over: the machine is shared);
+* no crash, no sanitizer report, no call over 1 ms (C, the Rust runtime and Python's C backend
+  time each call; a call over the limit is timed again three times and fails only if it
+  stays over: the machine is shared).  The pure-Python fallback is 100-300 times slower than C
+  by nature; for it the same check is a hang detector at 50 ms;
 * status -1 exactly on invalid input, status 1 only with a finite t in (0, tmax];
-* the same answer from C, Modula-2 (the C runtime through its binding), Rust and Python
-  bit for bit: they run one algorithm (the Rust runtime is a port of the C one, Python calls
-  C through cffi or runs its port of it).
+* the same answer from C, Modula-2 (the C runtime through its binding), Rust and Python (both
+  backends), bit for bit, for the interval methods with and without the graze check and with
+  a contact skin: they run one algorithm (the Rust and pure-Python runtimes are ports of the C
+  one).  The closed-form method ("closed") is each language's own (TOMS 1010 in C and Python,
+  Cardano/Ferrari in Rust): for it only the contract above is checked.
 
 FUZZ_COUNT vectors per run (10^4 by default, as in CI); FUZZ_COUNT=1000000 runs 10^6 in
 batches of FUZZ_BATCH (10^5).  The four C methods, and the default with a contact skin, are
@@ -30,6 +33,8 @@ import pytest
 from conftest import require
 
 from . import cases, fuzz
+from . import test_m2_runtime as m2
+from . import test_rust_runtime as rust
 
 ROOT = Path(__file__).resolve().parents[2]
 C_DIR = ROOT / "runtime" / "c"
@@ -164,3 +169,116 @@ def test_c_under_sanitizers(tmp_path: Path) -> None:
                UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1")
     res = run_timed(exe, lines, env=env)
     assert all(st in (-1, 0, 1) for st, *_ in res)
+
+
+# ---------------------------------------------------------------------------
+# The other runtimes against C
+# ---------------------------------------------------------------------------
+
+CROSS = (0, 1, 4)  # positions in c_lines: interval, interval-nograze, interval with the skin
+
+
+def _same(c_answer: tuple, other: tuple) -> bool:
+    """(status, t, graze) equal, t compared bit for bit (NaN == NaN when there is no root)."""
+    st, t, g = c_answer[:3]
+    ost, ot, og = other[:3]
+    if st != ost:
+        return False
+    return st != 1 or (t == ot and g == og)
+
+
+def test_rust_same_answers_as_c(c_answers) -> None:
+    exe = rust.build_cli(rust.require_cargo())
+    names = ("interval", "nograze", "closed", None, f"skin:{SKIN!r}")
+    bad, slow = [], []
+    for vecs, lines, ans in c_answers:
+        queries = [f"{names[j]} {rust.fmt(t)} {' '.join(rust.fmt(x) for x in c)}".rstrip()
+                   for c, t in vecs for j in (0, 1, 2, 4)]
+        r = subprocess.run([str(exe), "--time"], input="\n".join(queries) + "\n",
+                           capture_output=True, text=True, timeout=900)
+        assert r.returncode == 0 and r.stderr == "", r.stderr[-2000:]
+        out = r.stdout.splitlines()
+        assert len(out) == len(queries)
+        for i, (c, tmax) in enumerate(vecs):
+            for k, j in enumerate((0, 1, 2, 4)):
+                words = out[4 * i + k].split()
+                got = ((1, float(words[1]), words[2] == "1") if words[0] == "root" else
+                       (0, math.nan, False) if words[0] == "noroot" else (-1, math.nan, False))
+                if int(words[-1]) > LIMIT_NS:
+                    slow.append(queries[4 * i + k])
+                why = fuzz.check_answer(c, tmax, got[0], got[1])
+                if why:
+                    bad.append(f"{why}: {queries[4 * i + k]}")
+                elif j in CROSS and not _same(ans[5 * i + j], got):
+                    bad.append(f"C {ans[5 * i + j][:3]} vs Rust {got}: {queries[4 * i + k]}")
+    if slow:  # time again: the machine is shared
+        again = [subprocess.run([str(exe), "--time"], input="\n".join(slow) + "\n",
+                                capture_output=True, text=True, timeout=300).stdout.splitlines()
+                 for _ in range(3)]
+        slow = [q for i, q in enumerate(slow) if min(int(a[i].split()[-1]) for a in again) > LIMIT_NS]
+    assert not bad, f"{len(bad)} failures, first:\n" + "\n".join(bad[:10])
+    assert not slow, f"{len(slow)} calls over 1 ms, first:\n" + "\n".join(slow[:10])
+
+
+@pytest.mark.parametrize("backend", ["c", "python"])
+def test_python_same_answers_as_c(c_answers, backend: str, monkeypatch: pytest.MonkeyPatch) -> None:
+    import time
+
+    import max2code_runtime as rt
+    c_backend = rt._load_c()
+    if backend == "c" and c_backend is None:
+        why = "the cffi backend is not built (python -m max2code_runtime.build)"
+        if os.environ.get("CI"):
+            pytest.fail(why + " -- required in CI")
+        pytest.skip(why)
+    monkeypatch.setattr(rt, "_C", c_backend if backend == "c" else None)
+    limit = LIMIT_NS if backend == "c" else 50 * LIMIT_NS
+    # the pure-Python port is slow: a tenth of the vectors (all of them on demand)
+    share = 1 if backend == "c" or COUNT > 10000 else 10
+    calls = (("interval", 0.0, 0), ("interval-nograze", 0.0, 1), ("closed", 0.0, 3), ("interval", SKIN, 4))
+    bad, slow = [], []
+    clock = time.thread_time_ns
+    for vecs, _, ans in c_answers:
+        for i, (c, tmax) in enumerate(vecs):
+            if i % share:
+                continue
+            for method, eps, j in calls:
+                def call():
+                    return rt.first_root_status(c, tmax, method, eps)
+                a = clock()
+                got = call()
+                if clock() - a > limit and min(_timed(call, clock) for _ in range(3)) > limit:
+                    slow.append(f"{method} eps={eps}: c={c!r}, tmax={tmax!r}")
+                why = fuzz.check_answer(c, tmax, got[0], got[1])
+                if why:
+                    bad.append(f"{why}: {method}, c={c!r}, tmax={tmax!r}")
+                elif j in CROSS and not _same(ans[5 * i + j], got):
+                    bad.append(f"C {ans[5 * i + j][:3]} vs Python {got}: {method}, c={c!r}, tmax={tmax!r}")
+    assert not bad, f"{len(bad)} failures, first:\n" + "\n".join(bad[:10])
+    assert not slow, f"{len(slow)} calls over {limit / 1e6:g} ms, first:\n" + "\n".join(slow[:10])
+
+
+def _timed(call, clock) -> int:
+    a = clock()
+    call()
+    return clock() - a
+
+
+drivers = m2.drivers  # the Modula-2 and C drivers, linked with one object of the C runtime
+
+
+def test_modula2_same_bits_as_c(c_answers, drivers: tuple[Path, Path]) -> None:
+    """The Modula-2 binding on every fuzz vector and method: the C driver's answers, bit for
+    bit (the fuzz batches were run by the C driver above; the M2 driver reads at most 17
+    coefficients, as the C driver does)."""
+    m2_exe = drivers[0]
+    bad = []
+    for vecs, _, ans in c_answers:
+        lines = [m2.m2_line(m, c, t) for c, t in vecs for m in range(4)]
+        got = m2.run_m2(m2_exe, lines)
+        for i, (c, tmax) in enumerate(vecs):
+            for m in range(4):
+                if not _same(ans[5 * i + m], got[4 * i + m]):
+                    bad.append(f"C {ans[5 * i + m][:3]} vs Modula-2 {got[4 * i + m]}: method {m}, "
+                               f"c={c!r}, tmax={tmax!r}")
+    assert not bad, f"{len(bad)} differences, first:\n" + "\n".join(bad[:10])
