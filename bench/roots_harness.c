@@ -4,7 +4,14 @@
  * runtime/c/max2code_roots.c and reads the output).
  *
  * Input (stdin), one polynomial a line:   TMAX DEGREE C0 .. CDEGREE   (hex floats)
- * Argument 1: number of sweeps (default 7).
+ * Argument 1: number of sweeps (default 7).  Argument 2: the methods to run, as
+ * a count from 0 (default 4: all; 1: only INTERVAL, for the runtime comparison).
+ *
+ * The unit of cost: each sweep also times, the same way, one evaluation of a
+ * degree-8 polynomial by Horner's rule (a separate, not inlined function, on
+ * each polynomial's coefficients padded to degree 8, at a point of its
+ * window); its median is printed as "# horner8_ns", so that solve times can
+ * be expressed in evaluations measured in the same run.
  *
  * Each sweep visits every polynomial once, in an order shuffled anew per
  * sweep, and for each calls every method once, in a rotating order; every call
@@ -66,11 +73,22 @@ static unsigned long long xorshift(void)
 
 volatile double sink;
 
+/* One degree-8 Horner evaluation: the unit of cost. */
+__attribute__((noinline)) static double horner8(const double c[9], double x)
+{
+    double acc = c[8];
+    for (int i = 7; i >= 0; i--)
+        acc = acc * x + c[i];
+    return acc;
+}
+
 int main(int argc, char **argv)
 {
     int sweeps = argc > 1 ? atoi(argv[1]) : 7;
     if (sweeps < 1) sweeps = 1;
     if (sweeps > MAXSWEEPS) sweeps = MAXSWEEPS;
+    int nmethods = argc > 2 ? atoi(argv[2]) : NMETHODS;
+    if (nmethods < 1 || nmethods > NMETHODS) nmethods = NMETHODS;
 
     size_t cap = 1024, n = 0;
     Poly *ps = malloc(cap * sizeof *ps);
@@ -109,6 +127,15 @@ int main(int argc, char **argv)
     double *root = malloc(n * NMETHODS * sizeof *root);
     size_t *order = malloc(n * sizeof *order);
     for (size_t i = 0; i < n; i++) order[i] = i;
+    double *hns = malloc(n * (size_t)sweeps * sizeof *hns);
+    double (*c8)[9] = calloc(n, sizeof *c8);
+    double *x8 = malloc(n * sizeof *x8);
+    for (size_t i = 0; i < n; i++) {
+        for (int j = 0; j <= ps[i].degree && j <= 8; j++)
+            c8[i][j] = ps[i].c[j];
+        x8[i] = isfinite(ps[i].tmax) ? 0.5 * ps[i].tmax : 1.0;
+    }
+    size_t nh = 0;
 
     for (int s = 0; s < sweeps; s++) {
         for (size_t i = n; i > 1; i--) { /* Fisher-Yates */
@@ -120,8 +147,15 @@ int main(int argc, char **argv)
         for (size_t k = 0; k < n; k++) {
             size_t i = order[k];
             const Poly *q = &ps[i];
-            for (int mm = 0; mm < NMETHODS; mm++) {
-                int m = (mm + (int)k) % NMETHODS;
+            {
+                double t0 = now_ns();
+                double v = horner8(c8[i], x8[i]);
+                double t1 = now_ns();
+                sink = v;
+                hns[nh++] = t1 - t0 - overhead;
+            }
+            for (int mm = 0; mm < nmethods; mm++) {
+                int m = (mm + (int)k) % nmethods;
                 double t = NAN;
                 int g = 0;
                 double t0 = now_ns();
@@ -136,8 +170,9 @@ int main(int argc, char **argv)
         }
     }
     printf("# overhead_ns %.2f sweeps %d\n", overhead, sweeps);
+    printf("# horner8_ns %.2f\n", median(hns, (int)nh));
     for (size_t i = 0; i < n; i++)
-        for (int m = 0; m < NMETHODS; m++) {
+        for (int m = 0; m < nmethods; m++) {
             size_t k = i * NMETHODS + (size_t)m;
             double med = median(&ns[k * (size_t)sweeps], sweeps);
             printf("%zu %d %d %a %d %.2f\n", i, m, status[k], root[k], graze[k], med);
@@ -147,6 +182,9 @@ int main(int argc, char **argv)
     free(graze);
     free(root);
     free(order);
+    free(hns);
+    free(c8);
+    free(x8);
     free(ps);
     return 0;
 }

@@ -12,6 +12,8 @@
 // comparison is also true for NaN, which the C code relies on).
 #![allow(clippy::needless_range_loop, clippy::neg_cmp_op_on_partial_ord)]
 
+use std::mem::MaybeUninit;
+
 use crate::fp::{ilogb, ldexp};
 
 pub(crate) const MAXN: usize = 16;
@@ -43,9 +45,28 @@ fn pow2(e: i32) -> f64 {
     f64::from_bits(((e + 1023) as u64) << 52)
 }
 
+/// 1/den for the ceiling division below.
+static RECIP: [f64; MAXN + 1] = recip_table();
+
+const fn recip_table() -> [f64; MAXN + 1] {
+    let mut t = [0.0; MAXN + 1];
+    let mut d = 1;
+    while d <= MAXN {
+        t[d] = 1.0 / d as f64;
+        d += 1;
+    }
+    t
+}
+
+/// ceil(num / den) for 0 < den <= 16 and |num| < 2^12, as C computes it: the product with the
+/// rounded reciprocal is within 1 of it and the integer checks fix that (it runs 2n times per
+/// solve, and an integer division is slow).
 #[inline]
 fn ceil_div(num: i32, den: i32) -> i32 {
-    num.div_euclid(den) + i32::from(num.rem_euclid(den) != 0)
+    let mut q = (f64::from(num) * RECIP[den as usize]) as i32; // toward zero
+    q += i32::from(q * den < num);
+    q -= i32::from((q - 1) * den >= num);
+    q
 }
 
 /// Fujiwara bound (C `root_bound`).
@@ -215,15 +236,16 @@ fn scale_exponent(x: f64, m: usize) -> i32 {
 }
 
 fn horner(c: &[f64], n: usize, x: f64, k: i32, precise: bool) -> f64 {
+    let c = &c[..=n];
     let mut acc = c[n];
     if k == 0 {
         if precise {
-            for i in (0..n).rev() {
-                acc = acc.mul_add(x, c[i]);
+            for &ci in c[..n].iter().rev() {
+                acc = acc.mul_add(x, ci);
             }
         } else {
-            for i in (0..n).rev() {
-                acc = acc * x + c[i];
+            for &ci in c[..n].iter().rev() {
+                acc = acc * x + ci;
             }
         }
         return acc;
@@ -251,10 +273,23 @@ fn horner_abs(c: &[f64], n: usize, x: f64, k: i32) -> f64 {
     acc
 }
 
+/// 2 gamma_{2n}, tabulated as in C (a division per call is not free).
+static NOISE: [f64; MAXN + 1] = noise_table();
+
+const fn noise_table() -> [f64; MAXN + 1] {
+    let mut t = [0.0; MAXN + 1];
+    let mut n = 0;
+    while n <= MAXN {
+        let k = n as f64;
+        t[n] = 2.0 * (2.0 * k * U / (1.0 - 2.0 * k * U));
+        n += 1;
+    }
+    t
+}
+
 #[inline]
 pub(crate) fn noise_factor(n: usize) -> f64 {
-    let k = n as f64;
-    2.0 * (2.0 * k * U / (1.0 - 2.0 * k * U))
+    NOISE[n]
 }
 
 fn within_noise(c: &[f64], n: usize, x: f64, skin: f64) -> bool {
@@ -315,20 +350,21 @@ fn split_point(lo: f64, hi: f64) -> f64 {
 
 fn horner_compensated(p: &[f64], m: usize, x: f64) -> f64 {
     const SPLIT: f64 = 134_217_729.0;
+    let p = &p[..=m];
     let tx = SPLIT * x;
     let xh = tx - (tx - x);
     let xl = x - xh;
     let mut s = p[m];
     let mut c = 0.0;
-    for i in (0..m).rev() {
+    for &pi in p[..m].iter().rev() {
         let pr = s * x;
         let ts = SPLIT * s;
         let sh = ts - (ts - s);
         let sl = s - sh;
         let pe = ((sh * xh - pr) + sh * xl + sl * xh) + sl * xl;
-        let sn = pr + p[i];
+        let sn = pr + pi;
         let bb = sn - pr;
-        let se = (pr - (sn - bb)) + (p[i] - bb);
+        let se = (pr - (sn - bb)) + (pi - bb);
         c = c * x + (pe + se);
         s = sn;
     }
@@ -341,16 +377,17 @@ fn value_and_slope(p: &[f64], d: &[f64], m: usize, x: f64, k: i32, precise: bool
         let size = horner_abs(p, m, x, k);
         return (horner(p, m, x, k, precise), slope, size);
     }
+    let (p, d) = (&p[..=m], &d[..m]);
     let mut f = p[m];
     let mut df = d[m - 1];
     let ax = x.abs();
     let mut sz = p[m].abs();
     f = f * x + p[m - 1];
     sz = sz * ax + p[m - 1].abs();
-    for i in (0..m - 1).rev() {
-        df = df * x + d[i];
-        sz = sz * ax + p[i].abs();
-        f = f * x + p[i];
+    for (&pi, &di) in p[..m - 1].iter().zip(&d[..m - 1]).rev() {
+        df = df * x + di;
+        sz = sz * ax + pi.abs();
+        f = f * x + pi;
     }
     (if precise { horner_compensated(p, m, x) } else { f }, df, sz)
 }
@@ -422,19 +459,22 @@ fn sign_changes(v: &[f64], n: usize) -> i32 {
     for &x in &v[..=n] {
         let s = i32::from(x > 0.0) - i32::from(x < 0.0);
         count += i32::from(s * last < 0);
-        if s != 0 {
-            last = s;
-        }
+        last = if s != 0 { s } else { last };
     }
     count
 }
 
+/// The Taylor table of the C runtime.  Only the entries `[k][j]` with `j + k <= n` are written
+/// and only those are read (as in C, where the rest stays uninitialised): zeroing two 17 x 17
+/// tables on every solve would cost more than the solve of a window without a root.
 struct Taylor {
-    tk: [[f64; MAXN + 1]; MAXN + 1],
-    ta: [[f64; MAXN + 1]; MAXN + 1],
+    tk: Table,
+    ta: Table,
     e: f64,
     skin: f64,
 }
+
+type Table = [[MaybeUninit<f64>; MAXN + 1]; MAXN + 1];
 
 #[cfg(test)]
 fn binom(k: usize, j: usize) -> f64 {
@@ -446,54 +486,98 @@ fn binom(k: usize, j: usize) -> f64 {
     r
 }
 
-fn taylor_table(p: &[f64], n: usize, e: f64, skin: f64) -> Taylor {
-    let mut tb = Taylor { tk: [[0.0; MAXN + 1]; MAXN + 1], ta: [[0.0; MAXN + 1]; MAXN + 1], e, skin };
-    for k in 0..=n {
-        for j in 0..=n - k {
-            tb.tk[k][j] = BINOM[k][j] * p[j + k];
-            tb.ta[k][j] = tb.tk[k][j].abs();
+/// Fills `slot` in place and returns it (returning the 4.6 kB table by value would copy it,
+/// and building it as a struct literal makes the compiler zero it, on every solve).
+fn taylor_table<'a>(p: &[f64], n: usize, e: f64, skin: f64, slot: &'a mut MaybeUninit<Taylor>) -> &'a Taylor {
+    let tb = slot.as_mut_ptr();
+    // SAFETY: field writes through the slot's pointer (no drop glue, no reference to
+    // uninitialised memory); afterwards every field is initialised (the tables are arrays of
+    // MaybeUninit), so the reference returned is to a valid Taylor.
+    unsafe {
+        (*tb).e = e;
+        (*tb).skin = skin;
+        for k in 0..=n {
+            for j in 0..=n - k {
+                let v = BINOM[k][j] * p[j + k];
+                (*tb).tk[k][j] = MaybeUninit::new(v);
+                (*tb).ta[k][j] = MaybeUninit::new(v.abs());
+            }
         }
+        slot.assume_init_ref()
     }
-    tb
 }
 
+/// What is known at a point of the window (C's Point).  `qt` and `tol` hold entries 0..=n
+/// only, as in C: writing all 17 of each for every point would cost more than the counts.
 #[derive(Clone, Copy)]
 struct Point {
     x: f64,
     px: f64,
     vp: i32,
     vq: i32,
-    qt: [f64; MAXN + 1],
-    tol: [f64; MAXN + 1],
+    qt: [MaybeUninit<f64>; MAXN + 1],
+    tol: [MaybeUninit<f64>; MAXN + 1],
 }
 
-const EMPTY: Point = Point { x: 0.0, px: 0.0, vp: 0, vq: 0, qt: [0.0; MAXN + 1], tol: [0.0; MAXN + 1] };
+impl Point {
+    const EMPTY: Point = Point {
+        x: 0.0,
+        px: 0.0,
+        vp: 0,
+        vq: 0,
+        qt: [MaybeUninit::uninit(); MAXN + 1],
+        tol: [MaybeUninit::uninit(); MAXN + 1],
+    };
 
+    /// q's Taylor coefficient k (k <= n: written by point_at / point_at_zero).
+    #[inline]
+    fn qt(&self, k: usize) -> f64 {
+        // SAFETY: every Point in use had entries 0..=n written, and k <= n here.
+        unsafe { self.qt[k].assume_init() }
+    }
+
+    #[inline]
+    fn tol(&self, k: usize) -> f64 {
+        // SAFETY: as for qt.
+        unsafe { self.tol[k].assume_init() }
+    }
+}
+
+#[inline]
 fn point_at_zero(p: &[f64], n: usize, e: f64, skin: f64) -> Point {
-    let mut pt = EMPTY;
+    let mut pt = Point::EMPTY;
+    let mut qt = [0.0f64; MAXN + 1];
     pt.px = p[0];
     for i in 0..=n {
-        pt.qt[i] = p[i] - e * p[i].abs();
-        pt.tol[i] = f64::EPSILON * p[i].abs();
+        qt[i] = p[i] - e * p[i].abs();
+        pt.tol[i].write(f64::EPSILON * p[i].abs());
     }
     pt.vp = sign_changes(p, n);
     if skin > 0.0 {
-        pt.qt[0] -= skin;
-        pt.tol[0] += f64::EPSILON * skin;
-        pt.vq = sign_changes(&pt.qt, n);
+        qt[0] -= skin;
+        pt.tol[0].write(pt.tol(0) + f64::EPSILON * skin);
+        pt.vq = sign_changes(&qt, n);
     } else {
         pt.vq = pt.vp;
+    }
+    for i in 0..=n {
+        pt.qt[i].write(qt[i]);
     }
     pt
 }
 
-fn point_at(tb: &Taylor, n: usize, x: f64, pt: &mut Point) -> bool {
+/// Writes the point x into `slot` (all of x, px, vp, vq and entries 0..=n of qt and tol) and
+/// returns true, or returns false (slot not to be used) when a sign is not certain.
+fn point_at(tb: &Taylor, n: usize, x: f64, slot: &mut MaybeUninit<Point>) -> bool {
+    let pt = slot.as_mut_ptr();
     let mut a = [0.0f64; MAXN + 1];
     let mut s = [0.0f64; MAXN + 1];
     for d in (0..=n).rev() {
         for k in 0..=n - d {
-            a[k] = a[k] * x + tb.tk[k][d];
-            s[k] = s[k] * x + tb.ta[k][d];
+            // SAFETY: k + d <= n, an entry taylor_table wrote.
+            let (t, u) = unsafe { (tb.tk[k][d].assume_init(), tb.ta[k][d].assume_init()) };
+            a[k] = a[k] * x + t;
+            s[k] = s[k] * x + u;
         }
     }
     let rel = 8.0 * (n + 1) as f64 * U;
@@ -508,25 +592,32 @@ fn point_at(tb: &Taylor, n: usize, x: f64, pt: &mut Point) -> bool {
         if !(a[k].abs() > tol && b.abs() > tol) {
             return false;
         }
-        pt.qt[k] = b;
-        pt.tol[k] = tol;
+        // SAFETY: field writes through the slot's pointer (no reference to uninitialised
+        // memory is made; the fields have no drop glue).
+        unsafe {
+            (*pt).qt[k] = MaybeUninit::new(b);
+            (*pt).tol[k] = MaybeUninit::new(tol);
+        }
         s[k] = b;
     }
-    pt.x = x;
-    pt.px = a[0];
-    pt.vp = sign_changes(&a, n);
-    pt.vq = sign_changes(&s, n);
+    // SAFETY: as above.
+    unsafe {
+        (*pt).x = x;
+        (*pt).px = a[0];
+        (*pt).vp = sign_changes(&a, n);
+        (*pt).vq = sign_changes(&s, n);
+    }
     true
 }
 
 fn clearly_positive(pt: &Point, n: usize, w: f64, dir: i32) -> bool {
     let mut neg = 0.0;
     for k in (1..=n).rev() {
-        let lk = (if dir < 0 && k % 2 == 1 { -pt.qt[k] } else { pt.qt[k] }) - pt.tol[k];
+        let lk = (if dir < 0 && k % 2 == 1 { -pt.qt(k) } else { pt.qt(k) }) - pt.tol(k);
         neg = neg * w + if lk < 0.0 { -lk } else { 0.0 };
     }
     neg *= w;
-    pt.qt[0] - pt.tol[0] > neg + 4.0 * (n + 1) as f64 * U * neg
+    pt.qt(0) - pt.tol(0) > neg + 4.0 * (n + 1) as f64 * U * neg
 }
 
 fn isolation_split(a: f64, b: f64) -> f64 {
@@ -549,26 +640,31 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64) -> Isolation {
     let e = if skin >= 0.0 { noise_factor(n) } else { 0.0 };
     let sk = if skin > 0.0 { skin } else { 0.0 };
     let mut a = point_at_zero(p, n, e, sk);
-    if !(a.qt[0] - a.tol[0] > 0.0) {
+    if !(a.qt(0) - a.tol(0) > 0.0) {
         return Isolation::Unresolved(0.0);
     }
     if a.vq == 0 || clearly_positive(&a, n, t_end, 1) {
         return Isolation::Cleared;
     }
-    let tb = taylor_table(p, n, e, sk);
-    let mut stack = [EMPTY; MAX_SPLITS + 1];
+    let mut slot = MaybeUninit::<Taylor>::uninit();
+    let tb = taylor_table(p, n, e, sk, &mut slot);
+    // The right ends, as in C an uninitialised array of which stack[..top] is in use (zeroing
+    // 41 points would cost more than most solves); point_at writes a slot in place.
+    let mut stack: [MaybeUninit<Point>; MAX_SPLITS + 1] = [const { MaybeUninit::uninit() }; MAX_SPLITS + 1];
     let mut top = 0usize;
     let mut splits = 0usize;
-    if !point_at(&tb, n, t_end, &mut stack[top]) {
+    if !point_at(tb, n, t_end, &mut stack[top]) {
         return Isolation::Unresolved(0.0);
     }
     top += 1;
     loop {
-        let b = stack[top - 1];
+        // SAFETY: stack[..top] was written by point_at (every field: x, px, vp, vq; the arrays
+        // are MaybeUninit, their entries 0..=n written).
+        let b = unsafe { stack[top - 1].assume_init_ref() };
         let w = b.x - a.x;
         let odd = (a.vp - b.vp) % 2 != 0;
-        if a.vq == b.vq || (!odd && (clearly_positive(&a, n, w, 1) || clearly_positive(&b, n, w, -1))) {
-            a = b;
+        if a.vq == b.vq || (!odd && (clearly_positive(&a, n, w, 1) || clearly_positive(b, n, w, -1))) {
+            a = *b;
             top -= 1;
             if top == 0 {
                 return Isolation::Cleared;
@@ -586,19 +682,22 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64) -> Isolation {
             }
             return Isolation::Isolated(refine_root(p, &dp, n, a.x, b.x, 1, 0.0, x0), false);
         }
-        let m = isolation_split(a.x, b.x);
-        if splits < MAX_SPLITS && w > MIN_WIDTH * b.x && m > a.x && m < b.x && point_at(&tb, n, m, &mut stack[top]) {
+        let bx = b.x;
+        let m = isolation_split(a.x, bx);
+        if splits < MAX_SPLITS && w > MIN_WIDTH * bx && m > a.x && m < bx && point_at(tb, n, m, &mut stack[top]) {
             splits += 1;
             top += 1;
             continue;
         }
+        // SAFETY: as above.
+        let b = unsafe { stack[top - 1].assume_init_ref() };
         if let Some(hit) = derivative_method(p, n, a.x, b.x, skin) {
             return Isolation::Isolated(hit.0, hit.1);
         }
-        if !(b.qt[0] - b.tol[0] > 0.0) {
+        if !(b.qt(0) - b.tol(0) > 0.0) {
             return Isolation::Unresolved(b.x);
         }
-        a = b;
+        a = *b;
         top -= 1;
         if top == 0 {
             return Isolation::Cleared;
@@ -756,5 +855,17 @@ mod check {
             }
         }
         assert_eq!(super::BINOM[8][8], 12870.0);
+    }
+}
+
+#[cfg(test)]
+mod ceil {
+    #[test]
+    fn ceil_div_is_the_ceiling() {
+        for den in 1..=16 {
+            for num in -4100..4100 {
+                assert_eq!(super::ceil_div(num, den), num.div_euclid(den) + i32::from(num.rem_euclid(den) != 0));
+            }
+        }
     }
 }
