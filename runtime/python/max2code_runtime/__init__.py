@@ -129,7 +129,10 @@ def _solve_python(cc: list[float], tmax: float, method: str, eps: float) -> tupl
 
 
 def _floats(c: Sequence[float], tmax: float, eps: float) -> tuple[list[float], float, float] | None:
+    """Numbers as floats, None for anything else (strings too: C's cffi call refuses them)."""
     try:
+        if any(isinstance(x, (str, bytes)) for x in (*c, tmax, eps)):
+            return None
         return [float(x) for x in c], float(tmax), float(eps)
     except (TypeError, ValueError):
         return None
@@ -142,6 +145,8 @@ def first_root_status(c: Sequence[float], tmax: float = math.inf, method: str = 
     coefficient, no or more than 17 coefficients, tmax NaN or <= 0, eps NaN, negative or
     infinite, unknown method); t is nan unless status is 1; graze says the root is a touch
     (double root without sign change, or a near-miss within the contact skin eps)."""
+    if _C is not None and method == "interval" and eps == 0.0:
+        return _C.solve_default(c, tmax)  # the common call, validated by C
     got = _floats(c, tmax, eps)
     if got is None or method not in METHODS:
         return -1, math.nan, False

@@ -55,6 +55,25 @@ def solve(cc: list[float], tmax: float, method: int, eps: float) -> tuple[int, f
     return st, math.nan, False
 
 
+def solve_default(c: Any, tmax: float) -> tuple[int, float, bool]:
+    """The default method on unvalidated input, the common call: the C runtime validates
+    (NaN/Inf, tmax, degree); only what cffi cannot pass is checked here.  -1 for input that
+    is not a sequence of 1 to 17 numbers."""
+    bufs = _buffers()
+    cb, t, g = bufs
+    try:
+        n = len(c)
+        if not 0 < n <= MAX_COEFFS:
+            return -1, math.nan, False
+        cb[0:n] = c
+        st = lib.m2c_first_root_ex(cb, n - 1, tmax, t, 0, g)
+    except (TypeError, ValueError, OverflowError):
+        return -1, math.nan, False
+    if st == 1:
+        return 1, t[0], bool(g[0])
+    return st, math.nan, False
+
+
 def solve_batch(rows: list[list[float]], tmax: float, eps: float) -> list[float]:
     """m2c_first_roots on M rows of one length: the roots, NaN for none or invalid."""
     m, w = len(rows), len(rows[0])
