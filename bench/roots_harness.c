@@ -13,6 +13,11 @@
  * window); its median is printed as "# horner8_ns", so that solve times can
  * be expressed in evaluations measured in the same run.
  *
+ * Built with -DM2C_COUNT (against the runtime built so too) and run with the
+ * argument "count", it solves each polynomial once by INTERVAL and prints the
+ * runtime's cost accounting instead: "INDEX" then the ten counters of
+ * m2c_count (multiply-adds by phase, Newton steps, Taylor points, ...).
+ *
  * Each sweep visits every polynomial once, in an order shuffled anew per
  * sweep, and for each calls every method once, in a rotating order; every call
  * is timed on its own with clock_gettime(CLOCK_MONOTONIC) (TSC clock source
@@ -82,9 +87,14 @@ __attribute__((noinline)) static double horner8(const double c[9], double x)
     return acc;
 }
 
+#ifdef M2C_COUNT
+extern double m2c_count[10];
+#endif
+
 int main(int argc, char **argv)
 {
-    int sweeps = argc > 1 ? atoi(argv[1]) : 7;
+    int counting = argc > 1 && strcmp(argv[1], "count") == 0;
+    int sweeps = argc > 1 && !counting ? atoi(argv[1]) : 7;
     if (sweeps < 1) sweeps = 1;
     if (sweeps > MAXSWEEPS) sweeps = MAXSWEEPS;
     int nmethods = argc > 2 ? atoi(argv[2]) : NMETHODS;
@@ -112,6 +122,23 @@ int main(int argc, char **argv)
         ps[n++] = q;
     }
 
+#ifdef M2C_COUNT
+    if (counting) {
+        for (size_t i = 0; i < n; i++) {
+            double t;
+            memset(m2c_count, 0, sizeof m2c_count);
+            m2c_first_root_ex(ps[i].c, ps[i].degree, ps[i].tmax, &t, 0, NULL);
+            printf("%zu", i);
+            for (int k = 0; k < 10; k++)
+                printf(" %.0f", m2c_count[k]);
+            printf("\n");
+        }
+        free(ps);
+        return 0;
+    }
+#else
+    (void)counting;
+#endif
     /* cost of an empty timed region */
     double empty[4001];
     for (int i = 0; i < 4001; i++) {

@@ -18,6 +18,23 @@
 #endif
 
 #define MAXN M2C_MAX_DEGREE
+
+/* Cost accounting for the benchmark (bench/roots.py --counts), compiled in only with
+ * -DM2C_COUNT: multiply-adds by phase (0 preparation, 1 Budan-Fourier counts and exclusion
+ * tests, 2 Newton polishing of an isolated root, 3 the derivative method), Newton steps
+ * plain/compensated, Taylor points, derivative-method calls.  Not thread-safe; never in a
+ * normal build. */
+#ifdef M2C_COUNT
+double m2c_count[10];
+static int count_phase;
+#define COUNT_MADDS(k) (m2c_count[count_phase] += (k))
+#define COUNT(i) (m2c_count[i] += 1)
+#define PHASE(p) (count_phase = (p))
+#else
+#define COUNT_MADDS(k) ((void)0)
+#define COUNT(i) ((void)0)
+#define PHASE(p) ((void)0)
+#endif
 #define UNIT_ROUNDOFF (DBL_EPSILON / 2)
 #define PI_D 3.14159265358979323846
 
@@ -280,6 +297,7 @@ static int scale_exponent(double x, int m)
  * and beyond) evaluate without overflow. */
 static double horner(const double c[], int n, double x, int k, int precise)
 {
+    COUNT_MADDS(n);
     double acc = c[n];
     if (k == 0) {
         if (precise)
@@ -301,6 +319,7 @@ static double horner(const double c[], int n, double x, int k, int precise)
 /* sum |c_i| |x|^i / 2^(k n): the scale of the Horner rounding error. */
 static double horner_abs(const double c[], int n, double x, int k)
 {
+    COUNT_MADDS(n);
     double ax = fabs(x), acc = fabs(c[n]);
     double xs = k ? ldexp(ax, -k) : ax, f = ldexp(1.0, -k), fi = 1.0;
     for (int i = n - 1; i >= 0; i--) {
@@ -449,6 +468,7 @@ static double split_point(double lo, double hi)
  * partial sums far below 2^996 (the splitting): true for |x| <= FAST_LIMIT. */
 static double horner_compensated(const double P[], int m, double x)
 {
+    COUNT_MADDS(10 * m); /* about 21 flops a step */
 #ifndef FP_FAST_FMA
     const double split = 134217729.0; /* 2^27 + 1 */
     double tx = split * x, xh = tx - (tx - x), xl = x - xh;
@@ -483,6 +503,7 @@ static double value_and_slope(const double P[], const double D[], int m,
         *size = horner_abs(P, m, x, k);
         return horner(P, m, x, k, precise);
     }
+    COUNT_MADDS(3 * m - 1);
     double f = P[m], df = D[m - 1], ax = fabs(x), sz = fabs(P[m]);
     f = f * x + P[m - 1];
     sz = sz * ax + fabs(P[m - 1]);
@@ -517,6 +538,7 @@ static double refine_root(const double P[], const double D[], int m,
     int precise = 0;
     double stop = tol > 0 ? tol : PRECISE_FROM;
     for (int it = 0; it < MAX_ITER; it++) {
+        COUNT(precise ? 5 : 4);
         int k = scale_exponent(x, m);
         double df, size, f = value_and_slope(P, D, m, x, k, precise, &df, &size);
         if (tol == 0 && !precise && fabs(f) <= noise_factor(m) * size) {
@@ -706,6 +728,8 @@ static void point_at_zero(const double p[], int n, double e, double skin,
  * when a sign is not certain: the counts would not be trustworthy. */
 static int point_at(const Taylor *tb, int n, double x, Point *pt)
 {
+    COUNT(6);
+    COUNT_MADDS((n + 1) * (n + 2)); /* two triangles of n(n+1)/2 + (n+1) */
     double a[MAXN + 1] = {0}, s[MAXN + 1] = {0};
     for (int d = n; d >= 0; d--) {
         for (int k = 0; k <= n - d; k++) {
@@ -745,6 +769,7 @@ static int point_at(const Taylor *tb, int n, double x, Point *pt)
  * a derivative vanishes and two sign changes are lost, root or not. */
 static int clearly_positive(const Point *pt, int n, double w, int dir)
 {
+    COUNT_MADDS(n);
     double neg = 0;
     for (int k = n; k >= 1; k--) {
         double lk = (dir < 0 && k % 2 ? -pt->qt[k] : pt->qt[k]) - pt->tol[k];
@@ -779,6 +804,7 @@ static int derivative_method(const double c[], int n, double lo, double T,
 static int isolate_first_root(const double p[], int n, double skin,
                               double T, double *t, int *graze, double *a_out)
 {
+    PHASE(1);
     double e = skin >= 0 ? noise_factor(n) : 0;
     double sk = skin > 0 ? skin : 0;
     Point a, stack[MAX_SPLITS + 1]; /* a: left end; stack: right ends */
@@ -814,6 +840,7 @@ static int isolate_first_root(const double p[], int n, double skin,
             double x0 = a.x + w * (a.px / (a.px - b->px));
             if (!(x0 > a.x && x0 < b->x))
                 x0 = split_point(a.x, b->x);
+            PHASE(2);
             *t = refine_root(p, dp, n, a.x, b->x, 1, 0, x0);
             *graze = 0;
             return ISOLATED;
@@ -828,7 +855,9 @@ static int isolate_first_root(const double p[], int n, double skin,
         /* The counts do not resolve (a, b] (a double root, a tight cluster)
          * or cannot be trusted at m: the derivative method, on (a, b] only
          * (small: few critical points). */
-        if (derivative_method(p, n, a.x, b->x, skin, t, graze))
+        int hit = derivative_method(p, n, a.x, b->x, skin, t, graze);
+        PHASE(1);
+        if (hit)
             return ISOLATED;
         if (!(b->qt[0] - b->tol[0] > 0)) {
             /* p has no root in (a, b], so p(b) > 0, but q(b) is not: the
@@ -912,6 +941,8 @@ static int critical_points(double d[MAXN + 1][MAXN + 1], int n, double lo,
 static int derivative_method(const double c[], int n, double lo, double T,
                              double skin, double *t, int *graze)
 {
+    PHASE(3);
+    COUNT(7);
     double d[MAXN + 1][MAXN + 1], crit[MAXN];
     derivative_chain(c, n, d);
     int nc = critical_points(d, n, lo, T, crit);
@@ -1445,6 +1476,8 @@ static int solve(const double c_in[], int degree, double tmax, int method,
     double c[MAXN + 1];
     for (int i = 0; i <= degree; i++)
         c[i] = c_in[i];
+    PHASE(0);
+    COUNT(8);
     int n = reduce(c, degree, tmax);
     if (n <= 0)
         return 0;
