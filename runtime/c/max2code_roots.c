@@ -766,17 +766,44 @@ static int point_at(const Taylor *tb, int n, double x, Point *pt)
  * q >= L_0 - sum_{L_k < 0} |L_k| w^k there.  (The computed sum is within
  * (1 + gamma_{2n}) of the exact one.)  Clears small intervals that Budan-
  * Fourier cannot: V(a) - V(b) stays 2 on any interval around a point where
- * a derivative vanishes and two sign changes are lost, root or not. */
+ * a derivative vanishes and two sign changes are lost, root or not.
+ * Failing that, to second order: for 0 <= h <= w,
+ *     q >= L_0 + L_1 h + (L_2 - sum_{k>=3, L_k < 0} |L_k| w^(k-2)) h^2,
+ * and when that quadratic's h^2 coefficient is positive its minimum over
+ * [0, w] is closed-form.  Near a complex pair u +- iv close to the axis q
+ * behaves like A ((x - u)^2 + v^2): the first-order test needs intervals of
+ * width about v^2 / |u - x|, this one clears the pair's whole neighbourhood
+ * in one step (bisections near such pairs were most of the cost of "no root,
+ * complex roots near the window"). */
 static int clearly_positive(const Point *pt, int n, double w, int dir)
 {
     COUNT_MADDS(n);
-    double neg = 0;
-    for (int k = n; k >= 1; k--) {
+    double rel = 4.0 * (n + 1) * UNIT_ROUNDOFF;
+    double r3 = 0; /* sum_{k>=3} max(0, -L_k) w^(k-3) */
+    for (int k = n; k >= 3; k--) {
         double lk = (dir < 0 && k % 2 ? -pt->qt[k] : pt->qt[k]) - pt->tol[k];
-        neg = neg * w + (lk < 0 ? -lk : 0);
+        r3 = r3 * w + (lk < 0 ? -lk : 0);
     }
+    double lk[3];
+    for (int k = 0; k <= 2 && k <= n; k++)
+        lk[k] = (dir < 0 && k % 2 ? -pt->qt[k] : pt->qt[k]) - pt->tol[k];
+    double neg = r3;
+    for (int k = n < 2 ? n : 2; k >= 1; k--)
+        neg = neg * w + (lk[k] < 0 ? -lk[k] : 0);
     neg *= w;
-    return pt->qt[0] - pt->tol[0] > neg + 4.0 * (n + 1) * UNIT_ROUNDOFF * neg;
+    double L0 = lk[0];
+    if (L0 > neg + rel * neg)
+        return 1;
+    if (n < 2)
+        return 0;
+    double L1 = lk[1], L2 = lk[2] - r3 * w * (1 + rel);
+    if (!(L2 > 0))
+        return 0;
+    double h = -L1 / (2 * L2); /* where L0 + L1 h + L2 h^2 is least */
+    h = h < 0 ? 0 : (h > w ? w : h);
+    double m = L0 + h * (L1 + h * L2);
+    double size = fabs(L0) + h * (fabs(L1) + h * L2);
+    return m > 2 * rel * size;
 }
 
 /* A point of (a, b) to split at: the midpoint, geometric when the interval

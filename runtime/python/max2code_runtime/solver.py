@@ -420,12 +420,36 @@ def _point_at(tk: list[list[float]], ta: list[list[float]], e: float, skin: floa
 
 
 def _clearly_positive(pt: _Point, n: int, w: float, direction: int) -> bool:
-    neg = 0.0
-    for k in range(n, 0, -1):
-        lk = (-pt.qt[k] if direction < 0 and k % 2 else pt.qt[k]) - pt.tol[k]
-        neg = neg * w + (-lk if lk < 0 else 0.0)
+    """The C runtime's first-order exclusion test, then its second-order one."""
+    rel = 4.0 * (n + 1) * U
+    qt, tol = pt.qt, pt.tol
+
+    def low(k: int) -> float:
+        return (-qt[k] if direction < 0 and k % 2 else qt[k]) - tol[k]
+
+    r3 = 0.0
+    for k in range(n, 2, -1):
+        lk = low(k)
+        r3 = r3 * w + (-lk if lk < 0 else 0.0)
+    lks = [low(k) for k in range(min(n, 2) + 1)]
+    neg = r3
+    for k in range(min(n, 2), 0, -1):
+        neg = neg * w + (-lks[k] if lks[k] < 0 else 0.0)
     neg *= w
-    return pt.qt[0] - pt.tol[0] > neg + 4.0 * (n + 1) * U * neg
+    L0 = lks[0]
+    if L0 > neg + rel * neg:
+        return True
+    if n < 2:
+        return False
+    L1 = lks[1]
+    L2 = lks[2] - r3 * w * (1 + rel)
+    if not L2 > 0:
+        return False
+    h = _div(-L1, 2 * L2)
+    h = 0.0 if h < 0 else (w if h > w else h)
+    m = L0 + h * (L1 + h * L2)
+    size = abs(L0) + h * (abs(L1) + h * L2)
+    return m > 2 * rel * size
 
 
 def _isolation_split(a: float, b: float) -> float:

@@ -610,14 +610,42 @@ fn point_at(tb: &Taylor, n: usize, x: f64, slot: &mut MaybeUninit<Point>) -> boo
     true
 }
 
+/// C's clearly_positive: the first-order exclusion test, then the second-order one (see the
+/// C source).
 fn clearly_positive(pt: &Point, n: usize, w: f64, dir: i32) -> bool {
-    let mut neg = 0.0;
-    for k in (1..=n).rev() {
-        let lk = (if dir < 0 && k % 2 == 1 { -pt.qt(k) } else { pt.qt(k) }) - pt.tol(k);
-        neg = neg * w + if lk < 0.0 { -lk } else { 0.0 };
+    let rel = 4.0 * (n + 1) as f64 * U;
+    let l = |k: usize| (if dir < 0 && k % 2 == 1 { -pt.qt(k) } else { pt.qt(k) }) - pt.tol(k);
+    let mut r3 = 0.0;
+    for k in (3..=n).rev() {
+        let lk = l(k);
+        r3 = r3 * w + if lk < 0.0 { -lk } else { 0.0 };
+    }
+    let mut lk = [0.0f64; 3];
+    for (k, v) in lk.iter_mut().enumerate().take(n.min(2) + 1) {
+        *v = l(k);
+    }
+    let mut neg = r3;
+    for k in (1..=n.min(2)).rev() {
+        neg = neg * w + if lk[k] < 0.0 { -lk[k] } else { 0.0 };
     }
     neg *= w;
-    pt.qt(0) - pt.tol(0) > neg + 4.0 * (n + 1) as f64 * U * neg
+    let l0 = lk[0];
+    if l0 > neg + rel * neg {
+        return true;
+    }
+    if n < 2 {
+        return false;
+    }
+    let l1 = lk[1];
+    let l2 = lk[2] - r3 * w * (1.0 + rel);
+    if !(l2 > 0.0) {
+        return false;
+    }
+    let mut h = -l1 / (2.0 * l2);
+    h = if h < 0.0 { 0.0 } else if h > w { w } else { h };
+    let m = l0 + h * (l1 + h * l2);
+    let size = l0.abs() + h * (l1.abs() + h * l2);
+    m > 2.0 * rel * size
 }
 
 fn isolation_split(a: f64, b: f64) -> f64 {
