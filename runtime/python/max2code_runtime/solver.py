@@ -32,6 +32,7 @@ TOL_LEVEL = 2.0**-28
 PRECISE_FROM = 2.0**-26
 NOISE_STEP = 32 * U
 MAX_SPLITS = 40
+SPLIT_NEWTON = 2.0
 MIN_WIDTH = 2.0**-20
 MAX_SPREAD = 1021
 INF = math.inf
@@ -375,10 +376,11 @@ BINOM = [[float(math.comb(j + k, k)) if j + k <= MAXN else 0.0 for j in range(MA
 
 
 class _Point:
-    __slots__ = ("x", "px", "vp", "vq", "qt", "tol")
+    __slots__ = ("x", "px", "dpx", "vp", "vq", "qt", "tol")
 
-    def __init__(self, x: float, px: float, vp: int, vq: int, qt: list[float], tol: list[float]):
-        self.x, self.px, self.vp, self.vq, self.qt, self.tol = x, px, vp, vq, qt, tol
+    def __init__(self, x: float, px: float, dpx: float, vp: int, vq: int, qt: list[float],
+                 tol: list[float]):
+        self.x, self.px, self.dpx, self.vp, self.vq, self.qt, self.tol = x, px, dpx, vp, vq, qt, tol
 
 
 def _point_at_zero(p: Sequence[float], n: int, e: float, skin: float) -> _Point:
@@ -391,7 +393,7 @@ def _point_at_zero(p: Sequence[float], n: int, e: float, skin: float) -> _Point:
         vq = _sign_changes(qt, n)
     else:
         vq = vp
-    return _Point(0.0, p[0], vp, vq, qt, tol)
+    return _Point(0.0, p[0], p[1], vp, vq, qt, tol)
 
 
 def _point_at(tk: list[list[float]], ta: list[list[float]], e: float, skin: float, n: int,
@@ -416,7 +418,7 @@ def _point_at(tk: list[list[float]], ta: list[list[float]], e: float, skin: floa
         qt[k] = b
         tols[k] = tol
         s[k] = b
-    return _Point(x, a[0], _sign_changes(a, n), _sign_changes(s, n), qt, tols)
+    return _Point(x, a[0], a[1], _sign_changes(a, n), _sign_changes(s, n), qt, tols)
 
 
 def _clearly_positive(pt: _Point, n: int, w: float, direction: int) -> bool:
@@ -495,6 +497,9 @@ def _isolate_first_root(p: Sequence[float], n: int, skin: float, T: float):
                 x0 = _split_point(a.x, b.x)
             return _refine_root(p, dp, n, a.x, b.x, 1, 0.0, x0), False
         m = _isolation_split(a.x, b.x)
+        mt = a.x + SPLIT_NEWTON * _div(-a.px, a.dpx)
+        if a.dpx < 0 and a.x < mt < b.x and mt - a.x > MIN_WIDTH * b.x:
+            m = mt
         if splits < MAX_SPLITS and w > MIN_WIDTH * b.x and a.x < m < b.x:
             pt = _point_at(tk, ta, e, sk, n, m)
             if pt is not None:

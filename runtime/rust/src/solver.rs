@@ -28,6 +28,7 @@ const TOL_LEVEL: f64 = 3.725_290_298_461_914e-9; // 2^-28
 const PRECISE_FROM: f64 = 1.490_116_119_384_765_6e-8; // 2^-26
 const NOISE_STEP: f64 = 32.0 * U;
 const MAX_SPLITS: usize = 40;
+const SPLIT_NEWTON: f64 = 2.0;
 const MIN_WIDTH: f64 = 9.536_743_164_062_5e-7; // 2^-20
 const MAX_SPREAD: i32 = 1021;
 
@@ -513,6 +514,7 @@ fn taylor_table<'a>(p: &[f64], n: usize, e: f64, skin: f64, slot: &'a mut MaybeU
 struct Point {
     x: f64,
     px: f64,
+    dpx: f64,
     vp: i32,
     vq: i32,
     qt: [MaybeUninit<f64>; MAXN + 1],
@@ -523,6 +525,7 @@ impl Point {
     const EMPTY: Point = Point {
         x: 0.0,
         px: 0.0,
+        dpx: 0.0,
         vp: 0,
         vq: 0,
         qt: [MaybeUninit::uninit(); MAXN + 1],
@@ -548,6 +551,7 @@ fn point_at_zero(p: &[f64], n: usize, e: f64, skin: f64) -> Point {
     let mut pt = Point::EMPTY;
     let mut qt = [0.0f64; MAXN + 1];
     pt.px = p[0];
+    pt.dpx = p[1];
     for i in 0..=n {
         qt[i] = p[i] - e * p[i].abs();
         pt.tol[i].write(f64::EPSILON * p[i].abs());
@@ -604,6 +608,7 @@ fn point_at(tb: &Taylor, n: usize, x: f64, slot: &mut MaybeUninit<Point>) -> boo
     unsafe {
         (*pt).x = x;
         (*pt).px = a[0];
+        (*pt).dpx = a[1];
         (*pt).vp = sign_changes(&a, n);
         (*pt).vq = sign_changes(&s, n);
     }
@@ -711,7 +716,11 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64) -> Isolation {
             return Isolation::Isolated(refine_root(p, &dp, n, a.x, b.x, 1, 0.0, x0), false);
         }
         let bx = b.x;
-        let m = isolation_split(a.x, bx);
+        let mut m = isolation_split(a.x, bx);
+        let mt = a.x + SPLIT_NEWTON * (-a.px / a.dpx);
+        if a.dpx < 0.0 && mt > a.x && mt < bx && mt - a.x > MIN_WIDTH * bx {
+            m = mt;
+        }
         if splits < MAX_SPLITS && w > MIN_WIDTH * bx && m > a.x && m < bx && point_at(tb, n, m, &mut stack[top]) {
             splits += 1;
             top += 1;
