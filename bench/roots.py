@@ -344,9 +344,10 @@ def numpy_first_root(np, c: tuple[float, ...], tmax: float) -> tuple[int, float]
     return (1, best) if best < math.inf else (0, math.nan)
 
 
-def run_numpy(polys: list[tuple[str, tuple[float, ...], float]], sweeps: int) -> dict:
-    import numpy as np
-    out = {}
+def time_calls(polys: list, sweeps: int, solve, seed: int) -> dict[int, tuple[int, float, float]]:
+    """In-process timing, as the harnesses do it: every call on its own (perf_counter_ns, the
+    median empty region subtracted), polynomials in an order shuffled anew per sweep;
+    {index: (status, t, median ns)} with solve(c, tmax) -> (status, t)."""
     clock = time.perf_counter_ns
     empty = []
     for _ in range(2001):
@@ -354,17 +355,23 @@ def run_numpy(polys: list[tuple[str, tuple[float, ...], float]], sweeps: int) ->
         empty.append(clock() - a)
     overhead = sorted(empty)[1000]
     samples: dict[int, list[float]] = {i: [] for i in range(len(polys))}
+    answers = {}
     order = list(range(len(polys)))
-    rng = random.Random(5)
+    rng = random.Random(seed)
     for _ in range(sweeps):
         rng.shuffle(order)
         for i in order:
             _, c, tmax = polys[i]
             a = clock()
-            st, t = numpy_first_root(np, c, tmax)
+            answers[i] = solve(c, tmax)
             samples[i].append(clock() - a - overhead)
-            out[i] = (st, t, False)
-    return {(i, "numpy"): (*out[i], sorted(s)[len(s) // 2]) for i, s in samples.items()}
+    return {i: (*answers[i], sorted(v)[len(v) // 2]) for i, v in samples.items()}
+
+
+def run_numpy(polys: list[tuple[str, tuple[float, ...], float]], sweeps: int) -> dict:
+    import numpy as np
+    got = time_calls(polys, sweeps, lambda c, tmax: numpy_first_root(np, c, tmax), 5)
+    return {(i, "numpy"): (st, t, False, ns) for i, (st, t, ns) in got.items()}
 
 
 # ---------------------------------------------------------------------------
@@ -665,32 +672,14 @@ def run_rust(exe: Path, polys: list, sweeps: int) -> dict[int, tuple[int, float,
 
 
 def run_python(polys: list, sweeps: int, backend) -> dict[int, tuple[int, float, float]]:
-    """Per call, timed as the harnesses do (perf_counter_ns, empty region subtracted), through
-    the public first_root_status with the given backend (None: pure Python)."""
+    """Per call, through the public first_root_status with the given backend (None: pure
+    Python)."""
     sys.path.insert(0, str(ROOT / "runtime" / "python"))
     import max2code_runtime as rt
     saved = rt._C
     rt._C = backend
     try:
-        clock = time.perf_counter_ns
-        empty = []
-        for _ in range(2001):
-            a = clock()
-            empty.append(clock() - a)
-        overhead = sorted(empty)[1000]
-        samples: dict[int, list[float]] = {i: [] for i in range(len(polys))}
-        answers = {}
-        order = list(range(len(polys)))
-        rng = random.Random(7)
-        for _ in range(sweeps):
-            rng.shuffle(order)
-            for i in order:
-                _, c, tmax = polys[i]
-                a = clock()
-                st, t, _ = rt.first_root_status(c, tmax)
-                samples[i].append(clock() - a - overhead)
-                answers[i] = (st, t)
-        return {i: (*answers[i], sorted(v)[len(v) // 2]) for i, v in samples.items()}
+        return time_calls(polys, sweeps, lambda c, tmax: rt.first_root_status(c, tmax)[:2], 7)
     finally:
         rt._C = saved
 

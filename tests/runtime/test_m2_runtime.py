@@ -37,6 +37,26 @@ SENTINEL = 0x7FF8DEADBEEF0001  # t before each call (a NaN); graze starts as 7
 
 Result = tuple[int, float, bool]
 
+# The real's IEEE bit pattern as 16 hex digits (both Modula-2 programs below print with it).
+PUT_REAL = """\
+PROCEDURE PutReal (x: REAL) ;
+VAR
+   b: Bits ;
+   k: INTEGER ;
+   d: CARDINAL ;
+   s: ARRAY [0..16] OF CHAR ;
+BEGIN
+   b := CAST(Bits, x) ;
+   FOR k := 15 TO 0 BY -1 DO
+      d := VAL(CARDINAL, b MOD 16) ;
+      IF d < 10 THEN s[k] := CHR(ORD('0') + d) ELSE s[k] := CHR(ORD('a') + d - 10) END ;
+      b := b DIV 16
+   END ;
+   s[16] := 0C ;
+   WriteString(s)
+END PutReal ;
+"""
+
 M2_DRIVER = """\
 MODULE RootsDriver ;
 (* Line driver for the stability tests: each input line
@@ -121,23 +141,7 @@ BEGIN
    RETURN CAST(REAL, b)
 END Real ;
 
-PROCEDURE PutReal (x: REAL) ;
-VAR
-   b: Bits ;
-   k: INTEGER ;
-   d: CARDINAL ;
-   s: ARRAY [0..16] OF CHAR ;
-BEGIN
-   b := CAST(Bits, x) ;
-   FOR k := 15 TO 0 BY -1 DO
-      d := VAL(CARDINAL, b MOD 16) ;
-      IF d < 10 THEN s[k] := CHR(ORD('0') + d) ELSE s[k] := CHR(ORD('a') + d - 10) END ;
-      b := b DIV 16
-   END ;
-   s[16] := 0C ;
-   WriteString(s)
-END PutReal ;
-
+{put_real}
 PROCEDURE Query ;  (* the line's first token, METHOD, is in tok *)
 BEGIN
    method := ToInt() ;
@@ -200,7 +204,7 @@ def drivers(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, Path]:
     _run([gcc, *c_test.STRICT, "-I", str(C_DIR), str(C_DIR / "max2code_roots_driver.c"),
           str(obj), "-o", "c_driver", *libs], work)
     shutil.copy(M2_DIR / "Max2codeRoots.def", work)
-    (work / "RootsDriver.mod").write_text(M2_DRIVER.format(sentinel=SENTINEL))
+    (work / "RootsDriver.mod").write_text(M2_DRIVER.format(sentinel=SENTINEL, put_real=PUT_REAL))
     iso = subprocess.run([gm2, "-print-file-name=m2/m2iso"], capture_output=True, text=True,
                          check=True).stdout.strip()
     _run([gm2, "-fiso", "-fcpp", "-g", "-Wall", "-Werror", "RootsDriver.mod", str(obj),
@@ -369,29 +373,17 @@ VAR
    t: REAL ;
    g, r: INTEGER ;
 
-PROCEDURE Hex (x: REAL) ;
-VAR b: Bits ; k: INTEGER ; d: CARDINAL ; s: ARRAY [0..16] OF CHAR ;
-BEGIN
-   b := CAST(Bits, x) ;
-   FOR k := 15 TO 0 BY -1 DO
-      d := VAL(CARDINAL, b MOD 16) ;
-      IF d < 10 THEN s[k] := CHR(ORD('0') + d) ELSE s[k] := CHR(ORD('a') + d - 10) END ;
-      b := b DIV 16
-   END ;
-   s[16] := 0C ;
-   WriteString(s)
-END Hex ;
-
+{put_real}
 BEGIN
    c[0] := 3.0 * (1.0 + 1.0E-9) ; c[1] := -(7.0 + 1.0E-9) ; c[2] := 5.0 ; c[3] := -1.0 ;
    r := m2c_first_root_skin(c, 3, 1.0E300, 0.0, t, g) ;
-   WriteInt(r, 0) ; WriteString(" ") ; Hex(t) ; WriteString(" ") ; WriteInt(g, 0) ; WriteLn ;
+   WriteInt(r, 0) ; WriteString(" ") ; PutReal(t) ; WriteString(" ") ; WriteInt(g, 0) ; WriteLn ;
    r := m2c_first_root_skin(c, 3, 1.0E300, 1.0E-8, t, g) ;
-   WriteInt(r, 0) ; WriteString(" ") ; Hex(t) ; WriteString(" ") ; WriteInt(g, 0) ; WriteLn ;
+   WriteInt(r, 0) ; WriteString(" ") ; PutReal(t) ; WriteString(" ") ; WriteInt(g, 0) ; WriteLn ;
    rows[0] := 2.0 ; rows[1] := -3.0 ; rows[2] := 1.0 ;
    rows[3] := 1.0 ; rows[4] := 1.0 ; rows[5] := 1.0 ;
    r := m2c_first_roots(rows, 2, 2, 1.0E300, 0.0, ts, st) ;
-   WriteInt(r, 0) ; WriteString(" ") ; Hex(ts[0]) ; WriteString(" ") ; WriteInt(st[1], 0) ; WriteLn
+   WriteInt(r, 0) ; WriteString(" ") ; PutReal(ts[0]) ; WriteString(" ") ; WriteInt(st[1], 0) ; WriteLn
 END SkinBatch.
 """
 
@@ -404,7 +396,7 @@ def test_skin_and_batch_through_the_binding(tmp_path: Path) -> None:
     _run([gcc, *c_test.STRICT, "-I", str(C_DIR), "-c", str(C_DIR / "max2code_roots.c"), "-o", str(obj)],
          tmp_path)
     shutil.copy(M2_DIR / "Max2codeRoots.def", tmp_path)
-    (tmp_path / "SkinBatch.mod").write_text(SKIN_AND_BATCH)
+    (tmp_path / "SkinBatch.mod").write_text(SKIN_AND_BATCH.format(put_real=PUT_REAL))
     iso = subprocess.run([gm2, "-print-file-name=m2/m2iso"], capture_output=True, text=True,
                          check=True).stdout.strip()
     _run([gm2, "-fiso", "-g", "-Wall", "SkinBatch.mod", str(obj), "-o", "skin_batch", f"-L{iso}",
