@@ -527,7 +527,7 @@ def chart(summary: dict, methods, meta: dict, path: Path) -> None:
     import matplotlib.pyplot as plt
 
     markers = {"interval": "o", "interval-nograze": "s", "closed": "^", "gsl": "D", "numpy": "P"}
-    colours = dict(zip(FAMILIES, plt.get_cmap("tab10").colors))
+    colours = dict(zip(FAMILIES, plt.get_cmap("tab20").colors))
     floor = 1e-18
     fig, axes = plt.subplots(1, 2, figsize=(15, 6.5), sharex=True, sharey=True)
     for ax, key, title in ((axes[0], "err_median", "median error"),
@@ -582,8 +582,7 @@ def main(argv: list[str] | None = None) -> int:
         args.count, args.sweeps = 60, 5
     start = time.time()
     polys = polynomials(args.count)
-    cmd = "python bench/roots.py" + (" --quick" if args.quick else "") + (
-        " --only-runtimes" if args.only_runtimes else "")
+    cmd = " ".join(["python bench/roots.py", *(argv if argv is not None else sys.argv[1:])])
     meta = {"date": datetime.date.today().isoformat(), "machine": machine(),
             "cores": os.cpu_count(), "count": args.count, "sweeps": args.sweeps, "command": cmd,
             "rounds": args.rounds, "pure_share": args.pure_share}
