@@ -23,7 +23,7 @@ from .spec import CodeBlock, Spec
 from .variants import DEFAULT_STRATEGY, Variant, family, role_notes
 
 RESUME = "@@M2C_RESUME@@"
-MAX_MODULE_DEGREE = 8
+MAX_MODULE_DEGREE = 16  # the runtimes solve degree <= 16 (runtime/c/max2code_roots.h)
 
 
 @dataclass(frozen=True)

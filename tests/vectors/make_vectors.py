@@ -1,6 +1,8 @@
-"""Regenerate tests/vectors/<equation stem>.jsonl for every shipped equation (equations/*.mxm).
+"""Regenerate tests/vectors/<equation stem>.jsonl for every shipped equation (equations/*.mxm)
+and for the higher-order orbit models (bench/models/orbit-taylor6/8.mxm: degrees 12 and 16,
+the circles-orbit cases).
 
-    python tests/vectors/make_vectors.py            # all shipped equations
+    python tests/vectors/make_vectors.py            # all of them
     python tests/vectors/make_vectors.py circles-accel
 
 The answers come from the independent oracle (max2code/oracle.py): Maxima runs the ORIGINAL .mxm
@@ -42,6 +44,8 @@ FAMILIES = {
     "far": "one colliding case translated to about 1e8 from the origin",
 }
 SCALES = (1e-8, 1e-4, 1e4, 1e8)
+# The orbit models of order 6 and 8 (degree 12 and 16): circles-orbit's parameters and cases.
+HIGH_ORDER = ("orbit-taylor6", "orbit-taylor8")
 FAR = 1e8
 
 
@@ -193,8 +197,8 @@ def point_line(orbit: bool):
 
 def equation_cases(stem: str, names: tuple[str, ...]) -> list[tuple[str, str, dict, float]]:
     """All cases of one equation, in a fixed order: (family, note, params, tmax)."""
-    if stem.startswith("circles"):
-        cases, scaled_case, positions = circles(stem == "circles-orbit")
+    if stem.startswith("circles") or stem in HIGH_ORDER:
+        cases, scaled_case, positions = circles(stem == "circles-orbit" or stem in HIGH_ORDER)
     else:
         cases, scaled_case, positions = point_line(stem == "point-orbit-line")
     assert set(scaled_case) == set(names), sorted(set(scaled_case) ^ set(names))
@@ -276,6 +280,7 @@ def write(mxm: Path) -> Path:
 
 def main(argv: list[str]) -> int:
     equations = sorted((ROOT / "equations").glob("*.mxm"))
+    equations += [ROOT / "bench" / "models" / f"{stem}.mxm" for stem in HIGH_ORDER]
     if argv:
         equations = [e for e in equations if e.stem in argv]
     for mxm in equations:
