@@ -102,15 +102,18 @@ def _main(argv: list[str] | None) -> int:
         out_name = "<stdout>" if opts.output == "-" else opts.output
         result = generate(spec, poly, LANGUAGES[opts.lang], opts.emit, out_name,
                           opts.strategy, not opts.no_variants)
+        dep_text = None
+        if dep_path:  # before any output is written: a path it cannot express is an error
+            targets = [opts.output, *(path for path, _ in result.companions)]
+            deps = [opts.input, *depfile.loaded_files(spec.program.statements)]
+            dep_text = depfile.text(targets, deps, opts.mp)
         for warning in result.warnings:
             print(warning, file=sys.stderr)
         for path, text in result.companions:  # first: a definition precedes its implementation
             write_if_changed(path, text)
         write_if_changed(opts.output, result.text)
-        if dep_path:
-            targets = [opts.output, *(path for path, _ in result.companions)]
-            deps = [opts.input, *depfile.loaded_files(spec.program.statements)]
-            write_if_changed(dep_path, depfile.text(targets, deps, opts.mp))
+        if dep_path and dep_text is not None:
+            write_if_changed(dep_path, dep_text)
     except Max2CodeError as exc:
         return report(exc)
     except KeyboardInterrupt:

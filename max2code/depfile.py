@@ -17,6 +17,8 @@ import os
 import re
 from typing import TYPE_CHECKING
 
+from .diagnostics import Pos, error, visible
+
 if TYPE_CHECKING:
     from .spec import Statement
 
@@ -94,11 +96,39 @@ def _scan(texts: list[tuple[str, str]]) -> tuple[str, ...]:
     return tuple(found)
 
 
+# Characters Make and Ninja both read back as themselves once escaped (GNU Make 4.3 and Ninja
+# 1.11, measured): a space and '#' behind a backslash, '$' doubled, ':' behind a backslash.
+_ESCAPES = {" ": "\\ ", "#": "\\#", "$": "$$", ":": "\\:"}
+# Characters one of them cannot take in a path at all: Ninja ends a path at them whatever the
+# escaping, or Make reads them as a recipe (';'), a variable assignment ('='), an order-only
+# list ('|'), a wildcard ('*?[]'), or a line end.
+_UNSAYABLE = set(";=|&'\"*?[]^`<>")
+
+
 def escape(path: str) -> str:
-    """A path as a Make (and Ninja) depfile word."""
-    out = path.replace("$", "$$")
-    out = re.sub(r"(\\*)([ \t])", lambda m: m.group(1) * 2 + "\\" + m.group(2), out)
-    return out.replace("#", "\\#")
+    """A path as a Make (and Ninja) depfile word; a path neither can express is a diagnostic
+    (the build would otherwise depend on other files, or run what the path spells)."""
+    bad = _unsayable(path)
+    if bad is not None:
+        raise error(Pos(path, 1, 1), f"this path cannot be written in a dependency file: {bad} "
+                    f"(rename it, or do without -MD/-MF)")
+    out = "".join(_ESCAPES.get(ch, ch) for ch in path)
+    return "./" + out if out.startswith("~") else out  # Make would expand ~user
+
+
+def _unsayable(path: str) -> str | None:
+    """Why a depfile cannot hold `path`; None when it can."""
+    for i, ch in enumerate(path):
+        if ch in _UNSAYABLE or ord(ch) < 0x20 or ord(ch) == 0x7F:
+            return f"Make and Ninja have no escape for {ch!r}"
+        if 0xDC80 <= ord(ch) <= 0xDCFF:
+            return f"the byte {visible(ch)} is not UTF-8"
+        if ch == "\\" and (i + 1 == len(path) or path[i + 1] in _ESCAPES):
+            return "Make and Ninja read a backslash before " + (
+                repr(path[i + 1]) if i + 1 < len(path) else "the end") + " differently"
+    if path.endswith(")") and "(" in path:
+        return "Make reads a name ending in ')' as an archive member, 'lib(member)'"
+    return None
 
 
 def text(targets: list[str], deps: list[str], phony: bool = False) -> str:

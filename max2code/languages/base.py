@@ -10,7 +10,7 @@ import math
 from dataclasses import dataclass
 from fractions import Fraction
 
-from ..diagnostics import Pos
+from ..diagnostics import Pos, visible
 from ..expr import Add, Call, Div, Expr, Float, Mul, Neg, Num, Pow, Ref, Sym
 
 # Binding strength, loosest first.
@@ -56,6 +56,11 @@ class Language:
     def resume_directive(self, line: int, file: str) -> str | None:
         """A line saying the next line is `line` of the generated `file`; None if not needed."""
         return None
+
+    def comment_text(self, text: str) -> str:
+        """`text` (a path, a name) made safe inside this language's comments: shown to a reader,
+        never able to end the comment or the line. Templates use it as the `comment` filter."""
+        return visible(text)
 
     # Generated lines longer than this are broken before a top-level + or -.
     max_line: int = 100

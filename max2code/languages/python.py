@@ -33,4 +33,9 @@ class Python(Language):
         return f"({base})**({exponent})"
 
     def line_directive(self, pos: Pos) -> str:
-        return f"# {pos.file}:{pos.line}"
+        return f"# {self.comment_text(pos.file)}:{pos.line}"
+
+    def comment_text(self, text: str) -> str:
+        """Safe in a `#` comment and inside the module's docstring: backslashes and quotes are
+        escaped too (a path with `\\N` or `\"\"\"` would otherwise end or break the string)."""
+        return super().comment_text(text.replace("\\", "\\\\").replace('"', '\\"'))
