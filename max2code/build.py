@@ -150,9 +150,12 @@ def main(argv: list[str]) -> int:
                     help="run up to N equations at once (default 1; 0: one per CPU)")
     ap.add_argument("--no-cache", action="store_true",
                     help="neither read nor write the cache of Maxima results and outputs")
+    from .cli import add_maxima_options, apply_maxima_options
+    add_maxima_options(ap)
     opts = ap.parse_args(argv)
     if opts.no_cache:
         cache.disable()
+    apply_maxima_options(opts)
     if opts.jobs < 0:
         ap.error("--jobs must be 0 or more")
     jobs = opts.jobs or os.cpu_count() or 1

@@ -7,7 +7,7 @@ import importlib
 import os
 import sys
 
-from . import __version__, cache, depfile, maxima
+from . import __version__, cache, children, depfile, maxima
 from .diagnostics import Max2CodeError
 from .output import write_if_changed
 
@@ -51,6 +51,7 @@ def _parser() -> argparse.ArgumentParser:
                     help="add an empty rule for each dependency, as gcc -MP does")
     ap.add_argument("--no-cache", action="store_true",
                     help="neither read nor write the cache of Maxima results")
+    add_maxima_options(ap)
     ap.add_argument("--strategy", choices=STRATEGIES, default=DEFAULT_STRATEGY,
                     help="optimised (default): relative quantities first, expansion in t only, "
                          "shared subexpressions; expanded: the paper's fully expanded coefficients")
@@ -60,6 +61,22 @@ def _parser() -> argparse.ArgumentParser:
     return ap
 
 
+def add_maxima_options(ap: argparse.ArgumentParser) -> None:
+    """The options of every command that runs Maxima on a .mxm (README: Security)."""
+    from .confine import DEFAULT_MEMORY_MIB
+
+    ap.add_argument("--maxima-memory", type=int, default=None, metavar="MIB",
+                    help=f"memory (address space) one Maxima run may use (default "
+                         f"{DEFAULT_MEMORY_MIB}; 0: no limit)")
+    ap.add_argument("--allow-unsafe-maxima", action="store_true",
+                    help="let the .mxm program run shell commands, Lisp, file input/output and "
+                         "plotting (refused by default: see README, Security)")
+
+
+def apply_maxima_options(opts: argparse.Namespace) -> None:
+    maxima.configure(opts.maxima_memory, opts.allow_unsafe_maxima)
+
+
 def report(exc: Max2CodeError) -> int:
     for diag in exc.diagnostics:
         print(diag, file=sys.stderr)
@@ -67,11 +84,16 @@ def report(exc: Max2CodeError) -> int:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Entry point; an unexpected failure is reported in one line, not as a traceback."""
+    """Entry point; an unexpected failure is reported in one line, not as a traceback.
+    SIGTERM, SIGINT and SIGHUP stop every Maxima this process started (children.py) and exit
+    with 128 + the signal's number."""
+    children.install_signal_handlers()
     try:
         return _main(argv)
     except Max2CodeError as exc:
         return report(exc)
+    except children.Interrupted as exc:
+        return 128 + exc.signum
     except KeyboardInterrupt:
         return 130
     except Exception as exc:  # noqa: BLE001 - the last line of defence for build logs
@@ -94,6 +116,7 @@ def _main(argv: list[str] | None) -> int:
         ap.error("a dependency file (-MD, -MF) needs an output file (-o FILE)")
     if opts.no_cache:
         cache.disable()
+    apply_maxima_options(opts)
     from .generate import generate, load
     from .languages import LANGUAGES
 
@@ -116,6 +139,4 @@ def _main(argv: list[str] | None) -> int:
             write_if_changed(dep_path, dep_text)
     except Max2CodeError as exc:
         return report(exc)
-    except KeyboardInterrupt:
-        return 130
     return 0

@@ -61,6 +61,33 @@ def loaded_files(statements: tuple[Statement, ...]) -> tuple[str, ...]:
     return _scan([(s.text, folder) for s in statements])
 
 
+# A load whose file is named in the text: a string, or a symbol (a package of Maxima's library,
+# unless the program assigns the symbol a value).
+LITERAL_LOAD = re.compile(r'\b(?:load|batchload|batch)\s*\(\s*(?:"(?:[^"\\]|\\.)*"|([A-Za-z_%][\w%]*))\s*[,)]')
+
+
+def all_loads_literal(statements: tuple[Statement, ...]) -> bool:
+    """Whether every load of the program, and of the files it loads, names its file literally.
+    Otherwise the files it reads are unknown, and no cache entry can be keyed to them."""
+    texts = [s.text for s in statements]
+    for path in loaded_files(statements):
+        if os.path.splitext(path)[1].lower() in _TEXT_EXTENSIONS:
+            try:
+                with open(path, encoding="utf-8", errors="replace") as f:
+                    texts.append(f.read())
+            except OSError:
+                return False
+    everything = "\n".join(texts)
+    for text in texts:
+        literal = list(LITERAL_LOAD.finditer(text))
+        if len(literal) != len(ANY_LOAD.findall(text)):
+            return False
+        for m in literal:
+            if m.group(1) and re.search(rf"(?<![\w%]){re.escape(m.group(1))}\s*::?(?!=)", everything):
+                return False
+    return True
+
+
 def loaded_files_of_source(path: str) -> tuple[str, ...] | None:
     """The same from the raw .mxm text, without parsing it: a superset (loads in comments count
     too), which is what a cache key needs. None if the file cannot be read."""
@@ -101,8 +128,9 @@ def _scan(texts: list[tuple[str, str]]) -> tuple[str, ...]:
 _ESCAPES = {" ": "\\ ", "#": "\\#", "$": "$$", ":": "\\:"}
 # Characters one of them cannot take in a path at all: Ninja ends a path at them whatever the
 # escaping, or Make reads them as a recipe (';'), a variable assignment ('='), an order-only
-# list ('|'), a wildcard ('*?[]'), or a line end.
-_UNSAYABLE = set(";=|&'\"*?[]^`<>")
+# list ('|'), a wildcard ('*?[]'), a pattern ('%': a target, and with -MP every dependency),
+# or a line end.
+_UNSAYABLE = set(";=|&'\"*?[]^`<>%")
 
 
 def escape(path: str) -> str:

@@ -18,7 +18,7 @@ import tempfile
 import time
 from dataclasses import dataclass
 
-from . import cache, depfile
+from . import cache, children, confine, depfile
 from .diagnostics import Pos, error
 from .spec import Statement
 
@@ -31,6 +31,7 @@ _ERRORS = (
     re.compile(r"^(incorrect syntax:.*)$", re.M),
     re.compile(r"^(.*)\n -- an error\.", re.M),
     re.compile(r"^Maxima encountered a Lisp error:\s*(?:Condition in .*?: )?(\S.*)$", re.M),
+    re.compile(r"^(Unrecoverable error: .*)$", re.M),  # GCL itself gave up (out of memory, ...)
 )
 _QUESTION = re.compile(r"^(Is .*\?)\s*$", re.M)
 _INSTALL_HINT = ("install it: Debian/Ubuntu 'apt-get install maxima', Fedora 'dnf install maxima', "
@@ -85,43 +86,98 @@ def search_path(statements: tuple[Statement, ...]) -> str:
             f'file_search_lisp)$\n')
 
 
+@dataclass(frozen=True)
+class Policy:
+    """How Maxima runs in this process: the CLI sets it once (`configure`)."""
+
+    memory_mib: int = confine.DEFAULT_MEMORY_MIB
+    allow_unsafe: bool = False
+
+
+_policy = Policy()
+
+
+def configure(memory_mib: int | None = None, allow_unsafe: bool | None = None) -> None:
+    """Set the memory limit (MiB, 0 for none) and whether the lock-down is lifted."""
+    global _policy
+    if memory_mib is not None and 0 < memory_mib < confine.MIN_MEMORY_MIB:
+        raise error(Pos("max2code", 1, 1), f"a Maxima memory limit of {memory_mib} MiB is below "
+                    f"the {confine.MIN_MEMORY_MIB} MiB GCL needs to start")
+    _policy = Policy(_policy.memory_mib if memory_mib is None else memory_mib,
+                     _policy.allow_unsafe if allow_unsafe is None else allow_unsafe)
+
+
+def policy() -> Policy:
+    return _policy
+
+
 def run(script: str, statements: tuple[Statement, ...], where: Pos,
         timeout: float = DEFAULT_TIMEOUT) -> Session:
     """Run a script; raise a diagnostic at the offending statement if Maxima reports an error.
 
     A successful run's output is cached (see cache.py) under a hash of the script, the files it
-    loads, Maxima's identity and max2code's version; a hit skips Maxima altogether.
+    loads, Maxima's identity and max2code's version; a hit skips Maxima altogether. A run whose
+    loads cannot all be named (a computed file name, allowed only with --allow-unsafe-maxima)
+    is never cached: its inputs are unknown.
     """
     exe = maxima_executable(where)
-    key = cache.key(script, exe, depfile.loaded_files(statements))
-    hit = cache.get(key)
+    loads = depfile.loaded_files(statements)
+    cacheable = depfile.all_loads_literal(statements)
+    key = cache.key(script, exe, loads)
+    hit = cache.get(key) if cacheable else None
     if hit is not None:
         _check(hit.output, statements, where, None, timeout)
         return Session(hit.output, hit.seconds, cached=True)
-    with tempfile.TemporaryDirectory(prefix="max2code-") as tmp:
-        path = os.path.join(tmp, "job.mac")
-        with open(path, "w", encoding="utf-8") as f:
-            f.write(script)
-        out_path = os.path.join(tmp, "out.txt")
-        start = time.monotonic()
-        with open(out_path, "wb") as out:
-            try:
-                proc = subprocess.Popen(
-                    [exe, "--very-quiet", "-b", path],
-                    stdin=subprocess.DEVNULL, stdout=out, stderr=subprocess.STDOUT, cwd=tmp,
-                    start_new_session=True, env={**os.environ, "HOME": tmp},
-                )
-            except OSError as exc:
-                raise error(where, f"cannot run Maxima ({exe}): {exc.strerror}; {_INSTALL_HINT}") from None
-            reason = _wait(proc, out_path, timeout)
-            status = proc.returncode
-        seconds = time.monotonic() - start
-        with open(out_path, "rb") as f:
-            text = f.read(OUTPUT_CAP).decode("utf-8", errors="replace")
+    text, seconds, reason = _execute(exe, script, where, timeout, loads)
     _check(text, statements, where, reason, timeout)
-    if reason is None and status == 0 and _reached_end(script, text):
+    if reason is None and _reached_end(script, text) and cacheable:
         cache.put(key, cache.Entry(text, seconds))
     return Session(text, seconds)
+
+
+def _execute(exe: str, script: str, where: Pos, timeout: float,
+             loads: tuple[str, ...]) -> tuple[str, float, str | None]:
+    """Run Maxima once, confined (confine.py), in a private folder that is removed as soon as
+    Maxima has opened its script; return its output, the time taken and why it was stopped."""
+    private = children.private_folder()
+    try:
+        path = os.path.join(private, "job.mac")
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(STARTED + script)
+        limits = confine.Limits(timeout, _policy.memory_mib)
+        readable = (private, *_installation(exe), *(os.path.abspath(p) for p in loads))
+        with tempfile.TemporaryFile(dir=private) as out:
+            start = time.monotonic()
+            try:
+                proc = children.spawn(
+                    [exe, "--very-quiet", "-b", path], cwd=private, stdout=out,
+                    env=confine.environment(private),
+                    preexec=confine.preexec(limits, readable, not _policy.allow_unsafe))
+            except OSError as exc:
+                raise error(where, f"cannot run Maxima ({exe}): {exc.strerror}; {_INSTALL_HINT}") from None
+            try:
+                reason = _wait(proc, out.fileno(), timeout, private)
+            finally:
+                children.finish(proc)
+            seconds = time.monotonic() - start
+            if reason is None and proc.returncode < 0:
+                reason = f"signal {-proc.returncode}"
+            out.seek(0)
+            text = out.read(OUTPUT_CAP).decode("utf-8", errors="replace")
+    finally:
+        shutil.rmtree(private, ignore_errors=True)
+    return text, seconds, reason
+
+
+# The first line of every script: once Maxima has printed it, it has the script open and the
+# private folder can go (an open file outlives its name), so even SIGKILL leaves nothing behind.
+STARTED = f':lisp (format t "~%{MARK}-STARTED~%")\n'
+
+
+def _installation(exe: str) -> tuple[str, ...]:
+    """Maxima's installation prefix (/usr for Debian's), readable by the confined process."""
+    prefix = os.path.dirname(os.path.dirname(os.path.realpath(exe)))
+    return (prefix,) if prefix not in ("/", "") else ()
 
 
 def _reached_end(script: str, text: str) -> bool:
@@ -130,26 +186,33 @@ def _reached_end(script: str, text: str) -> bool:
     return not tags or re.search(rf"^{MARK}-{re.escape(tags[-1])}\b", text, re.M) is not None
 
 
-def _wait(proc: subprocess.Popen[bytes], out_path: str, timeout: float) -> str | None:
-    """Wait for Maxima; kill its whole process group on timeout or runaway output."""
+def _wait(proc: subprocess.Popen[bytes], out: int, timeout: float, private: str) -> str | None:
+    """Wait for Maxima; stop it on timeout or runaway output; drop the private folder once the
+    script is open."""
     deadline = time.monotonic() + timeout
     delay = 0.005
+    started = False
     while proc.poll() is None:
         reason = None
         if time.monotonic() > deadline:
             reason = "timeout"
-        elif os.path.getsize(out_path) > OUTPUT_CAP:
+        elif os.fstat(out).st_size > OUTPUT_CAP:
             reason = "output"
         if reason:
-            try:
-                os.killpg(proc.pid, signal.SIGKILL)
-            except ProcessLookupError:
-                pass
-            proc.wait()
+            children.finish(proc)
             return reason
+        if not started and f"{MARK}-STARTED".encode() in os.pread(out, 4096, 0):
+            started = True
+            shutil.rmtree(private, ignore_errors=True)
         time.sleep(delay)
         delay = min(delay * 2, 0.05)
     return None
+
+
+def _memory_hint() -> str:
+    limit = _policy.memory_mib
+    return (f" (Maxima may use {limit} MiB of memory: raise it with --maxima-memory)"
+            if limit else "")
 
 
 def statement_at(text: str, statements: tuple[Statement, ...], where: Pos, offset: int) -> Pos:
@@ -182,3 +245,11 @@ def _check(text: str, statements: tuple[Statement, ...], where: Pos, reason: str
     if reason == "output":
         pos = statement_at(text, statements, where, len(text))
         raise error(pos, f"Maxima printed more than {OUTPUT_CAP // (1024 * 1024)} MiB; stopped")
+    if reason is not None and reason.startswith("signal"):
+        pos = statement_at(text, statements, where, len(text))
+        signum = int(reason.split()[1])
+        if signum == signal.SIGXCPU:
+            raise error(pos, f"Maxima used more than {int(timeout) + confine.CPU_GRACE_SECONDS} s "
+                        f"of CPU time; stopped (raise it with --timeout)")
+        raise error(pos, f"Maxima was killed by {signal.Signals(signum).name}"
+                    + _memory_hint())

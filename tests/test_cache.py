@@ -1,8 +1,10 @@
 """Build conventions: the Maxima result cache, the build results cache, --jobs, dependency files,
 and runtime discovery.
 
-Whether Maxima ran is observed through a wrapper given as MAXIMA that logs each call and then
-runs the real Maxima.
+Whether Maxima runs is controlled through a wrapper given as MAXIMA: while a flag file exists
+it fails at once ("a forbidden Maxima run"), so a run that succeeds then was served by the
+cache, and one that fails asked for Maxima. (A wrapper cannot log its calls to a file: Maxima
+is confined and writes nothing, see confine.py.)
 """
 
 from __future__ import annotations
@@ -27,21 +29,32 @@ def run(*args: str, env: dict[str, str], cwd: Path = ROOT) -> subprocess.Complet
                           text=True, cwd=cwd, env=env, timeout=300)
 
 
+class Switch:
+    """Allows or forbids Maxima runs through the MAXIMA wrapper."""
+
+    def __init__(self, flag: Path) -> None:
+        self.flag = flag
+
+    def forbid(self) -> None:
+        self.flag.write_text("")
+
+    def allow(self) -> None:
+        self.flag.unlink(missing_ok=True)
+
+
 @pytest.fixture
-def logged(tmp_path: Path, maxima_exe: str) -> tuple[dict[str, str], Path]:
-    """An environment whose Maxima logs its calls, and the log."""
-    log = tmp_path / "maxima.log"
-    wrapper = tmp_path / "maxima-wrapper"
-    wrapper.write_text(f'#!/bin/sh\necho run >> "{log}"\nexec "{maxima_exe}" "$@"\n')
+def logged(tmp_path: Path, maxima_exe: str) -> tuple[dict[str, str], Switch]:
+    """An environment whose Maxima can be forbidden, and the switch."""
+    flag = tmp_path / "forbidden"
+    wrapper = tmp_path / "bin" / "maxima-wrapper"
+    wrapper.parent.mkdir()
+    wrapper.write_text(f'#!/bin/sh\nif [ -e "{flag}" ]; then echo "a forbidden Maxima run"; '
+                       f'exit 3; fi\nexec "{maxima_exe}" "$@"\n')
     wrapper.chmod(0o755)
     env = {**os.environ, "MAXIMA": str(wrapper), "MAX2CODE_CACHE": str(tmp_path / "cache"),
            "PYTHONPATH": str(ROOT)}
     env.pop("MAX2CODE_NO_CACHE", None)
-    return env, log
-
-
-def calls(log: Path) -> int:
-    return len(log.read_text().splitlines()) if log.exists() else 0
+    return env, Switch(flag)
 
 
 def entries(env: dict[str, str], kind: str = "v1") -> list[Path]:
@@ -117,46 +130,49 @@ def test_concurrent_writers_leave_whole_entries(monkeypatch: pytest.MonkeyPatch,
 
 # --- the Maxima cache through the CLI ---------------------------------------------------------
 
-def test_second_run_skips_maxima(logged: tuple[dict[str, str], Path], tmp_path: Path) -> None:
-    env, log = logged
+def test_second_run_skips_maxima(logged: tuple[dict[str, str], Switch], tmp_path: Path) -> None:
+    env, maxima = logged
     out = tmp_path / "point_line.h"
     assert run("--lang=c", "equations/point-line.mxm", "-o", str(out), env=env).returncode == 0
     first = out.read_bytes()
-    assert calls(log) == 1 and len([p for p in entries(env) if p.is_file()]) == 1
+    assert len([p for p in entries(env) if p.is_file()]) == 1
     out.unlink()
+    maxima.forbid()
     assert run("--lang=c", "equations/point-line.mxm", "-o", str(out), env=env).returncode == 0
-    assert calls(log) == 1 and out.read_bytes() == first
-    assert run("--lang=c", "equations/point-line.mxm", "-o", str(out), "--no-cache",
-               env=env).returncode == 0
-    assert calls(log) == 2
+    assert out.read_bytes() == first
+    nocache = run("--lang=c", "equations/point-line.mxm", "-o", str(out), "--no-cache", env=env)
+    assert nocache.returncode == 1 and "stopped before" in nocache.stderr  # it asked for Maxima
 
 
-def test_corrupt_entry_is_rewritten(logged: tuple[dict[str, str], Path], tmp_path: Path,
+def test_corrupt_entry_is_rewritten(logged: tuple[dict[str, str], Switch], tmp_path: Path,
                                     monkeypatch: pytest.MonkeyPatch) -> None:
-    env, log = logged
+    env, _ = logged
     out = tmp_path / "o.py"
     assert run("--lang=python", "equations/point-line.mxm", "-o", str(out), env=env).returncode == 0
     (entry,) = [p for p in entries(env) if p.is_file()]
     good = entry.read_bytes()
     entry.write_bytes(good[: len(good) // 2])
     assert run("--lang=python", "equations/point-line.mxm", "-o", str(out), env=env).returncode == 0
-    assert calls(log) == 2 and entry.read_bytes() != good[: len(good) // 2]
+    assert entry.read_bytes() != good[: len(good) // 2]
     monkeypatch.setenv("MAX2CODE_CACHE", env["MAX2CODE_CACHE"])
     assert cache.get(entry.name) is not None
 
 
-def test_errors_are_not_cached(logged: tuple[dict[str, str], Path], tmp_path: Path) -> None:
-    env, log = logged
+def test_errors_are_not_cached(logged: tuple[dict[str, str], Switch], tmp_path: Path) -> None:
+    env, maxima = logged
     bad = tmp_path / "bad.mxm"
     bad.write_text("begin\nx: 1/0;\n(t - x)^2;\nend\n")
-    for _ in range(2):
-        assert run("--lang=c", str(bad), env=env).returncode == 1
-    assert calls(log) == 2 and [p for p in entries(env) if p.is_file()] == []
+    first = run("--lang=c", str(bad), env=env)
+    assert first.returncode == 1 and "Maxima error: expt: undefined: 0 to a negative" in first.stderr
+    maxima.forbid()
+    second = run("--lang=c", str(bad), env=env)
+    assert second.returncode == 1 and "stopped before" in second.stderr  # it asked Maxima again
+    assert [p for p in entries(env) if p.is_file()] == []
 
 
-def test_loaded_file_is_found_and_keys_the_cache(logged: tuple[dict[str, str], Path],
+def test_loaded_file_is_found_and_keys_the_cache(logged: tuple[dict[str, str], Switch],
                                                    tmp_path: Path) -> None:
-    env, log = logged
+    env, maxima = logged
     folder = tmp_path / "eq"
     folder.mkdir()
     (folder / "helper.mac").write_text("gap(t) := 1000 - 2*t $\n")
@@ -165,16 +181,18 @@ def test_loaded_file_is_found_and_keys_the_cache(logged: tuple[dict[str, str], P
     assert run("--lang=python", "eq/use.mxm", "-o", str(out), "-MD", env=env, cwd=tmp_path).returncode == 0
     assert "996" in out.read_text()
     assert (tmp_path / "use.py.d").read_text() == f"{out}: \\\n  eq/use.mxm \\\n  eq/helper.mac\n"
+    maxima.forbid()
     assert run("--lang=python", "eq/use.mxm", "-o", str(out), env=env, cwd=tmp_path).returncode == 0
-    assert calls(log) == 1
     (folder / "helper.mac").write_text("gap(t) := 2000 - 2*t $\n")
+    assert run("--lang=python", "eq/use.mxm", "-o", str(out), env=env, cwd=tmp_path).returncode == 1
+    maxima.allow()
     assert run("--lang=python", "eq/use.mxm", "-o", str(out), env=env, cwd=tmp_path).returncode == 0
-    assert calls(log) == 2 and "1996" in out.read_text()
+    assert "1996" in out.read_text()
 
 
 # --- dependency files --------------------------------------------------------------------------
 
-def test_depfile_options(logged: tuple[dict[str, str], Path], tmp_path: Path) -> None:
+def test_depfile_options(logged: tuple[dict[str, str], Switch], tmp_path: Path) -> None:
     env, _ = logged
     out = tmp_path / "dir with space" / "pl.mod"
     out.parent.mkdir()
@@ -195,17 +213,17 @@ def test_depfile_escapes_and_phony_rules() -> None:
         "o.h: \\\n  x.mxm \\\n  y.mac\n\ny.mac:\n")
 
 
-def test_depfile_is_not_written_on_failure(logged: tuple[dict[str, str], Path], tmp_path: Path) -> None:
+def test_depfile_is_not_written_on_failure(logged: tuple[dict[str, str], Switch], tmp_path: Path) -> None:
     env, _ = logged
     bad = tmp_path / "bad.mxm"
     bad.write_text("begin\n(t - 1)^2\nend\n")
     assert run("--lang=c", str(bad), "-o", str(tmp_path / "o.h"), "-MD", env=env).returncode == 1
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["bad.mxm", "maxima-wrapper"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["bad.mxm", "bin"]
 
 
 # --- max2code build: --jobs and the results cache -----------------------------------------
 
-def test_build_jobs_is_deterministic(logged: tuple[dict[str, str], Path], tmp_path: Path) -> None:
+def test_build_jobs_is_deterministic(logged: tuple[dict[str, str], Switch], tmp_path: Path) -> None:
     env, _ = logged
     eqs = ["equations/point-line.mxm", "equations/circles-accel.mxm", "tests/bad/non-polynomial.mxm"]
     one = run("build", *eqs, "-o", str(tmp_path / "one"), "--no-cache", "--lang", "c", "--lang",
@@ -224,19 +242,18 @@ def test_build_jobs_is_deterministic(logged: tuple[dict[str, str], Path], tmp_pa
             assert (tmp_path / "four" / lang / f.name).read_text().replace("four", "one") == f.read_text()
 
 
-def test_warm_build_runs_nothing(logged: tuple[dict[str, str], Path], tmp_path: Path) -> None:
-    env, log = logged
+def test_warm_build_runs_nothing(logged: tuple[dict[str, str], Switch], tmp_path: Path) -> None:
+    env, maxima = logged
     out = tmp_path / "b"
     cold = run("build", "-o", str(out), env=env)
     assert cold.returncode == 0, cold.stderr
-    n = calls(log)
-    assert n >= 4
+    maxima.forbid()
     files = {p: p.read_bytes() for p in out.rglob("*") if p.is_file() and p.name != "summary.md"}
     stamps = {p: p.stat().st_mtime_ns for p in files}
     victim = next(iter(files))
     victim.unlink()
     warm = run("build", "-o", str(out), env=env)
-    assert warm.returncode == 0 and calls(log) == n
+    assert warm.returncode == 0, warm.stderr
     assert warm.stderr == cold.stderr
     assert {p: p.read_bytes() for p in files} == files  # the deleted one is back
     assert all(p.stat().st_mtime_ns == stamps[p] for p in files if p != victim)
