@@ -81,7 +81,8 @@ def _result_key(path: str, out: Path, langs: list[str] | None) -> str | None:
     if loads is None:
         return None
     return cache.result_key("build", path, str(out), ",".join(langs or ["*"]),
-                            cache.executable_identity(exe), inputs=(path, *loads))
+                            cache.executable_identity(exe), f"unsafe={maxima.policy().allow_unsafe}",
+                            inputs=(path, *loads))
 
 
 def _cached(key: str | None) -> Outcome | None:

@@ -117,7 +117,9 @@ def _scan(texts: list[tuple[str, str]]) -> tuple[str, ...]:
             if os.path.splitext(path)[1].lower() in _TEXT_EXTENSIONS:
                 try:
                     with open(path, encoding="utf-8", errors="replace") as f:
-                        texts.append((f.read(), os.path.dirname(path)))
+                        # Maxima looks for a nested load where it looked for this one (its
+                        # search path: the .mxm's folder), not beside the file that loads it.
+                        texts.append((f.read(), where))
                 except OSError:
                     pass
     return tuple(found)

@@ -18,7 +18,7 @@ import tempfile
 import time
 from dataclasses import dataclass
 
-from . import cache, children, confine, depfile
+from . import cache, children, confine, depfile, lockdown
 from .diagnostics import Pos, error
 from .spec import Statement
 
@@ -33,6 +33,7 @@ _ERRORS = (
     re.compile(r"^Maxima encountered a Lisp error:\s*(?:Condition in .*?: )?(\S.*)$", re.M),
     re.compile(r"^(Unrecoverable error: .*)$", re.M),  # GCL itself gave up (out of memory, ...)
 )
+_REFUSED = re.compile(rf"^{MARK}-REFUSED (.*)$", re.M)
 _QUESTION = re.compile(r"^(Is .*\?)\s*$", re.M)
 _INSTALL_HINT = ("install it: Debian/Ubuntu 'apt-get install maxima', Fedora 'dnf install maxima', "
                  "macOS 'brew install maxima'; or set MAXIMA to its path")
@@ -60,8 +61,11 @@ def marker(tag: str, arg: object = "") -> str:
 
 
 def program_script(statements: tuple[Statement, ...]) -> str:
-    """The user's statements, each announced by a marker naming its index."""
+    """The user's statements, each announced by a marker naming its index; unless unsafe
+    Maxima is allowed, checked first and preceded by the lock-down (lockdown.py)."""
     parts = ["display2d:false$\nlinel:1000000$\n", search_path(statements)]
+    if not _policy.allow_unsafe:
+        parts.append(lockdown.prelude(lockdown.check(statements), f"~%{MARK}-"))
     for index, stmt in enumerate(statements):
         parts.append(marker("STMT", index))
         parts.append(stmt.text + "\n")
@@ -227,6 +231,12 @@ def statement_at(text: str, statements: tuple[Statement, ...], where: Pos, offse
 
 def _check(text: str, statements: tuple[Statement, ...], where: Pos, reason: str | None,
            timeout: float) -> None:
+    refused = _REFUSED.search(text)
+    if refused:
+        pos = statement_at(text, statements, where, refused.start())
+        what = refused.group(1).strip()
+        raise error(pos, f"the program reached '{what}' at run time, which {lockdown.why(what)}; "
+                    f"not allowed in a .mxm ({lockdown.LIFTED})")
     question = _QUESTION.search(text)
     if question:
         pos = statement_at(text, statements, where, question.start())

@@ -16,7 +16,7 @@ from .spec import Statement
 _QUIT = re.compile(r"^\s*quit\s*\(\s*\)\s*[;$]\s*$", re.DOTALL)
 
 
-def _advance(pos: Pos, text: str) -> Pos:
+def advance(pos: Pos, text: str) -> Pos:
     """The position just after `text` when it starts at `pos`."""
     newlines = text.count("\n")
     if newlines == 0:
@@ -43,7 +43,7 @@ def split_statements(text: str, start: Pos) -> tuple[Statement, ...]:
             while j < n and text[j] != '"':
                 j += 2 if text[j] == "\\" else 1
             if j >= n:
-                raise error(_advance(start, text[:i]), "unterminated string in the Maxima program")
+                raise error(advance(start, text[:i]), "unterminated string in the Maxima program")
             buf.append(text[i : j + 1])
             i = j + 1
         elif text.startswith("/*", i):
@@ -56,7 +56,7 @@ def split_statements(text: str, start: Pos) -> tuple[Statement, ...]:
                 else:
                     j += 1
             if depth:
-                raise error(_advance(start, text[:i]), "unterminated /* comment in the Maxima program")
+                raise error(advance(start, text[:i]), "unterminated /* comment in the Maxima program")
             buf.append(text[i:j])
             i = j
         elif text.startswith("//", i):
@@ -69,7 +69,7 @@ def split_statements(text: str, start: Pos) -> tuple[Statement, ...]:
             body = "".join(buf)
             stripped = body.lstrip()
             lead = body[: len(body) - len(_skip_comments(body))]
-            pos = _advance(_advance(start, text[:stmt_start]), lead)
+            pos = advance(advance(start, text[:stmt_start]), lead)
             if not _only_comments(stripped[:-1]):
                 out.append(Statement(stripped, pos))
             buf = []
@@ -82,7 +82,7 @@ def split_statements(text: str, start: Pos) -> tuple[Statement, ...]:
     if not _only_comments(rest):
         lead = rest[: len(rest) - len(_skip_comments(rest))]
         raise error(
-            _advance(_advance(start, text[:stmt_start]), lead),
+            advance(advance(start, text[:stmt_start]), lead),
             "Maxima statement is not terminated by ';' or '$'",
         )
     return tuple(s for s in out if not _QUIT.match(s.text))

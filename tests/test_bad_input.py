@@ -36,6 +36,11 @@ NO_MAXIMA_NEEDED = {  # diagnosed before Maxima runs
     "duplicate-declaration", "parameter-twice", "unknown-language-tag", "unterminated-string",
     "unterminated-comment", "unterminated-statement", "empty-program", "header-garbage",
     "no-maxima",
+    # refused by the lock-down before Maxima runs (lockdown.py)
+    "unsafe-backslash", "unsafe-eval-string", "unsafe-lisp", "unsafe-lisp-after-comment",
+    "unsafe-load-computed", "unsafe-load-lisp", "unsafe-load-outside", "unsafe-load-parent",
+    "unsafe-load-variable", "unsafe-map-system", "unsafe-plot", "unsafe-question-mark",
+    "unsafe-system", "unsafe-system-as-value", "unsafe-with-stdout", "unsafe-writefile",
 }
 
 
