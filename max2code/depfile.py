@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import os
 import re
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from .diagnostics import Pos, error, visible
@@ -22,8 +23,52 @@ from .diagnostics import Pos, error, visible
 if TYPE_CHECKING:
     from .spec import Statement
 
-LOAD_CALL = re.compile(r"\b(?:load|batchload|batch)\s*\(\s*\"((?:[^\"\\]|\\.)*)\"")
 ANY_LOAD = re.compile(r"\b(?:load|batchload|batch)\s*\(")
+_SYMBOL_ARG = re.compile(r"\s*([A-Za-z_%][\w%]*)\s*[,)]")
+_STRING_ARG = re.compile(r'\s*"')
+_ARG_END = re.compile(r"\s*[,)]")
+
+
+@dataclass(frozen=True)
+class LoadCall:
+    """One `load(...)`, `batchload(...)` or `batch(...)` in Maxima text: its argument is a
+    string (`name`, unescaped), a symbol (`symbol`), or computed (both None)."""
+
+    start: int  # of the function's name
+    end: int  # of what was read of the call
+    name: str | None
+    symbol: str | None
+
+
+def load_calls(text: str) -> list[LoadCall]:
+    """Every load call of `text`."""
+    return [call for m in ANY_LOAD.finditer(text) if (call := load_call_at(text, m.start()))]
+
+
+def load_call_at(text: str, start: int) -> LoadCall | None:
+    """The load call whose name starts at `start`, or None if there is none. Its string is
+    read with maxima_text.string_end: a regular expression over a long string of escapes would
+    cost memory per character."""
+    from .maxima_text import string_end
+
+    m = ANY_LOAD.match(text, start)
+    if m is None:
+        return None
+    s = _STRING_ARG.match(text, m.end())
+    if s is not None:
+        close = string_end(text, s.end() - 1)
+        after = _ARG_END.match(text, close) if close > 0 else None
+        if after is not None:
+            return LoadCall(start, after.end(), _unescape(text[s.end():close - 1]), None)
+    sym = _SYMBOL_ARG.match(text, m.end())
+    if sym is not None:
+        return LoadCall(start, sym.end(), None, sym.group(1))
+    return LoadCall(start, m.end(), None, None)
+
+
+def _unescape(raw: str) -> str:
+    """A Maxima string's text: a backslash escapes the character after it."""
+    return re.sub(r"\\(.)", r"\1", raw, flags=re.S)
 MAXIMA_EXTENSIONS = (".mac", ".mc", ".wxm")
 LISP_EXTENSIONS = (".lisp", ".lsp")
 _TEXT_EXTENSIONS = MAXIMA_EXTENSIONS + ("",)
@@ -38,7 +83,6 @@ def source_folder(statements: tuple[Statement, ...]) -> str | None:
 
 
 def _resolve(name: str, folder: str) -> str | None:
-    name = name.replace('\\"', '"').replace("\\\\", "\\")
     base = name if os.path.isabs(name) else os.path.join(folder, name)
     candidates = [base]
     if not os.path.splitext(name)[1]:
@@ -61,14 +105,10 @@ def loaded_files(statements: tuple[Statement, ...]) -> tuple[str, ...]:
     return _scan([(s.text, folder) for s in statements])
 
 
-# A load whose file is named in the text: a string, or a symbol (a package of Maxima's library,
-# unless the program assigns the symbol a value).
-LITERAL_LOAD = re.compile(r'\b(?:load|batchload|batch)\s*\(\s*(?:"(?:[^"\\]|\\.)*"|([A-Za-z_%][\w%]*))\s*[,)]')
-
-
 def all_loads_literal(statements: tuple[Statement, ...]) -> bool:
-    """Whether every load of the program, and of the files it loads, names its file literally.
-    Otherwise the files it reads are unknown, and no cache entry can be keyed to them."""
+    """Whether every load of the program, and of the files it loads, names its file literally:
+    a string, or a symbol the program never assigns (a package of Maxima's library). Otherwise
+    the files it reads are unknown, and no cache entry can be keyed to them."""
     texts = [s.text for s in statements]
     for path in loaded_files(statements):
         if os.path.splitext(path)[1].lower() in _TEXT_EXTENSIONS:
@@ -79,13 +119,15 @@ def all_loads_literal(statements: tuple[Statement, ...]) -> bool:
                 return False
     everything = "\n".join(texts)
     for text in texts:
-        literal = list(LITERAL_LOAD.finditer(text))
-        if len(literal) != len(ANY_LOAD.findall(text)):
-            return False
-        for m in literal:
-            if m.group(1) and re.search(rf"(?<![\w%]){re.escape(m.group(1))}\s*::?(?!=)", everything):
+        for call in load_calls(text):
+            if call.name is None and (call.symbol is None or assigned(call.symbol, everything)):
                 return False
     return True
+
+
+def assigned(symbol: str, text: str) -> bool:
+    """Whether Maxima text gives `symbol` a value (`symbol: ...` or `symbol :: ...`)."""
+    return re.search(rf"(?<![\w%]){re.escape(symbol)}\s*::?(?!=)", text) is not None
 
 
 def loaded_files_of_source(path: str) -> tuple[str, ...] | None:
@@ -104,8 +146,8 @@ def _scan(texts: list[tuple[str, str]]) -> tuple[str, ...]:
     seen: set[str] = set()
     while texts and len(found) < _MAX_FILES:
         text, where = texts.pop(0)
-        for m in LOAD_CALL.finditer(text):
-            path = _resolve(m.group(1), where or ".")
+        for call in load_calls(text):
+            path = _resolve(call.name, where or ".") if call.name is not None else None
             if path is None:
                 continue
             path = os.path.normpath(path)

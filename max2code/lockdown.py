@@ -29,6 +29,7 @@ import re
 from dataclasses import dataclass
 
 from .diagnostics import Pos, error
+from . import depfile, maxima_text
 from .maxima_text import advance
 from .spec import Statement
 
@@ -115,63 +116,63 @@ def check(statements: tuple[Statement, ...]) -> tuple[str, ...]:
     return tuple(allowed)
 
 
-_TOKEN = re.compile(r"""
-    (?P<space>\s+)
-  | (?P<comment>/\*)
-  | (?P<string>"(?:[^"\\]|\\[\s\S])*"?)
-  | (?P<name>[A-Za-z_%\u0080-\U0010ffff][A-Za-z_%0-9\u0080-\U0010ffff]*)
-  | (?P<end>[;$])
-  | (?P<other>[\s\S])
-""", re.X)
+_NAMES = "|".join(sorted((re.escape(n) for n in (*REFUSED, *LOADS)), key=len, reverse=True))
+# What the scan stops at: strings and comments (skipped whole), '?' and '\\', statement ends,
+# and the names it refuses or checks. Everything else is passed over by the regex engine.
+_HIT = re.compile(rf'"|/\*|[?\\;$]|(?<![\w%])(?:{_NAMES})(?![\w%])')
+_BLANK = re.compile(r"\s*")
 
 
 def _scan(text: str, start: Pos, folder: str, whole: str) -> list[Loaded]:
-    """Tokens as Maxima's reader sees them; the first refused construct is an error."""
+    """Maxima's tokens as its reader sees them; the first refused construct is an error."""
     loads: list[Loaded] = []
-    at_start = True  # of a statement: where Maxima reads a break command (:lisp)
-    i, n = 0, len(text)
-    while i < n:
-        m = _TOKEN.match(text, i)
-        assert m is not None
-        kind, token = m.lastgroup, m.group()
-        where = _Where(start, text, i)
-        if kind == "comment":
-            i = _comment_end(text, i)
-            continue
-        if kind == "space":
-            i = m.end()
-            continue
-        if at_start and token == ":":
-            raise error(where.pos(), f"':{_word_after(text, i + 1)}' is a break command: it runs Lisp; "
+    i = _statement_start(text, 0, start)
+    while True:
+        m = _HIT.search(text, i)
+        if m is None:
+            return loads
+        token, i = m.group(), m.end()
+        where = _Where(start, text, m.start())
+        if token == '"':
+            i = maxima_text.string_end(text, m.start())
+            if i < 0:
+                return loads  # maxima_text has refused an unterminated string in the program
+        elif token == "/*":
+            i = _comment_end(text, m.start())
+        elif token in (";", "$"):
+            i = _statement_start(text, i, start)
+        elif token == "?":
+            raise error(where.pos(), f"'?{_word_after(text, i)}' names a Lisp function or variable; "
                         f"not allowed in a .mxm ({LIFTED})")
-        at_start = kind == "end"
-        if token == "?":
-            raise error(where.pos(), f"'?{_word_after(text, i + 1)}' names a Lisp function or variable; "
-                        f"not allowed in a .mxm ({LIFTED})")
-        if token == "\\":
+        elif token == "\\":
             raise error(where.pos(), f"a backslash outside a string (an escaped character in a name) "
                         f"can hide a Lisp name or the end of a statement; not allowed in a .mxm "
                         f"({LIFTED})")
-        if kind == "name" and token in REFUSED:
+        elif token in REFUSED:
             raise error(where.pos(), f"'{token}' {REFUSED[token]}; not allowed in a .mxm ({LIFTED})")
-        if kind == "name" and token in LOADS:
-            loads.extend(_load(text, m.end(), token, where, folder, whole))
-        i = m.end()
-    return loads
+        else:
+            loads.extend(_load(text, i, token, where, folder, whole))
+
+
+def _statement_start(text: str, i: int, start: Pos) -> int:
+    """Where the statement beginning at `i` starts after blanks and comments; a break command
+    (`:lisp`, which Maxima reads only there) is an error."""
+    while True:
+        i = _BLANK.match(text, i).end()  # type: ignore[union-attr]
+        if not text.startswith("/*", i):
+            break
+        i = _comment_end(text, i)
+    if text.startswith(":", i):
+        raise error(_Where(start, text, i).pos(), f"':{_word_after(text, i + 1)}' is a break "
+                    f"command: it runs Lisp; not allowed in a .mxm ({LIFTED})")
+    return i
 
 
 def _comment_end(text: str, i: int) -> int:
     """The end of the (nested) comment starting at `i`; the text's end if it never closes
     (maxima_text has already refused that for the program)."""
-    depth, j = 1, i + 2
-    while j < len(text) and depth:
-        if text.startswith("/*", j):
-            depth, j = depth + 1, j + 2
-        elif text.startswith("*/", j):
-            depth, j = depth - 1, j + 2
-        else:
-            j += 1
-    return j
+    end = maxima_text.comment_end(text, i)
+    return len(text) if end < 0 else end
 
 
 def _word_after(text: str, i: int) -> str:
@@ -179,38 +180,37 @@ def _word_after(text: str, i: int) -> str:
     return m.group() if m else ""
 
 
-_LOAD_ARG = re.compile(r'\s*\(\s*(?:"((?:[^"\\]|\\.)*)"|([A-Za-z_%][\w%]*))\s*[,)]')
-
-
 def _load(text: str, i: int, name: str, where: _Where, folder: str, whole: str) -> list[Loaded]:
     """A load must name a Maxima file inside the .mxm's folder, or a package of Maxima's own
     library, literally."""
-    m = _LOAD_ARG.match(text, i)
-    if m is None:
-        raise error(where.pos(), f"'{name}' of a computed file name: max2code cannot check or track "
-                    f"what it reads; not allowed in a .mxm (write the name as a string; {LIFTED})")
-    if m.group(2) is not None:  # a symbol: Maxima's library, unless the program gives it a value
-        if re.search(rf"(?<![\w%]){re.escape(m.group(2))}\s*::?(?!=)", whole):
-            raise error(where.pos(), f"'{name}({m.group(2)})' loads the file named by a variable; not "
-                        f"allowed in a .mxm (write the name as a string; {LIFTED})")
+    call = depfile.load_call_at(text, i - len(name))
+    if call is None or (call.name is None and call.symbol is None):
+        raise error(where.pos(), f"'{name}' of a computed file name: max2code cannot check or "
+                    f"track what it reads; not allowed in a .mxm (write the name as a string; "
+                    f"{LIFTED})")
+    if call.symbol is not None:  # Maxima's library, unless the program gives it a value
+        if depfile.assigned(call.symbol, whole):
+            raise error(where.pos(), f"'{name}({call.symbol})' loads the file named by a "
+                        f"variable; not allowed in a .mxm (write the name as a string; {LIFTED})")
         return []
-    target = m.group(1).replace('\\"', '"').replace("\\\\", "\\")
+    target = call.name or ""
     ext = os.path.splitext(target)[1].lower()
     if ext in LISP_EXTENSIONS:
-        raise error(where.pos(), f"'{name}(\"{target}\")' loads Lisp code; not allowed in a .mxm ({LIFTED})")
+        raise error(where.pos(), f"'{name}(\"{target}\")' loads Lisp code; not allowed in a .mxm "
+                    f"({LIFTED})")
     base = target if os.path.isabs(target) else os.path.join(folder, target)
-    candidates = [base] + ([base + e for e in (".mac", ".mc", ".wxm")] if not ext else [])
+    candidates = [base] + ([base + e for e in depfile.MAXIMA_EXTENSIONS] if not ext else [])
     found = next((c for c in candidates if os.path.isfile(c)), None)
     inside = os.path.realpath(folder) + os.sep
     if found is not None:
         real = os.path.realpath(found)
         if not real.startswith(inside):
-            raise error(where.pos(), f"'{name}(\"{target}\")' reads a file outside the .mxm's folder; "
-                        f"not allowed in a .mxm ({LIFTED})")
+            raise error(where.pos(), f"'{name}(\"{target}\")' reads a file outside the .mxm's "
+                        f"folder; not allowed in a .mxm ({LIFTED})")
         return [Loaded(real, where.pos())]
     if os.path.isabs(target) or "/" in target or "\\" in target:
-        raise error(where.pos(), f"'{name}(\"{target}\")': no such file in the .mxm's folder; loading "
-                    f"from elsewhere is not allowed in a .mxm ({LIFTED})")
+        raise error(where.pos(), f"'{name}(\"{target}\")': no such file in the .mxm's folder; "
+                    f"loading from elsewhere is not allowed in a .mxm ({LIFTED})")
     return []  # a package of Maxima's library by name: Maxima finds it in its own folders
 
 
