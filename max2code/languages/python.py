@@ -6,7 +6,8 @@ import keyword
 from dataclasses import dataclass
 
 from ..diagnostics import Pos
-from .base import Language
+from ..expr import Add, Expr
+from .base import P_ATOM, Language
 
 PY_KEYWORDS = frozenset(keyword.kwlist) | frozenset(keyword.softkwlist) | frozenset(
     {"math", "p", "coefficients", "first_root", "PARAMS", "DEGREE", "NAME"})
@@ -31,6 +32,16 @@ class Python(Language):
 
     def power_call(self, base: str, exponent: str) -> str:
         return f"({base})**({exponent})"
+
+    # CPython's compiler fails on a chain of about 3000 additions (RecursionError during
+    # compilation: `a + b + ...` nests one level per term), so a longer sum is written as
+    # math.fsum of a tuple, which is flat (and exactly rounded).
+    long_sum: int = 1000
+
+    def _print(self, e: Expr) -> tuple[str, int]:
+        if isinstance(e, Add) and len(e.args) > self.long_sum:
+            return f"math.fsum(({', '.join(self.expr(a) for a in e.args)}))", P_ATOM
+        return super()._print(e)
 
     def line_directive(self, pos: Pos) -> str:
         return f"# {self.comment_text(pos.file)}:{pos.line}"
