@@ -85,7 +85,9 @@ def _result_key(path: str, out: Path, langs: list[str] | None) -> str | None:
                             inputs=(path, *loads))
 
 
-def _cached(key: str | None) -> Outcome | None:
+def _cached(key: str | None, out: Path) -> Outcome | None:
+    """A stored outcome, its outputs placed in `out`; None unless every output is a plain
+    `LANG/FILE` name inside it (an entry never chooses where `build` writes)."""
     obj = cache.get_json(key, "results") if key else None
     if obj is None:
         return None
@@ -93,32 +95,42 @@ def _cached(key: str | None) -> Outcome | None:
         r = obj["row"]
         row = Row(r["source"], r["name"], int(r["degree"]), int(r["nparams"]), float(r["seconds"]),
                   tuple((str(a), int(b)) for a, b in r["lines"]))
-        return Outcome(row, tuple(obj["messages"]), tuple((str(p), str(t)) for p, t in obj["outputs"]))
+        outputs = []
+        for rel, text in obj["outputs"]:
+            parts = str(rel).split("/")
+            if len(parts) != 2 or any(p in ("", ".", "..") or "\\" in p for p in parts):
+                return None
+            outputs.append((str(out / parts[0] / parts[1]), str(text)))
+        return Outcome(row, tuple(str(m) for m in obj["messages"]), tuple(outputs))
     except (KeyError, TypeError, ValueError):
         return None
 
 
-def _store(key: str | None, outcome: Outcome) -> None:
+def _store(key: str | None, outcome: Outcome, out: Path) -> None:
     if key is None or outcome.row is None:
         return
     r = outcome.row
+    relative = []
+    for target, text in outcome.outputs:
+        rel = Path(target).relative_to(out)
+        relative.append([f"{rel.parent.name}/{rel.name}", text])
     cache.put_json(key, {"row": {"source": r.source, "name": r.name, "degree": r.degree,
                                  "nparams": r.nparams, "seconds": r.seconds,
                                  "lines": [list(x) for x in r.lines]},
                          "messages": list(outcome.messages),
-                         "outputs": [list(x) for x in outcome.outputs]}, "results")
+                         "outputs": relative}, "results")
 
 
 def _run(path: str, out: Path, langs: list[str] | None, timeout: float) -> Outcome:
     key = _result_key(path, out, langs)
-    hit = _cached(key)
+    hit = _cached(key, out)
     if hit is not None:
         return hit
     try:
         outcome = build_one(path, out, langs, timeout)
     except Max2CodeError as exc:
         return Outcome(None, tuple(str(d) for d in exc.diagnostics))
-    _store(key, outcome)
+    _store(key, outcome, out)
     return outcome
 
 

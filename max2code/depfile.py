@@ -132,13 +132,27 @@ def assigned(symbol: str, text: str) -> bool:
 
 def loaded_files_of_source(path: str) -> tuple[str, ...] | None:
     """The same from the raw .mxm text, without parsing it: a superset (loads in comments count
-    too), which is what a cache key needs. None if the file cannot be read."""
+    too), which is what a cache key needs. None if the file cannot be read, or if a load's file
+    is computed (then no key can cover what it reads)."""
     try:
         with open(path, encoding="utf-8", errors="replace") as f:
             text = f.read()
     except OSError:
         return None
-    return _scan([(text, os.path.dirname(path))])
+    found = _scan([(text, os.path.dirname(path))])
+    texts = [text]
+    for loaded in found:
+        try:
+            with open(loaded, encoding="utf-8", errors="replace") as f:
+                texts.append(f.read())
+        except OSError:
+            return None
+    everything = "\n".join(texts)
+    for t in texts:
+        for call in load_calls(t):
+            if call.name is None and (call.symbol is None or assigned(call.symbol, everything)):
+                return None
+    return found
 
 
 def _scan(texts: list[tuple[str, str]]) -> tuple[str, ...]:

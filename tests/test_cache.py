@@ -52,13 +52,20 @@ def logged(tmp_path: Path, maxima_exe: str) -> tuple[dict[str, str], Switch]:
                        f'exit 3; fi\nexec "{maxima_exe}" "$@"\n')
     wrapper.chmod(0o755)
     env = {**os.environ, "MAXIMA": str(wrapper), "MAX2CODE_CACHE": str(tmp_path / "cache"),
-           "PYTHONPATH": str(ROOT)}
+           "PYTHONPATH": str(ROOT), "XDG_CONFIG_HOME": str(tmp_path / "config")}
     env.pop("MAX2CODE_NO_CACHE", None)
     return env, Switch(flag)
 
 
-def entries(env: dict[str, str], kind: str = "v1") -> list[Path]:
+def entries(env: dict[str, str], kind: str = cache.MAXIMA_KIND) -> list[Path]:
     return sorted((Path(env["MAX2CODE_CACHE"]) / kind).rglob("*"), key=str)
+
+
+@pytest.fixture(autouse=True)
+def private_secret(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> None:
+    """In-process cache use signs with a secret of its own, not the user's."""
+    monkeypatch.setenv("XDG_CONFIG_HOME", str(tmp_path / "config"))
+    monkeypatch.setattr(cache, "_secret", None)
 
 
 # --- the cache module --------------------------------------------------------------------------
@@ -93,7 +100,7 @@ def test_corrupt_entries_are_ignored(monkeypatch: pytest.MonkeyPatch, tmp_path: 
     k = "ab" * 32
     cache.put(k, cache.Entry("output text", 1.5))
     assert cache.get(k) == cache.Entry("output text", 1.5)
-    (path,) = [p for p in tmp_path.rglob("*") if p.is_file()]
+    (path,) = [p for p in (tmp_path / cache.MAXIMA_KIND).rglob("*") if p.is_file()]
     data = path.read_bytes()
     for bad in (data[:-3], data.replace(b"output text", b"outpuT text"), b"", b"\0" * 40,
                 data.split(b"\n", 1)[1]):
@@ -190,6 +197,100 @@ def test_loaded_file_is_found_and_keys_the_cache(logged: tuple[dict[str, str], S
     assert "1996" in out.read_text()
 
 
+# --- forged entries, computed loads, the results key ------------------------------------------
+
+def forge(entry: Path, body: bytes, env: dict[str, str]) -> list[bytes]:
+    """Entries carrying `body` for `entry`'s key as a forger could write them: the old unkeyed
+    checksum, and an HMAC under a secret that is not the user's."""
+    import hashlib
+    import hmac
+    fake = hmac.new(b"f" * 64, entry.name.encode() + b"\0" + body, hashlib.sha256).hexdigest()
+    return [b"max2code-cache-v1 " + hashlib.sha256(body).hexdigest().encode() + b"\n" + body,
+            f"{cache.FORMAT} {hashlib.sha256(body).hexdigest()}".encode() + b"\n" + body,
+            f"{cache.FORMAT} {fake}".encode() + b"\n" + body]
+
+
+def test_forged_maxima_entries_are_never_used(logged: tuple[dict[str, str], Switch],
+                                             tmp_path: Path) -> None:
+    env, maxima = logged
+    out = tmp_path / "pl.py"
+    assert run("--lang=python", "equations/point-line.mxm", "-o", str(out), env=env).returncode == 0
+    genuine = out.read_text()
+    (entry,) = [p for p in entries(env) if p.is_file()]
+    body = entry.read_bytes().split(b"\n", 1)[1]
+    obj = json.loads(body)
+    assert "-COEF 0 " in obj["output"]
+    obj["output"] = obj["output"].replace("-COEF 0 ", "-COEF 0 987654321+")  # other coefficients
+    evil = json.dumps(obj).encode()
+    maxima.forbid()
+    for forged in forge(entry, evil, env):
+        entry.write_bytes(forged)
+        proc = run("--lang=python", "equations/point-line.mxm", "-o", str(out), env=env)
+        assert proc.returncode == 1 and "stopped before" in proc.stderr  # not used: Maxima asked
+        assert out.read_text() == genuine
+    maxima.allow()
+    assert run("--lang=python", "equations/point-line.mxm", "-o", str(out), env=env).returncode == 0
+    assert out.read_text() == genuine and b"987654321" not in entry.read_bytes()
+
+
+def test_a_results_entry_never_names_a_path(logged: tuple[dict[str, str], Switch],
+                                            tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Even an entry that passes the HMAC (the test knows the secret) cannot make `build`
+    write outside its output folder."""
+    env, _ = logged
+    out = tmp_path / "b"
+    args = ("build", "equations/point-line.mxm", "-o", str(out), "--lang", "python")
+    assert run(*args, env=env).returncode == 0
+    (entry,) = [p for p in entries(env, "results") if p.is_file()]
+    obj = json.loads(entry.read_bytes().split(b"\n", 1)[1])
+    assert [rel for rel, _ in obj["outputs"]] == ["python/point_line.py"]
+    evil = tmp_path / "evil.txt"
+    monkeypatch.setenv("MAX2CODE_CACHE", env["MAX2CODE_CACHE"])
+    monkeypatch.setenv("XDG_CONFIG_HOME", env["XDG_CONFIG_HOME"])
+    monkeypatch.setattr(cache, "_secret", None)
+    for name in (str(evil), "../../evil.txt", "python/../../evil.txt", "python/x/../evil.txt"):
+        cache.put_json(entry.name, {**obj, "outputs": [[name, "owned"]]}, "results")
+        assert cache.get_json(entry.name, "results") is not None  # a valid entry...
+        proc = run(*args, env=env)
+        assert proc.returncode == 0, proc.stderr  # ...is not used: the build is redone
+        assert not evil.exists() and not (tmp_path / "evil.txt").exists()
+        assert "owned" not in (out / "python" / "point_line.py").read_text()
+
+
+def test_the_current_folder_is_not_in_the_results_key(logged: tuple[dict[str, str], Switch],
+                                                      tmp_path: Path) -> None:
+    env, maxima = logged
+    source = (ROOT / "equations" / "point-line.mxm").resolve()
+    args = ("build", str(source), "-o", str(tmp_path / "b"), "--lang", "c")
+    assert run(*args, env=env, cwd=tmp_path).returncode == 0
+    (tmp_path / "new-file").write_text("the folder's mtime changes\n")
+    os.utime(tmp_path, (5_000_000, 5_000_000))
+    maxima.forbid()
+    warm = run(*args, env=env, cwd=tmp_path)
+    assert warm.returncode == 0, warm.stderr  # served from the results cache
+
+
+def test_a_computed_load_is_never_cached(logged: tuple[dict[str, str], Switch],
+                                         tmp_path: Path) -> None:
+    """Issue 12: `load()` of a computed name is not in the key; a stale result (-1.0 where
+    -4.0 was right) was reused. Such a run (possible with --allow-unsafe-maxima) is not cached."""
+    env, _ = logged
+    (tmp_path / "helper.mac").write_text("k: 1$\n")
+    (tmp_path / "use.mxm").write_text('function use\nbegin\nf: "helper.mac"$\nload(f)$\n'
+                                      "t - k;\nend\n")
+    out = tmp_path / "use.py"
+    for k in (1, 4):
+        (tmp_path / "helper.mac").write_text(f"k: {k}$\n")
+        for argv in (("use.mxm", "-o", str(out)), ("build", "use.mxm", "-o", "b", "--lang", "python")):
+            proc = run("--lang=python", *argv, "--allow-unsafe-maxima", env=env, cwd=tmp_path) \
+                if argv[0] != "build" else run(*argv, "--allow-unsafe-maxima", env=env, cwd=tmp_path)
+            assert proc.returncode == 0, proc.stderr
+        for text in (out.read_text(), (tmp_path / "b" / "python" / "use.py").read_text()):
+            assert f"c0 = -{k}.0" in text or f"-{k}.0" in text
+    assert [p for p in entries(env) if p.is_file()] == []
+    assert [p for p in entries(env, "results") if p.is_file()] == []
+
+
 # --- dependency files --------------------------------------------------------------------------
 
 def test_depfile_options(logged: tuple[dict[str, str], Switch], tmp_path: Path) -> None:
@@ -278,3 +379,16 @@ def test_runtime_discovery() -> None:
     everything = run("runtime", env=env)
     assert everything.returncode == 0 and "[c]" in everything.stdout and "[rust]" in everything.stdout
     assert run("runtime", "--lang", "c", "--cargo", env=env).returncode == 2
+
+
+def test_a_secret_others_may_write_disables_the_cache(monkeypatch: pytest.MonkeyPatch,
+                                                      tmp_path: Path) -> None:
+    monkeypatch.setenv("MAX2CODE_CACHE", str(tmp_path / "c"))
+    cache.put("ab" * 32, cache.Entry("x", 1.0))
+    assert cache.get("ab" * 32) is not None
+    assert cache.key_file().stat().st_mode & 0o077 == 0  # made private
+    cache.key_file().chmod(0o666)
+    monkeypatch.setattr(cache, "_secret", None)
+    assert cache.get("ab" * 32) is None
+    cache.put("cd" * 32, cache.Entry("y", 1.0))
+    assert not list((tmp_path / "c" / cache.MAXIMA_KIND).rglob("cd*"))
