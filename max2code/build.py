@@ -15,13 +15,14 @@ from __future__ import annotations
 
 import argparse
 import os
+import re
 import sys
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 
 from . import cache, depfile, maxima
-from .diagnostics import Max2CodeError
+from .diagnostics import Max2CodeError, Pos
 from .output import write_if_changed
 from .paths import shipped_equations
 
@@ -134,6 +135,40 @@ def _run(path: str, out: Path, langs: list[str] | None, timeout: float) -> Outco
     return outcome
 
 
+def _clashes(inputs: list[str], outcomes: list[Outcome]) -> dict[str, str]:
+    """Equations that would write the same output (the same `function`, or the same file stem):
+    neither is written, and the later one gets a diagnostic naming both. Maps each such input
+    to its diagnostic ('' for the first of a pair, which is reported with the second)."""
+    owner: dict[str, tuple[str, str]] = {}
+    clashes: dict[str, str] = {}
+    for path, outcome in zip(inputs, outcomes):
+        if outcome.row is None:
+            continue
+        for target, _ in outcome.outputs:
+            first = owner.setdefault(target, (path, outcome.row.name))
+            if first[0] != path and path not in clashes:
+                name = outcome.row.name
+                clashes.setdefault(first[0], "")
+                clashes[path] = (f"{_declaration(path, name)}: error: function '{name}' is also "
+                                 f"generated from {_declaration(first[0], name)}: both would write "
+                                 f"{target}; give one of them another 'function' name")
+    return clashes
+
+
+def _declaration(path: str, name: str) -> Pos:
+    """Where `function NAME` is declared in `path` (its first line when the name comes from
+    the file's name)."""
+    try:
+        with open(path, encoding="utf-8", errors="replace") as f:
+            for number, line in enumerate(f, start=1):
+                m = re.match(rf"(\s*)function\s+{re.escape(name)}\b", line, re.I)
+                if m:
+                    return Pos(path, number, len(m.group(1)) + 1)
+    except OSError:
+        pass
+    return Pos(path, 1, 1)
+
+
 def summary(rows: list[Row], failed: list[str], langs: list[str]) -> str:
     head = "| equation | function | degree | parameters | Maxima s | " + " | ".join(
         f"{lang} lines" for lang in langs) + " |"
@@ -191,9 +226,15 @@ def main(argv: list[str]) -> int:
     else:
         outcomes = [task(p) for p in inputs]
     rows, failed = [], []
+    clashes = _clashes(inputs, outcomes)
     for path, outcome in zip(inputs, outcomes):
         for message in outcome.messages:
             print(message, file=sys.stderr)
+        if path in clashes:
+            if clashes[path]:
+                print(clashes[path], file=sys.stderr)
+            failed.append(path)
+            continue
         if outcome.row is None:
             failed.append(path)
             continue

@@ -392,3 +392,20 @@ def test_a_secret_others_may_write_disables_the_cache(monkeypatch: pytest.Monkey
     assert cache.get("ab" * 32) is None
     cache.put("cd" * 32, cache.Entry("y", 1.0))
     assert not list((tmp_path / "c" / cache.MAXIMA_KIND).rglob("cd*"))
+
+
+def test_two_equations_with_one_function_name(logged: tuple[dict[str, str], Switch],
+                                              tmp_path: Path) -> None:
+    """Issue 12: `build` silently overwrote one output with the other."""
+    env, _ = logged
+    text = (ROOT / "equations" / "point-line.mxm").read_text()
+    (tmp_path / "a.mxm").write_text(text)
+    (tmp_path / "b.mxm").write_text("// the same function name\n" + text)
+    shutil.copy(ROOT / "equations" / "circles-accel.mxm", tmp_path / "c.mxm")
+    proc = run("build", "a.mxm", "c.mxm", "b.mxm", "-o", "out", "--lang", "c", env=env, cwd=tmp_path)
+    assert proc.returncode == 1
+    assert proc.stderr.splitlines() == [
+        "b.mxm:11:1: error: function 'point_line' is also generated from a.mxm:10:1: both would "
+        "write out/c/point_line.h; give one of them another 'function' name"]
+    assert sorted(p.name for p in (tmp_path / "out" / "c").iterdir()) == ["circles_accel.h"]
+    assert "Failed:\n\n- a.mxm\n- b.mxm" in proc.stdout
