@@ -221,12 +221,42 @@ def _memory_hint() -> str:
 
 def statement_at(text: str, statements: tuple[Statement, ...], where: Pos, offset: int) -> Pos:
     """The position of the last statement whose marker precedes `offset` in the output."""
+    stmt = _statement_before(text, statements, offset)
+    return where if stmt is None else stmt.pos
+
+
+def _statement_before(text: str, statements: tuple[Statement, ...], offset: int) -> Statement | None:
     found = None
     for m in re.finditer(rf"^{MARK}-STMT (\d+)$", text[:offset], re.M):
         found = int(m.group(1))
-    if found is None or found >= len(statements):
-        return where
-    return statements[found].pos
+    return None if found is None or found >= len(statements) else statements[found]
+
+
+_SHOWN = re.compile(r"Space|Tab|\\([0-7]{3})|(.)", re.S)
+
+
+def syntax_error_pos(stmt: Statement, shown: str, caret: str) -> Pos:
+    """Where in the .mxm Maxima's syntax error points. Maxima prints the line it was reading
+    (from the statement's start on its first line), spaces as `Space`, tabs as `Tab`, other
+    bytes above 127 as octal escapes, and under it a caret at a byte offset into that line.
+    The line is found among the statement's lines by that text; the statement's own position
+    is the answer when it cannot be."""
+    if not caret.strip() == "^":
+        return stmt.pos
+    pattern = "".join(
+        "[ ]" if m.group() == "Space" else "\t" if m.group() == "Tab"
+        else re.escape(bytes([int(m.group(1), 8)]).decode("latin-1")) if m.group(1)
+        else re.escape(m.group(2))
+        for m in _SHOWN.finditer(shown))
+    offset = len(caret) - 1
+    for number, line in enumerate(stmt.text.split("\n")):
+        raw = line.encode("utf-8", "replace").decode("latin-1")  # bytes, as Maxima counts them
+        if re.match(pattern, raw) and offset <= len(raw):
+            column = len(raw[:offset].encode("latin-1").decode("utf-8", "ignore"))
+            if number == 0:
+                return Pos(stmt.pos.file, stmt.pos.line, stmt.pos.col + column)
+            return Pos(stmt.pos.file, stmt.pos.line + number, column + 1)
+    return stmt.pos
 
 
 def _check(text: str, statements: tuple[Statement, ...], where: Pos, reason: str | None,
@@ -247,6 +277,10 @@ def _check(text: str, statements: tuple[Statement, ...], where: Pos, reason: str
         m = pattern.search(text)
         if m:
             pos = statement_at(text, statements, where, m.start())
+            stmt = _statement_before(text, statements, m.start())
+            if pattern is _ERRORS[0] and stmt is not None:  # incorrect syntax: the caret's column
+                shown, _, caret = text[m.end() + 1:].partition("\n")
+                pos = syntax_error_pos(stmt, shown, caret.split("\n")[0])
             detail = m.group(1).strip() or "(no message)"
             raise error(pos, f"Maxima error: {detail}")
     if reason == "timeout":

@@ -99,3 +99,22 @@ def test_awkward_but_valid_input(name: str, lang: str, tmp_path: Path, maxima_ex
     text = out.read_text()
     assert "DEGREE 2" in text or "DEGREE = 2" in text
     assert "\r" not in text
+
+
+@pytest.mark.parametrize("text,shown,caret,expected", [
+    ("x: 1 +* 2;", "x:Space1Space+*Space", "      ^", (5, 17)),
+    ("y: a +\n    (b *) + 1;", "SpaceSpaceSpaceSpace(bSpace*)", "       ^", (6, 8)),
+    ("w: f(\u00e9 b);", "w:Spacef(\\303\\251Spaceb)", "        ^", (5, 18)),  # a byte offset
+    ("w: f(a\tb);", "w:Spacef(aTabb)", "       ^", (5, 18)),
+    ("x: 1 +* 2;", "something else", "      ^", (5, 11)),  # not found: the statement
+])
+def test_maxima_syntax_error_columns(text: str, shown: str, caret: str,
+                                     expected: tuple[int, int]) -> None:
+    """Maxima's caret (a byte offset into the line it shows, spaces printed as 'Space') is
+    mapped back to the .mxm; here the statement starts at line 5, column 11."""
+    from max2code.diagnostics import Pos
+    from max2code.maxima import syntax_error_pos
+    from max2code.spec import Statement
+
+    pos = syntax_error_pos(Statement(text, Pos("f.mxm", 5, 11)), shown, caret)
+    assert (pos.line, pos.col) == expected
