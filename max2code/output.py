@@ -15,6 +15,10 @@ import os
 import stat
 import sys
 import tempfile
+from collections.abc import Iterator
+from contextlib import contextmanager
+from collections.abc import Iterator
+from contextlib import contextmanager
 
 from .diagnostics import Pos, error
 
@@ -99,3 +103,33 @@ def _replace(path: str, target: str, data: bytes) -> None:
                 os.unlink(tmp)
             except OSError:
                 pass
+
+
+@contextmanager
+def replaced_atomically(path: str) -> Iterator[str]:
+    """A temporary path beside `path` (same suffix, so writers that pick a format from the name
+    still do) for a library that insists on writing a file itself (Pillow, ffmpeg); renamed over
+    `path` when the block ends without an exception, removed otherwise. Errors come out as
+    `path:1:1: error: ...` like every output's. As for write_if_changed, a symlink is followed
+    and a device or FIFO is written into, never replaced."""
+    target = os.path.realpath(path)
+    folder = os.path.dirname(target)
+    suffix = os.path.splitext(path)[1]
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=".max2code-", suffix=suffix, dir=folder)
+        os.close(fd)
+    except OSError as exc:
+        raise error(Pos(path, 1, 1), f"cannot write output: {exc.strerror}") from None
+    try:
+        yield tmp
+        if os.path.exists(target) and not stat.S_ISREG(os.stat(target).st_mode):
+            with open(tmp, "rb") as f:
+                _write_into(path, target, f.read())
+        else:
+            os.chmod(tmp, 0o644)
+            os.replace(tmp, target)
+    except OSError as exc:
+        raise error(Pos(path, 1, 1), f"cannot write output: {exc.strerror}") from None
+    finally:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
