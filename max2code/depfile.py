@@ -109,8 +109,13 @@ def all_loads_literal(statements: tuple[Statement, ...]) -> bool:
     """Whether every load of the program, and of the files it loads, names its file literally:
     a string, or a symbol the program never assigns (a package of Maxima's library). Otherwise
     the files it reads are unknown, and no cache entry can be keyed to them."""
-    texts = [s.text for s in statements]
-    for path in loaded_files(statements):
+    return _literal([s.text for s in statements], loaded_files(statements))
+
+
+def _literal(texts: list[str], loaded: tuple[str, ...]) -> bool:
+    """all_loads_literal for `texts` and the files they load (which are read here)."""
+    texts = list(texts)
+    for path in loaded:
         if os.path.splitext(path)[1].lower() in _TEXT_EXTENSIONS:
             try:
                 with open(path, encoding="utf-8", errors="replace") as f:
@@ -118,11 +123,8 @@ def all_loads_literal(statements: tuple[Statement, ...]) -> bool:
             except OSError:
                 return False
     everything = "\n".join(texts)
-    for text in texts:
-        for call in load_calls(text):
-            if call.name is None and (call.symbol is None or assigned(call.symbol, everything)):
-                return False
-    return True
+    return all(call.name is not None or (call.symbol is not None and not assigned(call.symbol, everything))
+               for text in texts for call in load_calls(text))
 
 
 def assigned(symbol: str, text: str) -> bool:
@@ -140,19 +142,7 @@ def loaded_files_of_source(path: str) -> tuple[str, ...] | None:
     except OSError:
         return None
     found = _scan([(text, os.path.dirname(path))])
-    texts = [text]
-    for loaded in found:
-        try:
-            with open(loaded, encoding="utf-8", errors="replace") as f:
-                texts.append(f.read())
-        except OSError:
-            return None
-    everything = "\n".join(texts)
-    for t in texts:
-        for call in load_calls(t):
-            if call.name is None and (call.symbol is None or assigned(call.symbol, everything)):
-                return None
-    return found
+    return found if _literal([text], found) else None
 
 
 def _scan(texts: list[tuple[str, str]]) -> tuple[str, ...]:
