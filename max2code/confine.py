@@ -83,14 +83,25 @@ def preexec(limits: Limits, readable: tuple[str, ...], sandbox: bool) -> Callabl
             libc.prctl(_PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
             if os.getppid() != parent:  # max2code died before the line above: so does Maxima
                 os._exit(137)
-        resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
-        resource.setrlimit(resource.RLIMIT_CPU, (cpu, cpu + 5))
+        _lower(resource.RLIMIT_CORE, 0, 0)
+        _lower(resource.RLIMIT_CPU, cpu, cpu + 5)  # SIGXCPU first (a diagnostic), then SIGKILL
         if memory:
-            resource.setrlimit(resource.RLIMIT_AS, (memory, memory))
+            _lower(resource.RLIMIT_AS, memory, memory)
         if ruleset is not None:
             ruleset.restrict(libc)
 
     return setup
+
+
+def _lower(which: int, soft: int, hard: int) -> None:
+    """Lower a limit, never raise it; a platform without it is left alone."""
+    try:
+        _, current = resource.getrlimit(which)
+        if current != resource.RLIM_INFINITY:
+            soft, hard = min(soft, current), min(hard, current)
+        resource.setrlimit(which, (soft, hard))
+    except (OSError, ValueError):
+        pass
 
 
 def landlock_abi() -> int:
