@@ -33,6 +33,8 @@ _ERRORS = (
     re.compile(r"^Maxima encountered a Lisp error:\s*(?:Condition in .*?: )?(\S.*)$", re.M),
     re.compile(r"^(Unrecoverable error: .*)$", re.M),  # GCL itself gave up (out of memory, ...)
 )
+# GCL's words when its heap is full (the memory limit, or GCL_MEM_MULTIPLE of it, reached).
+_EXHAUSTED = re.compile(r"storage for \S+ is exhausted")
 _REFUSED = re.compile(rf"^{MARK}-REFUSED (.*)$", re.M)
 _QUESTION = re.compile(r"^(Is .*\?)\s*$", re.M)
 _INSTALL_HINT = ("install it: Debian/Ubuntu 'apt-get install maxima', Fedora 'dnf install maxima', "
@@ -215,7 +217,7 @@ def _wait(proc: subprocess.Popen[bytes], out: int, timeout: float, private: str)
 
 def _memory_hint() -> str:
     limit = _policy.memory_mib
-    return (f" (Maxima may use {limit} MiB of memory: raise it with --maxima-memory)"
+    return (f"; Maxima may use {limit} MiB of memory: raise it with --maxima-memory"
             if limit else "")
 
 
@@ -273,6 +275,10 @@ def _check(text: str, statements: tuple[Statement, ...], where: Pos, reason: str
         raise error(pos, f"Maxima asked a question it cannot be answered here: "
                     f"'{question.group(1).strip()}' (declare the sign with assume(), e.g. "
                     f"assume(n > 0))")
+    exhausted = _EXHAUSTED.search(text)
+    if exhausted:
+        pos = statement_at(text, statements, where, exhausted.start())
+        raise error(pos, f"Maxima ran out of memory ({exhausted.group(0)})" + _memory_hint())
     for pattern in _ERRORS:
         m = pattern.search(text)
         if m:

@@ -25,6 +25,7 @@ NAMES = sorted(p.stem for p in BAD.glob("*.expected"))
 # name -> (extra arguments, output path relative to ROOT or None for a temporary file)
 SPECIAL: dict[str, tuple[list[str], str | None]] = {
     "maxima-timeout": (["--timeout", "4"], None),
+    "maxima-out-of-memory": (["--maxima-memory", "300", "--timeout", "100"], None),
     "unwritable-output": ([], "tests/bad/unwritable-output.mxm/out.h"),  # a file as a folder
 }
 NEEDS_NO_MAXIMA = {"no-maxima"}

@@ -99,3 +99,27 @@ def test_a_500_term_equation_end_to_end(tmp_path: Path, maxima_exe: str) -> None
     c = module["coefficients"]([p[n] for n in module["PARAMS"]])  # type: ignore[operator, union-attr]
     # (t - s)(t + 1) = t^2 + (1 - s) t - s
     assert c == pytest.approx([-s, 1 - s, 1.0], rel=1e-12, abs=1e-12)
+
+
+def test_a_constant_beyond_a_double_is_a_diagnostic_not_a_crash() -> None:
+    """(t - 1)^2000's middle coefficients exceed 1.8e308: an OverflowError used to exit 2."""
+    for lang in LANGUAGES.values():
+        with pytest.raises(ValueError, match=r"the constant 2\.048e\+600 does not fit in a double"):
+            lang.expr(parse_maxima(str(math.comb(2000, 1000)) + "*x"))
+
+
+def test_powers_above_maxposex_are_expanded(tmp_path: Path, maxima_exe: str,
+                                            monkeypatch: pytest.MonkeyPatch) -> None:
+    """Maxima's expand() leaves a power above maxposex (1000) alone, which made (t - 1)^1001
+    look like a coefficient holding t. Checked against math.comb."""
+    from max2code.parse import parse_text
+    from max2code.poly import polynomial
+
+    monkeypatch.setenv("MAX2CODE_CACHE", str(tmp_path))
+    spec = parse_text("begin\n(t - 1)^1001;\nend\n", str(tmp_path / "p.mxm"))
+    poly = polynomial(spec, combos=[((), ())])
+    assert poly.degree == 1001
+    for k in (0, 1, 500, 1001):
+        c = poly.coefficients[k]
+        value = c.value if hasattr(c, "value") else -c.arg.value  # type: ignore[union-attr]
+        assert value == (-1) ** (1001 - k) * math.comb(1001, k)

@@ -19,6 +19,13 @@ P_ADD, P_MUL, P_NEG, P_POW, P_ATOM = 1, 2, 3, 4, 5
 CONSTANT_VALUES = {"%pi": math.pi, "%e": math.e}
 
 
+def _digits(value: Fraction) -> str:
+    """A huge rational, shortly: its leading digits and its number of digits."""
+    text = str(abs(value.numerator) // value.denominator)
+    sign = "-" if value < 0 else ""
+    return f"{sign}{text[0]}.{text[1:4]}e+{len(text) - 1}"
+
+
 @dataclass(frozen=True)
 class Language:
     """A target language's printing rules. Subclasses override the hooks below."""
@@ -104,9 +111,12 @@ class Language:
         return out
 
     def number(self, value: Fraction) -> str:
-        if value.denominator == 1 or Fraction(float(value)) == value:  # exact as a double
-            return self.float_literal(float(value))
-        return f"({self.float_literal(float(value.numerator))}/{self.float_literal(float(value.denominator))})"
+        try:
+            if value.denominator == 1 or Fraction(float(value)) == value:  # exact as a double
+                return self.float_literal(float(value))
+            return f"({self.float_literal(float(value.numerator))}/{self.float_literal(float(value.denominator))})"
+        except OverflowError:  # a ValueError is reported at the equation by emit.py
+            raise ValueError(f"the constant {_digits(value)} does not fit in a double") from None
 
     def expr(self, e: Expr) -> str:
         return self._print(e)[0]
