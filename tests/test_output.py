@@ -117,3 +117,21 @@ def test_a_regular_file_is_compared_with_a_bounded_read(tmp_path: Path) -> None:
     assert write_if_changed(str(out), TEXT) and out.read_text() == TEXT
     os.utime(out, ns=(1, 1))
     assert not write_if_changed(str(out), TEXT) and out.stat().st_mtime_ns == 1
+
+
+def test_files_written_by_a_library_follow_the_same_rules(tmp_path: Path) -> None:
+    """output.replaced_atomically (for writers such as Pillow): a symlink is kept, a device is
+    written into."""
+    from max2code.output import replaced_atomically
+
+    target = tmp_path / "real.png"
+    link = tmp_path / "frame.png"
+    link.symlink_to(target)
+    with replaced_atomically(str(link)) as tmp:
+        Path(tmp).write_bytes(b"png")
+    assert link.is_symlink() and target.read_bytes() == b"png"
+    null = device(tmp_path, "null", 3)
+    with replaced_atomically(str(null)) as tmp:
+        Path(tmp).write_bytes(b"png")
+    assert stat.S_ISCHR(os.stat(null).st_mode)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["frame.png", "null", "real.png"]
