@@ -48,6 +48,8 @@ BUILT_NAMES = {
     "funmake-ev-eval": ('ev(funmake(concat(sys, tem), ["touch {pwned}"]), eval)$', 2, "system"),
     "subscripted-function": ('g[k] := concat(sys, tem)$\napply(g[1], ["touch {pwned}"])$', 3,
                              "system"),
+    "define-buildq": ('define(f(c), buildq([s: concat(sys, tem)], s(c)))$\nf("touch {pwned}")$', 3,
+                      "system"),
     "built-writefile": ('apply(concat(write, file), ["{pwned}"])$', 2, "writefile"),
     "built-with-stdout": ('apply(concat(with_, stdout), ["{pwned}", 1])$', 2, "with_stdout"),
     "built-openw": ('apply(concat(open, w), ["{pwned}"])$', 2, "openw"),
@@ -83,6 +85,25 @@ def test_built_names_are_refused_at_run_time(name: str, tmp_path: Path, maxima_e
     assert first.endswith("; not allowed in a .mxm (--allow-unsafe-maxima lifts this)"), first
     assert not pwned.exists()
     assert not mxm.with_suffix(".py").exists()
+
+
+# Look-alikes of a break command that Maxima reads as symbols: nothing must run, whatever the
+# outcome (a syntax error or an unevaluated call).
+UNICODE_TRICKS = {
+    "fullwidth colon": '\uff1alisp (si:system "touch {pwned}")$',
+    "no-break space first": 'x: 1$\n\u00a0:lisp (si:system "touch {pwned}")\n',
+    "zero-width space inside": ':\u200blisp (si:system "touch {pwned}")\n',
+    "cyrillic s in system": '\u0455ystem("touch {pwned}")$',
+}
+
+
+@pytest.mark.parametrize("name", sorted(UNICODE_TRICKS))
+def test_unicode_look_alikes_run_nothing(name: str, tmp_path: Path, maxima_exe: str) -> None:
+    pwned = tmp_path / PWNED
+    mxm = program(tmp_path, UNICODE_TRICKS[name].format(pwned=pwned))
+    proc = run(mxm)
+    assert "Traceback" not in proc.stderr and proc.returncode in (0, 1)
+    assert not pwned.exists()
 
 
 def test_unsafe_lifts_the_lock(tmp_path: Path, maxima_exe: str) -> None:
