@@ -18,13 +18,14 @@ from __future__ import annotations
 
 import argparse
 import os
+import re
 import sys
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 
 from . import cache, depfile, maxima
-from .diagnostics import Max2CodeError
+from .diagnostics import Max2CodeError, Pos
 from .output import write_if_changed
 from .paths import inputs_or_folder, no_inputs
 
@@ -84,10 +85,13 @@ def _result_key(path: str, out: Path, langs: list[str] | None) -> str | None:
     if loads is None:
         return None
     return cache.result_key("build", path, str(out), ",".join(langs or ["*"]),
-                            cache.executable_identity(exe), inputs=(path, *loads))
+                            cache.executable_identity(exe), f"unsafe={maxima.policy().allow_unsafe}",
+                            inputs=(path, *loads))
 
 
-def _cached(key: str | None) -> Outcome | None:
+def _cached(key: str | None, out: Path) -> Outcome | None:
+    """A stored outcome, its outputs placed in `out`; None unless every output is a plain
+    `LANG/FILE` name inside it (an entry never chooses where `build` writes)."""
     obj = cache.get_json(key, "results") if key else None
     if obj is None:
         return None
@@ -95,33 +99,77 @@ def _cached(key: str | None) -> Outcome | None:
         r = obj["row"]
         row = Row(r["source"], r["name"], int(r["degree"]), int(r["nparams"]), float(r["seconds"]),
                   tuple((str(a), int(b)) for a, b in r["lines"]))
-        return Outcome(row, tuple(obj["messages"]), tuple((str(p), str(t)) for p, t in obj["outputs"]))
+        outputs = []
+        for rel, text in obj["outputs"]:
+            parts = str(rel).split("/")
+            if len(parts) != 2 or any(p in ("", ".", "..") or "\\" in p for p in parts):
+                return None
+            outputs.append((str(out / parts[0] / parts[1]), str(text)))
+        return Outcome(row, tuple(str(m) for m in obj["messages"]), tuple(outputs))
     except (KeyError, TypeError, ValueError):
         return None
 
 
-def _store(key: str | None, outcome: Outcome) -> None:
+def _store(key: str | None, outcome: Outcome, out: Path) -> None:
     if key is None or outcome.row is None:
         return
     r = outcome.row
+    relative = []
+    for target, text in outcome.outputs:
+        rel = Path(target).relative_to(out)
+        relative.append([f"{rel.parent.name}/{rel.name}", text])
     cache.put_json(key, {"row": {"source": r.source, "name": r.name, "degree": r.degree,
                                  "nparams": r.nparams, "seconds": r.seconds,
                                  "lines": [list(x) for x in r.lines]},
                          "messages": list(outcome.messages),
-                         "outputs": [list(x) for x in outcome.outputs]}, "results")
+                         "outputs": relative}, "results")
 
 
 def _run(path: str, out: Path, langs: list[str] | None, timeout: float) -> Outcome:
     key = _result_key(path, out, langs)
-    hit = _cached(key)
+    hit = _cached(key, out)
     if hit is not None:
         return hit
     try:
         outcome = build_one(path, out, langs, timeout)
     except Max2CodeError as exc:
         return Outcome(None, tuple(str(d) for d in exc.diagnostics))
-    _store(key, outcome)
+    _store(key, outcome, out)
     return outcome
+
+
+def _clashes(inputs: list[str], outcomes: list[Outcome]) -> dict[str, str]:
+    """Equations that would write the same output (the same `function`, or the same file stem):
+    neither is written, and the later one gets a diagnostic naming both. Maps each such input
+    to its diagnostic ('' for the first of a pair, which is reported with the second)."""
+    owner: dict[str, tuple[str, str]] = {}
+    clashes: dict[str, str] = {}
+    for path, outcome in zip(inputs, outcomes):
+        if outcome.row is None:
+            continue
+        for target, _ in outcome.outputs:
+            first = owner.setdefault(target, (path, outcome.row.name))
+            if first[0] != path and path not in clashes:
+                name = outcome.row.name
+                clashes.setdefault(first[0], "")
+                clashes[path] = (f"{_declaration(path, name)}: error: function '{name}' is also "
+                                 f"generated from {_declaration(first[0], name)}: both would write "
+                                 f"{target}; give one of them another 'function' name")
+    return clashes
+
+
+def _declaration(path: str, name: str) -> Pos:
+    """Where `function NAME` is declared in `path` (its first line when the name comes from
+    the file's name)."""
+    try:
+        with open(path, encoding="utf-8", errors="replace") as f:
+            for number, line in enumerate(f, start=1):
+                m = re.match(rf"(\s*)function\s+{re.escape(name)}\b", line, re.I)
+                if m:
+                    return Pos(path, number, len(m.group(1)) + 1)
+    except OSError:
+        pass
+    return Pos(path, 1, 1)
 
 
 def summary(rows: list[Row], failed: list[str], langs: list[str]) -> str:
@@ -153,9 +201,12 @@ def main(argv: list[str]) -> int:
                     help="run up to N equations at once (default 1; 0: one per CPU)")
     ap.add_argument("--no-cache", action="store_true",
                     help="neither read nor write the cache of Maxima results and outputs")
+    from .cli import add_maxima_options, apply_maxima_options
+    add_maxima_options(ap)
     opts = ap.parse_args(argv)
     if opts.no_cache:
         cache.disable()
+    apply_maxima_options(opts)
     if opts.jobs < 0:
         ap.error("--jobs must be 0 or more")
     jobs = opts.jobs or os.cpu_count() or 1
@@ -180,9 +231,15 @@ def main(argv: list[str]) -> int:
     else:
         outcomes = [task(p) for p in inputs]
     rows, failed = [], []
+    clashes = _clashes(inputs, outcomes)
     for path, outcome in zip(inputs, outcomes):
         for message in outcome.messages:
             print(message, file=sys.stderr)
+        if path in clashes:
+            if clashes[path]:
+                print(clashes[path], file=sys.stderr)
+            failed.append(path)
+            continue
         if outcome.row is None:
             failed.append(path)
             continue

@@ -7,8 +7,13 @@ and the max2code version. Entries live in
 
     $MAX2CODE_CACHE, else $XDG_CACHE_HOME/max2code, else ~/.cache/max2code
 
-as `v1/<2 hex>/<64 hex>`. Each entry starts with a line holding a checksum of the rest, so a
-truncated or corrupted entry is detected, ignored and rewritten by the next successful run.
+as `v2/<2 hex>/<64 hex>`. Each entry starts with a line holding an HMAC-SHA256 of its key and
+body under a secret private to the user (`$XDG_CONFIG_HOME/max2code/cache-key`, else
+`~/.config/max2code/cache-key`, made with mode 0600 on first use, never inside the cache): an
+entry that was truncated, corrupted, written by anyone else or copied from another machine (a
+shared or restored cache folder) fails the check, is ignored, and is rewritten by the next
+successful run. Without a usable secret (an unwritable config folder, a key file others may
+write) nothing is cached.
 Writers write a temporary file in the same folder and `os.replace` it: concurrent writers of
 the same entry each leave a whole entry behind, never a mixture. Only successful runs are
 stored (the caller decides); any failure to read or write the cache is silent, since the cache
@@ -19,20 +24,26 @@ A second kind of entry (`results/`) serves `max2code build` the way ccache's dir
 a compiler: keyed by the .mxm's bytes and path, the contents of the files it loads, Maxima's
 identity and a digest of max2code's own code and templates, it holds the finished outputs, so
 a rebuild of unchanged equations neither parses nor renders (and imports neither Lark nor Jinja).
+An entry names its outputs relative to the output folder only (build.py checks them), so even a
+valid-looking entry can never make `build` write elsewhere.
 """
 
 from __future__ import annotations
 
 import hashlib
+import hmac
 import json
 import os
+import secrets
+import stat
 import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
 from . import __version__
 
-FORMAT = "max2code-cache-v1"
+FORMAT = "max2code-cache-v2"
+MAXIMA_KIND = "v2"
 _enabled = True
 
 
@@ -69,12 +80,16 @@ def executable_identity(exe: str) -> str:
 
 def key(script: str, exe: str, inputs: tuple[str, ...] = ()) -> str:
     """The entry key: a hash of the script, the loaded files' contents, Maxima and max2code."""
+    return _digest((FORMAT, __version__, executable_identity(exe), script), inputs)
+
+
+def _digest(parts: tuple[str, ...], inputs: tuple[str, ...]) -> str:
     h = hashlib.sha256()
-    for part in (FORMAT, __version__, executable_identity(exe), script):
+    for part in parts:
         h.update(part.encode("utf-8", "surrogatepass"))
         h.update(b"\0\1")
     for path in inputs:
-        h.update(path.encode("utf-8", "surrogatepass") + b"\0")
+        h.update(path.encode("utf-8", "surrogateescape") + b"\0")
         try:
             with open(path, "rb") as f:
                 h.update(hashlib.sha256(f.read()).digest())
@@ -84,7 +99,48 @@ def key(script: str, exe: str, inputs: tuple[str, ...] = ()) -> str:
     return h.hexdigest()
 
 
-def _entry_path(k: str, kind: str = "v1") -> Path:
+def key_file() -> Path:
+    """Where the user's cache secret lives: a config folder, never the cache folder."""
+    config = os.environ.get("XDG_CONFIG_HOME") or str(Path.home() / ".config")
+    return Path(config) / "max2code" / "cache-key"
+
+
+_secret: bytes | None = None
+
+
+def secret() -> bytes | None:
+    """The user's cache secret, made on first use; None when it cannot be trusted or made."""
+    global _secret
+    if _secret is None:
+        path = key_file()
+        try:
+            path.parent.mkdir(parents=True, exist_ok=True)
+            try:
+                fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
+                with os.fdopen(fd, "w") as f:
+                    f.write(secrets.token_hex(32) + "\n")
+            except FileExistsError:
+                pass
+            info = os.stat(path)
+            if info.st_uid != os.getuid() or info.st_mode & (stat.S_IWGRP | stat.S_IWOTH):
+                return None  # someone else could choose our secret
+            value = path.read_text().strip()
+        except OSError:
+            return None
+        if len(value) < 32:
+            return None
+        _secret = value.encode()
+    return _secret
+
+
+def _mac(k: str, body: bytes) -> str | None:
+    key_bytes = secret()
+    if key_bytes is None:
+        return None
+    return hmac.new(key_bytes, k.encode() + b"\0" + body, hashlib.sha256).hexdigest()
+
+
+def _entry_path(k: str, kind: str = MAXIMA_KIND) -> Path:
     return directory() / kind / k[:2] / k
 
 
@@ -118,8 +174,9 @@ _source_digest: str | None = None
 
 
 def result_key(*parts: str, inputs: tuple[str, ...] = ()) -> str:
-    """A results-cache key: `parts` (paths, options, Maxima's identity) and file contents."""
-    return key("\0".join((source_digest(), *parts)), "", inputs)
+    """A results-cache key: `parts` (paths, options, Maxima's identity) and file contents.
+    Nothing else: not the current folder (whose modification time once made every build miss)."""
+    return _digest((FORMAT, "results", source_digest(), *parts), inputs)
 
 
 @dataclass(frozen=True)
@@ -130,7 +187,7 @@ class Entry:
 
 def get(k: str) -> Entry | None:
     """The stored Maxima output for key `k`, or None when absent, corrupt or the cache is off."""
-    obj = get_json(k, "v1")
+    obj = get_json(k, MAXIMA_KIND)
     try:
         return None if obj is None else Entry(str(obj["output"]), float(obj["seconds"]))
     except (KeyError, TypeError, ValueError):
@@ -138,7 +195,7 @@ def get(k: str) -> Entry | None:
 
 
 def put(k: str, entry: Entry) -> None:
-    put_json(k, {"seconds": entry.seconds, "output": entry.output}, "v1")
+    put_json(k, {"seconds": entry.seconds, "output": entry.output}, MAXIMA_KIND)
 
 
 def get_json(k: str, kind: str) -> dict | None:
@@ -148,7 +205,8 @@ def get_json(k: str, kind: str) -> dict | None:
     try:
         data = _entry_path(k, kind).read_bytes()
         head, _, body = data.partition(b"\n")
-        if head != (FORMAT + " " + hashlib.sha256(body).hexdigest()).encode():
+        mac = _mac(k, body)
+        if mac is None or not hmac.compare_digest(head, (FORMAT + " " + mac).encode()):
             return None
         obj = json.loads(body.decode("utf-8"))
         if not isinstance(obj, dict) or obj.get("key") != k:
@@ -164,7 +222,10 @@ def put_json(k: str, obj: dict, kind: str) -> None:
         return
     path = _entry_path(k, kind)
     body = json.dumps({"key": k, **obj}, ensure_ascii=False).encode("utf-8")
-    data = (FORMAT + " " + hashlib.sha256(body).hexdigest()).encode() + b"\n" + body
+    mac = _mac(k, body)
+    if mac is None:
+        return
+    data = (FORMAT + " " + mac).encode() + b"\n" + body
     tmp = None
     try:
         path.parent.mkdir(parents=True, exist_ok=True)

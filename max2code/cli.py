@@ -8,7 +8,7 @@ import os
 import signal
 import sys
 
-from . import __version__, cache, depfile, maxima
+from . import __version__, cache, children, depfile, maxima
 from .diagnostics import Max2CodeError
 from .output import write_if_changed
 
@@ -68,6 +68,7 @@ def _parser() -> argparse.ArgumentParser:
                     help="add an empty rule for each dependency, as gcc -MP does")
     ap.add_argument("--no-cache", action="store_true",
                     help="neither read nor write the cache of Maxima results")
+    add_maxima_options(ap)
     ap.add_argument("--strategy", choices=STRATEGIES, default=DEFAULT_STRATEGY,
                     help="optimised (default): relative quantities first, expansion in t only, "
                          "shared subexpressions; expanded: the paper's fully expanded coefficients")
@@ -77,6 +78,22 @@ def _parser() -> argparse.ArgumentParser:
     return ap
 
 
+def add_maxima_options(ap: argparse.ArgumentParser) -> None:
+    """The options of every command that runs Maxima on a .mxm (README: Security)."""
+    from .confine import DEFAULT_MEMORY_MIB
+
+    ap.add_argument("--maxima-memory", type=int, default=None, metavar="MIB",
+                    help=f"memory (address space) one Maxima run may use (default "
+                         f"{DEFAULT_MEMORY_MIB}; 0: no limit)")
+    ap.add_argument("--allow-unsafe-maxima", action="store_true",
+                    help="let the .mxm program run shell commands, Lisp, file input/output and "
+                         "plotting (refused by default: see README, Security)")
+
+
+def apply_maxima_options(opts: argparse.Namespace) -> None:
+    maxima.configure(opts.maxima_memory, opts.allow_unsafe_maxima)
+
+
 def report(exc: Max2CodeError) -> int:
     for diag in exc.diagnostics:
         print(diag, file=sys.stderr)
@@ -84,7 +101,10 @@ def report(exc: Max2CodeError) -> int:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Entry point; an unexpected failure is reported in one line, not as a traceback."""
+    """Entry point; an unexpected failure is reported in one line, not as a traceback.
+    SIGTERM, SIGINT and SIGHUP stop every Maxima this process started (children.py) and exit
+    with 128 + the signal's number."""
+    children.install_signal_handlers()
     try:
         try:
             return _main(argv)
@@ -94,6 +114,8 @@ def main(argv: list[str] | None = None) -> int:
         return closed_pipe()
     except Max2CodeError as exc:
         return report(exc)
+    except children.Interrupted as exc:
+        return 128 + exc.signum
     except KeyboardInterrupt:
         return 130
     except Exception as exc:  # noqa: BLE001 - the last line of defence for build logs
@@ -128,6 +150,7 @@ def _main(argv: list[str] | None) -> int:
         ap.error("a dependency file (-MD, -MF) needs an output file (-o FILE)")
     if opts.no_cache:
         cache.disable()
+    apply_maxima_options(opts)
     from .generate import generate, load
     from .languages import LANGUAGES
 
@@ -136,17 +159,18 @@ def _main(argv: list[str] | None) -> int:
         out_name = "<stdout>" if opts.output == "-" else opts.output
         result = generate(spec, poly, LANGUAGES[opts.lang], opts.emit, out_name,
                           opts.strategy, not opts.no_variants)
+        dep_text = None
+        if dep_path:  # before any output is written: a path it cannot express is an error
+            targets = [opts.output, *(path for path, _ in result.companions)]
+            deps = [opts.input, *depfile.loaded_files(spec.program.statements)]
+            dep_text = depfile.text(targets, deps, opts.mp)
         for warning in result.warnings:
             print(warning, file=sys.stderr)
         for path, text in result.companions:  # first: a definition precedes its implementation
             write_if_changed(path, text)
         write_if_changed(opts.output, result.text)
-        if dep_path:
-            targets = [opts.output, *(path for path, _ in result.companions)]
-            deps = [opts.input, *depfile.loaded_files(spec.program.statements)]
-            write_if_changed(dep_path, depfile.text(targets, deps, opts.mp))
+        if dep_path and dep_text is not None:
+            write_if_changed(dep_path, dep_text)
     except Max2CodeError as exc:
         return report(exc)
-    except KeyboardInterrupt:
-        return 130
     return 0

@@ -114,7 +114,7 @@ def template(lang_name: str, name: str) -> jinja2.Template:
 
 @lru_cache(maxsize=None)
 def _environment(folder: str) -> jinja2.Environment:
-    return jinja2.Environment(
+    env = jinja2.Environment(
         loader=jinja2.FileSystemLoader(folder),
         undefined=jinja2.StrictUndefined,
         trim_blocks=True,
@@ -122,6 +122,13 @@ def _environment(folder: str) -> jinja2.Environment:
         keep_trailing_newline=True,
         autoescape=False,
     )
+    # `{{ path | comment }}`: a path or name in a comment of the folder's language, escaped by
+    # that language's printer so it can never end the comment (see Language.comment_text).
+    from .languages import LANGUAGES
+    lang = LANGUAGES.get(Path(folder).name)
+    if lang is not None:
+        env.filters["comment"] = lang.comment_text
+    return env
 
 
 def parameters_pos(spec: Spec) -> Pos:

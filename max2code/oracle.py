@@ -46,7 +46,7 @@ def exact_coefficients(spec: Spec, names: Sequence[str], samples: Sequence[Seque
     """For each sample (values of `names`), the exact coefficients of the equation, c[k]
     multiplying t^k; None where Maxima cannot evaluate it there (a division by zero)."""
     t = spec.variable
-    lines = [maxima.program_script(spec.program.statements),
+    lines = [maxima.program_script(spec.program.statements, spec.own_names),
              "o__e: %$", "o__e: ev(o__e, nouns)$",
              'o__e: if not atom(o__e) and op(o__e) = "=" then lhs(o__e) - rhs(o__e) else o__e$',
              "errormsg: false$", f"fpprec: {BIGFLOAT_DIGITS}$",

@@ -1,10 +1,22 @@
-"""Writing outputs the way build systems like: atomically, and only when the content changes."""
+"""Writing outputs the way build systems like: atomically, and only when the content changes.
+
+Only a regular file is compared and replaced. `-o` may also name a device (`/dev/null`), a FIFO
+or a symlink: replacing any of those would be wrong (run as root, the old code replaced the
+system's /dev/null with a regular file; reading /dev/full to compare never ended), so something
+that is not a regular file is written straight into, never read; a FIFO nobody reads is an
+error instead of a wait; and a symlink is followed, the file it points to being the output.
+"""
 
 from __future__ import annotations
 
+import errno
+import fcntl
 import os
+import stat
 import sys
 import tempfile
+from collections.abc import Iterator
+from contextlib import contextmanager
 from collections.abc import Iterator
 from contextlib import contextmanager
 
@@ -21,14 +33,58 @@ def write_if_changed(path: str, text: str) -> bool:
         sys.stdout.write(text)
         sys.stdout.flush()
         return True
-    data = text.encode("utf-8")
+    data = text.encode("utf-8", "surrogateescape")
+    target = os.path.realpath(path)  # a symlink's target is the output; the link stays
+    try:
+        info = os.stat(target)
+    except FileNotFoundError:
+        info = None
+    except OSError as exc:
+        raise error(Pos(path, 1, 1), f"cannot write output: {exc.strerror}") from None
+    if info is not None and stat.S_ISDIR(info.st_mode):
+        raise error(Pos(path, 1, 1), "cannot write output: it is a directory")
+    if info is not None and not stat.S_ISREG(info.st_mode):
+        _write_into(path, target, data)
+        return True
+    if info is not None and info.st_size == len(data) and _same(target, data):
+        return False
+    _replace(path, target, data)
+    return True
+
+
+def _same(path: str, data: bytes) -> bool:
+    """Whether a regular file holds exactly `data`, reading at most one byte more."""
     try:
         with open(path, "rb") as f:
-            if f.read() == data:
-                return False
+            return f.read(len(data) + 1) == data
     except OSError:
-        pass
-    folder = os.path.dirname(os.path.abspath(path))
+        return False
+
+
+def _write_into(path: str, target: str, data: bytes) -> None:
+    """A device or a FIFO: write into it as it is. A FIFO without a reader would block the
+    open forever, so it is opened without waiting and refused."""
+    try:
+        fd = os.open(target, os.O_WRONLY | os.O_NONBLOCK | os.O_CLOEXEC)
+    except OSError as exc:
+        if exc.errno == errno.ENXIO:
+            raise error(Pos(path, 1, 1), "cannot write output: it is a FIFO that no process is "
+                        "reading") from None
+        raise error(Pos(path, 1, 1), f"cannot write output: {exc.strerror}") from None
+    try:
+        fcntl.fcntl(fd, fcntl.F_SETFL, fcntl.fcntl(fd, fcntl.F_GETFL) & ~os.O_NONBLOCK)
+        view = memoryview(data)
+        while view:
+            view = view[os.write(fd, view):]
+    except OSError as exc:
+        raise error(Pos(path, 1, 1), f"cannot write output: {exc.strerror}") from None
+    finally:
+        os.close(fd)
+
+
+def _replace(path: str, target: str, data: bytes) -> None:
+    """A regular file (or none yet): a temporary file beside it, renamed over it."""
+    folder = os.path.dirname(target)
     try:
         fd, tmp = tempfile.mkstemp(prefix=".max2code-", dir=folder)
     except OSError as exc:
@@ -37,14 +93,16 @@ def write_if_changed(path: str, text: str) -> bool:
         with os.fdopen(fd, "wb") as f:
             f.write(data)
         os.chmod(tmp, 0o644)
-        os.replace(tmp, path)
+        os.replace(tmp, target)
+        tmp = ""
     except OSError as exc:
-        try:
-            os.unlink(tmp)
-        except OSError:
-            pass
         raise error(Pos(path, 1, 1), f"cannot write output: {exc.strerror}") from None
-    return True
+    finally:
+        if tmp:
+            try:
+                os.unlink(tmp)
+            except OSError:
+                pass
 
 
 @contextmanager
@@ -52,8 +110,10 @@ def replaced_atomically(path: str) -> Iterator[str]:
     """A temporary path beside `path` (same suffix, so writers that pick a format from the name
     still do) for a library that insists on writing a file itself (Pillow, ffmpeg); renamed over
     `path` when the block ends without an exception, removed otherwise. Errors come out as
-    `path:1:1: error: ...` like every output's."""
-    folder = os.path.dirname(os.path.abspath(path))
+    `path:1:1: error: ...` like every output's. As for write_if_changed, a symlink is followed
+    and a device or FIFO is written into, never replaced."""
+    target = os.path.realpath(path)
+    folder = os.path.dirname(target)
     suffix = os.path.splitext(path)[1]
     try:
         fd, tmp = tempfile.mkstemp(prefix=".max2code-", suffix=suffix, dir=folder)
@@ -62,8 +122,12 @@ def replaced_atomically(path: str) -> Iterator[str]:
         raise error(Pos(path, 1, 1), f"cannot write output: {exc.strerror}") from None
     try:
         yield tmp
-        os.chmod(tmp, 0o644)
-        os.replace(tmp, path)
+        if os.path.exists(target) and not stat.S_ISREG(os.stat(target).st_mode):
+            with open(tmp, "rb") as f:
+                _write_into(path, target, f.read())
+        else:
+            os.chmod(tmp, 0o644)
+            os.replace(tmp, target)
     except OSError as exc:
         raise error(Pos(path, 1, 1), f"cannot write output: {exc.strerror}") from None
     finally:

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import os
+import re
 from functools import lru_cache
 from importlib import resources
 
@@ -9,7 +11,7 @@ from lark import Lark, Token, Tree
 from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
 
 from .diagnostics import Max2CodeError, Pos, error
-from .maxima_text import split_statements
+from .maxima_text import split_statements, string_end
 from .spec import CodeBlock, Declared, Program, Role, Spec, Term
 
 
@@ -19,16 +21,32 @@ def _parser() -> Lark:
     return Lark(grammar, parser="lalr", regex=True, propagate_positions=True, maybe_placeholders=False)
 
 
+# A collision equation is a few kilobytes, and Maxima reads a program at some tens of
+# statements a second (a 1 MB program did not finish in 300 s): beyond this, say so at once.
+MAX_SOURCE_BYTES = 4 * 1024 * 1024
+
+
 def read_source(path: str) -> str:
     """Read an .mxm file as text; CRLF and CR endings become LF so positions are plain lines."""
     try:
-        data = open(path, "rb").read()
+        with open(path, "rb") as f:
+            data = f.read(MAX_SOURCE_BYTES + 1)
     except FileNotFoundError:
         raise error(Pos(path, 1, 1), "no such file") from None
     except IsADirectoryError:
         raise error(Pos(path, 1, 1), "is a directory, not an .mxm file") from None
     except OSError as exc:
         raise error(Pos(path, 1, 1), f"cannot read: {exc.strerror}") from None
+    if len(data) > MAX_SOURCE_BYTES:
+        size = os.path.getsize(path) if os.path.isfile(path) else len(data)
+        raise error(Pos(path, 1, 1), f"the file is {size / 1e6:.1f} MB; an .mxm may be at most "
+                    f"{MAX_SOURCE_BYTES // (1024 * 1024)} MiB (a collision equation is a few "
+                    f"kilobytes, and Maxima would not finish a program this long)")
+    return decode_source(data, path)
+
+
+def decode_source(data: bytes, path: str) -> str:
+    """An .mxm file's bytes as text (UTF-8, a byte-order mark allowed), line ends made LF."""
     if b"\0" in data:
         line = data[: data.index(b"\0")].count(b"\n") + 1
         raise error(Pos(path, line, 1), "binary data (NUL byte): not an .mxm text file")
@@ -50,10 +68,94 @@ def parse_text(text: str, path: str) -> Spec:
     if not text.strip():
         raise error(Pos(path, 1, 1), "empty file: expected .mxm sections and a Maxima program")
     try:
-        tree = _parser().parse(text)
+        tree = _parser().parse(stand_in(text, path))
     except UnexpectedInput as exc:
         raise _syntax_error(exc, text, path) from None
-    return _Builder(path).build(tree)
+    return _Builder(path, text).build(tree)
+
+
+# What the pre-pass looks for in header text, and inside a block.
+_HEADER = re.compile(r"//[^\n]*|/\*[\s\S]*?(?:\*/|\Z)|\{|(?<![\w])begin(?![\w])", re.I)
+# Inside a block: braces, and what hides them (strings, /* */ and // comments).
+_IN_BLOCK = re.compile(r'[{}"]|/\*|//')
+_END_LINE = re.compile(r"^[ \t]*end\b", re.I | re.M)
+
+
+def stand_in(text: str, path: str) -> str:
+    """`text` with every code block and the `begin ... end` program replaced by a stand-in of
+    the same length and line breaks (`{   }`, `begin  end`), so the grammar's terminals never
+    scan their content. One pass, linear in the text's length whatever it holds (an unbalanced
+    brace used to make the grammar's recursive regular expression backtrack for seconds)."""
+    out: list[str] = []
+    done = 0
+    for m in _HEADER.finditer(text):
+        if m.start() < done or m.group().startswith("/") or _begin_is_a_name(text, m):
+            continue
+        if m.group() == "{":
+            end = _block_end(text, m.start(), path)
+            out += [text[done:m.start()], "{", _blank(text, m.start() + 1, end - 1), "}"]
+        else:
+            line = _END_LINE.search(text, m.end())
+            if line is None:
+                raise error(_pos(text, m.start(), path),
+                            "unterminated 'begin': no line starting with 'end' follows")
+            end = line.end()
+            out += [text[done:m.start()], text[m.start():m.end()],
+                    _blank(text, m.end(), end - 3), text[end - 3:end]]
+        done = end
+    out.append(text[done:])
+    return "".join(out)
+
+
+# Where the grammar wants a NAME, `begin` is one (a parameter may be called BEGIN): after a
+# comma, an `=`, or a section keyword that a name follows.
+_NAME_BEFORE = re.compile(r"(?:[,=]|(?<![\w])(?:function|parameters|variable|role|initialise"
+                          r"|term|finalise))[ \t\r\n]*\Z", re.I)
+
+
+def _begin_is_a_name(text: str, m: re.Match[str]) -> bool:
+    """Is this `begin` a name in a header list rather than the program's start? Only the last
+    64 characters before it are looked at, so the pre-pass stays linear."""
+    if m.group() == "{":
+        return False
+    return _NAME_BEFORE.search(text, max(0, m.start() - 64), m.start()) is not None
+
+
+def _block_end(text: str, start: int, path: str) -> int:
+    """The offset just after the '}' matching the '{' at `start` (braces in strings and
+    comments do not count); an error at the '{' if there is none. An unterminated string or
+    comment inside runs to the end of the text."""
+    depth, i = 0, start
+    while True:
+        m = _IN_BLOCK.search(text, i)
+        if m is None:
+            raise error(_pos(text, start, path), "unterminated block: this '{' has no matching '}'")
+        token, i = m.group(), m.end()
+        if token == "{":
+            depth += 1
+        elif token == "}":
+            depth -= 1
+            if depth == 0:
+                return i
+        elif token == '"':
+            i = string_end(text, m.start())
+        elif token == "/*":
+            i = text.find("*/", i)
+            i = i + 2 if i >= 0 else -1
+        else:
+            i = text.find("\n", i)
+        if i < 0:
+            i = len(text)
+
+
+def _blank(text: str, start: int, end: int) -> str:
+    """Spaces for text[start:end], keeping its line breaks (so Lark's positions are right)."""
+    return "\n".join(" " * len(line) for line in text[start:end].split("\n"))
+
+
+def _pos(text: str, offset: int, path: str) -> Pos:
+    line = text.count("\n", 0, offset) + 1
+    return Pos(path, line, offset - text.rfind("\n", 0, offset))
 
 
 def _syntax_error(exc: UnexpectedInput, text: str, path: str) -> Max2CodeError:
@@ -91,8 +193,12 @@ def _describe(terminal: str) -> str:
 class _Builder:
     """Walks the Lark tree once, checking what the grammar alone cannot."""
 
-    def __init__(self, path: str) -> None:
+    def __init__(self, path: str, text: str) -> None:
         self.path = path
+        self.text = text  # the original: tokens of blocks and the program are stand-ins
+
+    def original(self, tok: Token) -> str:
+        return self.text[tok.start_pos:tok.end_pos]
 
     def pos(self, node: Tree | Token) -> Pos:
         if isinstance(node, Token):
@@ -101,7 +207,8 @@ class _Builder:
 
     def block(self, tok: Token, lang: str | None) -> CodeBlock:
         """The text inside the braces; its position is that of the first character after '{'."""
-        return CodeBlock(str(tok)[1:-1], Pos(self.path, tok.line or 1, (tok.column or 1) + 1), lang)
+        return CodeBlock(self.original(tok)[1:-1], Pos(self.path, tok.line or 1, (tok.column or 1) + 1),
+                         lang)
 
     def build(self, tree: Tree) -> Spec:
         fields: dict[str, object] = {}
@@ -196,7 +303,7 @@ class _Builder:
                             f"{declared.value}' (line {declared.pos.line})")
 
     def program(self, tok: Token) -> Program:
-        raw = str(tok)
+        raw = self.original(tok)
         if tok.type == "BEGIN_END":
             body = raw[len("begin"):]
             body = body[: body.rstrip().rfind("\n") + 1] if "\n" in body.rstrip() else ""

@@ -76,7 +76,9 @@ def extraction_script(variable: str,
         # Variants are substitutions into the general equation: its checks cover them.
         f'  printf(true, "~%{m}-DENOM ~a~%", if m2c__i > 0 or freeof({t}, denom(ratsimp(m2c__v))) '
         f"then 0 else 1),",
-        "  m2c__x: expand(m2c__v),",
+        # expand() leaves powers above maxposex (1000) alone: (t - 1)^2000 would look like
+        # a coefficient holding t. Any whole power is expanded here.
+        "  m2c__x: expand(m2c__v, 1000000, 1000000),",
         f"  m2c__n: hipow(m2c__x, {t}),",
         f'  for m2c__k: 0 thru m2c__n do printf(true, "~%{m}-COEF ~d ~a~%", m2c__k, '
         f"string(coeff(m2c__x, {t}, m2c__k))),",
@@ -99,7 +101,7 @@ def polynomial(spec: Spec, timeout: float = maxima.DEFAULT_TIMEOUT,
     if not statements:
         raise error(spec.program.pos, "the Maxima program is empty: it must end with the equation")
     combos = role_combinations(spec) if combos is None else combos
-    script = maxima.program_script(statements) + extraction_script(
+    script = maxima.program_script(statements, spec.own_names) + extraction_script(
         spec.variable, tuple(zeros for _, zeros in combos))
     session = maxima.run(script, statements, where, timeout)
     text = session.output

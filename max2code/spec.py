@@ -85,6 +85,11 @@ class Spec:
     def parameter_order(self) -> tuple[str, ...] | None:
         return tuple(self.parameters.value) if self.parameters else None  # type: ignore[arg-type]
 
+    @property
+    def own_names(self) -> frozenset[str]:
+        """The names the .mxm declares (parameters and the variable): symbols of its algebra."""
+        return frozenset((*(self.parameter_order or ()), self.variable))
+
     def language_tags(self) -> tuple[CodeBlock, ...]:
         """Every tagged block, so a caller can check the tags against the language registry."""
         blocks = list(self.initialise) + [t.prefix for t in self.terms] + list(self.finalise)

@@ -25,6 +25,7 @@ NAMES = sorted(p.stem for p in BAD.glob("*.expected"))
 # name -> (extra arguments, output path relative to ROOT or None for a temporary file)
 SPECIAL: dict[str, tuple[list[str], str | None]] = {
     "maxima-timeout": (["--timeout", "4"], None),
+    "maxima-out-of-memory": (["--maxima-memory", "300", "--timeout", "100"], None),
     "unwritable-output": ([], "tests/bad/unwritable-output.mxm/out.h"),  # a file as a folder
 }
 NEEDS_NO_MAXIMA = {"no-maxima"}
@@ -36,6 +37,11 @@ NO_MAXIMA_NEEDED = {  # diagnosed before Maxima runs
     "duplicate-declaration", "parameter-twice", "unknown-language-tag", "unterminated-string",
     "unterminated-comment", "unterminated-statement", "empty-program", "header-garbage",
     "no-maxima",
+    # refused by the lock-down before Maxima runs (lockdown.py)
+    "unsafe-backslash", "unsafe-eval-string", "unsafe-lisp", "unsafe-lisp-after-comment",
+    "unsafe-load-computed", "unsafe-load-lisp", "unsafe-load-outside", "unsafe-load-parent",
+    "unsafe-load-variable", "unsafe-map-system", "unsafe-plot", "unsafe-question-mark",
+    "unsafe-system", "unsafe-system-as-value", "unsafe-with-stdout", "unsafe-writefile",
 }
 
 
@@ -94,3 +100,22 @@ def test_awkward_but_valid_input(name: str, lang: str, tmp_path: Path, maxima_ex
     text = out.read_text()
     assert "DEGREE 2" in text or "DEGREE = 2" in text
     assert "\r" not in text
+
+
+@pytest.mark.parametrize("text,shown,caret,expected", [
+    ("x: 1 +* 2;", "x:Space1Space+*Space", "      ^", (5, 17)),
+    ("y: a +\n    (b *) + 1;", "SpaceSpaceSpaceSpace(bSpace*)", "       ^", (6, 8)),
+    ("w: f(\u00e9 b);", "w:Spacef(\\303\\251Spaceb)", "        ^", (5, 18)),  # a byte offset
+    ("w: f(a\tb);", "w:Spacef(aTabb)", "       ^", (5, 18)),
+    ("x: 1 +* 2;", "something else", "      ^", (5, 11)),  # not found: the statement
+])
+def test_maxima_syntax_error_columns(text: str, shown: str, caret: str,
+                                     expected: tuple[int, int]) -> None:
+    """Maxima's caret (a byte offset into the line it shows, spaces printed as 'Space') is
+    mapped back to the .mxm; here the statement starts at line 5, column 11."""
+    from max2code.diagnostics import Pos
+    from max2code.maxima import syntax_error_pos
+    from max2code.spec import Statement
+
+    pos = syntax_error_pos(Statement(text, Pos("f.mxm", 5, 11)), shown, caret)
+    assert (pos.line, pos.col) == expected

@@ -113,3 +113,14 @@ def test_bad_input_positions(text: str, where: str, message: str) -> None:
     diag = str(info.value.diagnostics[0])
     assert diag.startswith(f"bad.mxm:{where}: error: "), diag
     assert message in diag
+
+
+def test_a_parameter_named_begin_is_a_name_not_the_program() -> None:
+    """The block pre-pass must not take a header name `BEGIN` (a comma list, a role) for the
+    program's start; the grammar's own lexer never did (test_names' corpus has such names)."""
+    from max2code.parse import parse_text
+    spec = parse_text("function f\nparameters a, BEGIN\nrole r = BEGIN\nbegin\n"
+                      "a*t - BEGIN;\nend\n", "begin.mxm")
+    assert list(spec.parameters.value) == ["a", "BEGIN"]
+    assert [st.text.strip() for st in spec.program.statements] == ["a*t - BEGIN;"]
+    assert spec.program.pos.line == 4

@@ -12,13 +12,20 @@ from dataclasses import dataclass
 from fractions import Fraction
 from functools import cached_property
 
-from ..diagnostics import Pos
+from ..diagnostics import Pos, visible
 from ..expr import Add, Call, Div, Expr, Float, Mul, Neg, Num, Pow, Ref, Sym
 
 # Binding strength, loosest first.
 P_ADD, P_MUL, P_NEG, P_POW, P_ATOM = 1, 2, 3, 4, 5
 
 CONSTANT_VALUES = {"%pi": math.pi, "%e": math.e}
+
+
+def _digits(value: Fraction) -> str:
+    """A huge rational, shortly: its leading digits and its number of digits."""
+    text = str(abs(value.numerator) // value.denominator)
+    sign = "-" if value < 0 else ""
+    return f"{sign}{text[0]}.{text[1:4]}e+{len(text) - 1}"
 
 
 @dataclass(frozen=True)
@@ -73,6 +80,11 @@ class Language:
     def resume_directive(self, line: int, file: str) -> str | None:
         """A line saying the next line is `line` of the generated `file`; None if not needed."""
         return None
+
+    def comment_text(self, text: str) -> str:
+        """`text` (a path, a name) made safe inside this language's comments: shown to a reader,
+        never able to end the comment or the line. Templates use it as the `comment` filter."""
+        return visible(text)
 
     # Generated lines longer than this are broken before a top-level + or -.
     max_line: int = 100
@@ -158,9 +170,12 @@ class Language:
         return self._names.get(name) or name.replace("%", "_")
 
     def number(self, value: Fraction) -> str:
-        if value.denominator == 1 or Fraction(float(value)) == value:  # exact as a double
-            return self.float_literal(float(value))
-        return f"({self.float_literal(float(value.numerator))}/{self.float_literal(float(value.denominator))})"
+        try:
+            if value.denominator == 1 or Fraction(float(value)) == value:  # exact as a double
+                return self.float_literal(float(value))
+            return f"({self.float_literal(float(value.numerator))}/{self.float_literal(float(value.denominator))})"
+        except OverflowError:  # a ValueError is reported at the equation by emit.py
+            raise ValueError(f"the constant {_digits(value)} does not fit in a double") from None
 
     def expr(self, e: Expr) -> str:
         return self._print(e)[0]

@@ -49,7 +49,19 @@ C_RESERVED = (
 
 
 def c_string(text: str) -> str:
-    return '"' + text.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    """A C string literal (as `#line` takes it) holding exactly the bytes of `text`: quotes and
+    backslashes escaped, `?` as `\\?` (no trigraph under -std=c11), every other byte outside
+    printable ASCII as an octal escape (a file name's undecodable bytes come back as they were)."""
+    out = ['"']
+    for byte in text.encode("utf-8", "surrogateescape"):
+        ch = chr(byte)
+        if ch in '\\"?':
+            out.append("\\" + ch)
+        elif 0x20 <= byte < 0x7F:
+            out.append(ch)
+        else:
+            out.append(f"\\{byte:03o}")
+    return "".join(out) + '"'
 
 
 @dataclass(frozen=True)
@@ -92,3 +104,7 @@ class C(Language):
 
     def resume_directive(self, line: int, file: str) -> str | None:
         return f"#line {line} {c_string(file)}"
+
+    def comment_text(self, text: str) -> str:
+        """Inside /* */: nothing may close the comment, or open one (gcc -Wcomment)."""
+        return super().comment_text(text).replace("*/", "*\\/").replace("/*", "/\\*")

@@ -151,6 +151,14 @@ class Modula2(SignedOperands):
     def resume_directive(self, line: int, file: str) -> str | None:
         return f"#line {line + self.line_offset} {c_string(file)}"
 
+    def comment_text(self, text: str) -> str:
+        """Inside (* *), which nest, and read by gm2 -fcpp's C preprocessor first: no comment
+        of either language may open or close."""
+        text = super().comment_text(text)
+        for pair in ("(*", "*)", "/*", "*/", "//"):
+            text = text.replace(pair, pair[0] + "\\" + pair[1])
+        return text
+
     def wrap(self, text: str, indent: int) -> str:
         """Never wrapped: gm2 gives a continuation line its own line number, so a statement split
         over three lines after `#line N` would claim .mxm lines N, N+1 and N+2."""

@@ -5,7 +5,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ..diagnostics import Pos
-from .base import Language
+from ..expr import Add, Expr
+from .base import P_ATOM, Language
 
 # Python's hard keywords (soft ones, `match`, `case`, `type`, `_`, are ordinary names). Written
 # out rather than read from `keyword`, so that the output does not depend on the Python running.
@@ -79,5 +80,20 @@ class Python(Language):
             return "the name of a module the generated module imports"
         return None
 
+    # CPython's compiler fails on a chain of about 3000 additions (RecursionError during
+    # compilation: `a + b + ...` nests one level per term), so a longer sum is written as
+    # math.fsum of a tuple, which is flat (and exactly rounded).
+    long_sum: int = 1000
+
+    def _print(self, e: Expr) -> tuple[str, int]:
+        if isinstance(e, Add) and len(e.args) > self.long_sum:
+            return f"math.fsum(({', '.join(self.expr(a) for a in e.args)}))", P_ATOM
+        return super()._print(e)
+
     def line_directive(self, pos: Pos) -> str:
-        return f"# {pos.file}:{pos.line}"
+        return f"# {self.comment_text(pos.file)}:{pos.line}"
+
+    def comment_text(self, text: str) -> str:
+        """Safe in a `#` comment and inside the module's docstring: backslashes and quotes are
+        escaped too (a path with `\\N` or `\"\"\"` would otherwise end or break the string)."""
+        return super().comment_text(text.replace("\\", "\\\\").replace('"', '\\"'))

@@ -111,7 +111,7 @@ class Rust(SignedOperands):
         return None
 
     def line_directive(self, pos: Pos) -> str:
-        return f"// {pos.file}:{pos.line}"
+        return f"// {self.comment_text(pos.file)}:{pos.line}"
 
     def lint_allows(self, idents: list[str]) -> str:
         """An `#[allow(...)]` line for a function binding these names, or '' if none is needed."""
