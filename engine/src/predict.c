@@ -1,0 +1,386 @@
+/*
+ * predict.c -- when does a pair of bodies first touch?
+ *
+ * A pair is a set of features: a point (a vertex with the body's rounding radius) against a
+ * point, and a point against an edge's line. Each feature's contact condition is one of the
+ * generated equations, evaluated in the pair's relative frame (the second body's translation
+ * subtracted, so equal gravity cancels exactly and the generated dispatch picks a cheaper
+ * variant):
+ *   point-point  circles_orbit*      |P - Q|^2 - R^2          (R = sum of the radii)
+ *   point-edge   circle_orbit_line*  side (P - L) x D - R     (D the edge's unit direction)
+ * Without rotation the polynomial is the exact motion and one solve gives the contact time.
+ *
+ * Which roots count: a contact begins where the gap function goes from positive to negative
+ * (its derivative there < 0; a touching double root -- a graze -- is no contact), and for an
+ * edge only where the point's projection lies on the edge. A root that does not count is
+ * stepped over: the polynomial is re-expanded at that root with its constant term set to
+ * exactly 0, and the runtime (which divides out a root at 0) finds the next one; a
+ * polynomial of degree n has at most n roots, so the walk ends. Touching now (the gap within
+ * the tolerance, as after a response): approaching (derivative below -v_eps) is a contact
+ * now; otherwise the constant term is set to 0 and the next root is the next contact -- the
+ * separating condition, so a pair that has just bounced is never hit again at t ~ 0.
+ */
+#include <float.h>
+#include <math.h>
+#include <string.h>
+
+#include "engine.h"
+#include "max2code_roots.h"
+
+#include "circles_orbit_o1.h"
+#include "circles_orbit_o2.h"
+#include "circles_orbit_o3.h"
+#include "circles_orbit.h"
+#include "circle_orbit_line_o1.h"
+#include "circle_orbit_line_o2.h"
+#include "circle_orbit_line_o3.h"
+#include "circle_orbit_line.h"
+
+#define MAXC 17 /* coefficients: degree <= 16 */
+#define MAX_ORDER 4
+
+typedef int (*coef_fn)(const double p[], double c[]);
+
+/* Index 0: the exact, non-rotating motion (every order's no-orbit variants are the same). */
+static const coef_fn PP_COEF[MAX_ORDER + 1] = {
+    circles_orbit_o1_coefficients, circles_orbit_o1_coefficients, circles_orbit_o2_coefficients,
+    circles_orbit_o3_coefficients, circles_orbit_coefficients};
+static const int PP_DEGREE[MAX_ORDER + 1] = {
+    circles_orbit_o1_DEGREE, circles_orbit_o1_DEGREE, circles_orbit_o2_DEGREE,
+    circles_orbit_o3_DEGREE, circles_orbit_DEGREE};
+static const char *const *const PP_NAMES[MAX_ORDER + 1] = {
+    circles_orbit_o1_param_names, circles_orbit_o1_param_names, circles_orbit_o2_param_names,
+    circles_orbit_o3_param_names, circles_orbit_param_names};
+static const coef_fn PL_COEF[MAX_ORDER + 1] = {
+    circle_orbit_line_o1_coefficients, circle_orbit_line_o1_coefficients,
+    circle_orbit_line_o2_coefficients, circle_orbit_line_o3_coefficients,
+    circle_orbit_line_coefficients};
+static const int PL_DEGREE[MAX_ORDER + 1] = {
+    circle_orbit_line_o1_DEGREE, circle_orbit_line_o1_DEGREE, circle_orbit_line_o2_DEGREE,
+    circle_orbit_line_o3_DEGREE, circle_orbit_line_DEGREE};
+static const char *const *const PL_NAMES[MAX_ORDER + 1] = {
+    circle_orbit_line_o1_param_names, circle_orbit_line_o1_param_names,
+    circle_orbit_line_o2_param_names, circle_orbit_line_o3_param_names,
+    circle_orbit_line_param_names};
+
+/* Parameter order of the equations (checked against the generated names at start-up). */
+enum { CX1, CY1, VX1, VY1, AX1, AY1, OX1, OY1, W1, R1,
+       CX2, CY2, VX2, VY2, AX2, AY2, OX2, OY2, W2, R2, PP_NPARAMS };
+static const char *const PP_EXPECTED[PP_NPARAMS] = {
+    "cx1", "cy1", "vx1", "vy1", "ax1", "ay1", "ox1", "oy1", "w1", "r1",
+    "cx2", "cy2", "vx2", "vy2", "ax2", "ay2", "ox2", "oy2", "w2", "r2"};
+enum { CPX, CPY, VPX, VPY, APX, APY, OPX, OPY, WP, RR,
+       CLX, CLY, VLX, VLY, ALX, ALY, OLX, OLY, DX, DY, WL, PL_NPARAMS };
+static const char *const PL_EXPECTED[PL_NPARAMS] = {
+    "cpx", "cpy", "vpx", "vpy", "apx", "apy", "opx", "opy", "wp", "r",
+    "clx", "cly", "vlx", "vly", "alx", "aly", "olx", "oly", "dx", "dy", "wl"};
+
+int predict_check_generated(m2c_world *w)
+{
+    for (int o = 0; o <= MAX_ORDER; o++) {
+        for (int k = 0; k < PP_NPARAMS; k++)
+            if (strcmp(PP_NAMES[o][k], PP_EXPECTED[k]) != 0)
+                goto bad;
+        for (int k = 0; k < PL_NPARAMS; k++)
+            if (strcmp(PL_NAMES[o][k], PL_EXPECTED[k]) != 0)
+                goto bad;
+        if (PP_DEGREE[o] >= MAXC || PL_DEGREE[o] >= MAXC)
+            goto bad;
+    }
+    return 0;
+bad:
+    strcpy(w->err, "the generated equations' parameters are not the engine's (rebuild the engine)");
+    return -1;
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* One feature                                                                                  */
+/* ------------------------------------------------------------------------------------------ */
+
+typedef struct {
+    m2c_world *w;
+    const body *A, *B;      /* A owns the point; B the other point (PP) or the edge (PL) */
+    snap a, b;              /* both at now */
+    int kind;               /* F_PP or F_PL (an F_LP is an F_PL with the bodies swapped) */
+    int va, vb, side;       /* vertex of A; vertex (PP) or edge (PL) of B; side of the edge */
+    double R;               /* radius sum */
+    double pa[2], pb[2];    /* world-frame offsets at now: A's point; B's point or edge start */
+    double dir[2], len;     /* PL: the edge's unit direction at now (times side), its length */
+    int rot_a, rot_b;       /* does rotation move A's point / B's point or line? */
+} feat;
+
+static double derivative(const double c[], int n, double t)
+{
+    double v = n * c[n];
+    for (int k = n - 1; k >= 1; k--)
+        v = v * t + k * c[k];
+    return v;
+}
+
+/* c(t) -> c(t + r) */
+static void taylor_shift(double c[], int n, double r)
+{
+    for (int k = 0; k < n; k++)
+        for (int j = n - 1; j >= k; j--)
+            c[j] += r * c[j + 1];
+}
+
+static void fill_pp(const feat *f, double p[PP_NPARAMS], double dr)
+{
+    p[CX1] = f->a.x - f->b.x;
+    p[CY1] = f->a.y - f->b.y;
+    p[VX1] = f->a.vx - f->b.vx;
+    p[VY1] = f->a.vy - f->b.vy;
+    p[AX1] = f->a.ax - f->b.ax;
+    p[AY1] = f->a.ay - f->b.ay;
+    if (f->rot_a) {
+        p[OX1] = f->pa[0];
+        p[OY1] = f->pa[1];
+        p[W1] = f->a.w;
+    } else {
+        p[CX1] += f->pa[0];
+        p[CY1] += f->pa[1];
+        p[OX1] = p[OY1] = p[W1] = 0.0;
+    }
+    p[R1] = f->A->radius + dr;
+    p[VX2] = p[VY2] = p[AX2] = p[AY2] = 0.0;
+    if (f->rot_b) {
+        p[CX2] = p[CY2] = 0.0;
+        p[OX2] = f->pb[0];
+        p[OY2] = f->pb[1];
+        p[W2] = f->b.w;
+    } else {
+        p[CX2] = f->pb[0];
+        p[CY2] = f->pb[1];
+        p[OX2] = p[OY2] = p[W2] = 0.0;
+    }
+    p[R2] = f->B->radius;
+}
+
+static void fill_pl(const feat *f, double p[PL_NPARAMS], double dr)
+{
+    p[CPX] = f->a.x - f->b.x;
+    p[CPY] = f->a.y - f->b.y;
+    p[VPX] = f->a.vx - f->b.vx;
+    p[VPY] = f->a.vy - f->b.vy;
+    p[APX] = f->a.ax - f->b.ax;
+    p[APY] = f->a.ay - f->b.ay;
+    if (f->rot_a) {
+        p[OPX] = f->pa[0];
+        p[OPY] = f->pa[1];
+        p[WP] = f->a.w;
+    } else {
+        p[CPX] += f->pa[0];
+        p[CPY] += f->pa[1];
+        p[OPX] = p[OPY] = p[WP] = 0.0;
+    }
+    p[RR] = f->R + dr;
+    p[VLX] = p[VLY] = p[ALX] = p[ALY] = 0.0;
+    if (f->rot_b) {
+        p[CLX] = p[CLY] = 0.0;
+        p[OLX] = f->pb[0];
+        p[OLY] = f->pb[1];
+        p[WL] = f->b.w;
+    } else {
+        p[CLX] = f->pb[0];
+        p[CLY] = f->pb[1];
+        p[OLX] = p[OLY] = p[WL] = 0.0;
+    }
+    p[DX] = f->dir[0];
+    p[DY] = f->dir[1];
+}
+
+/* Does the contact at time now + tau lie on the edge (exact motion)? */
+static int on_edge(const feat *f, double tau)
+{
+    if (f->kind != F_PL)
+        return 1;
+    const m2c_world *w = f->w;
+    double t = w->now + tau;
+    snap a = motion_at(&f->A->m, t), b = motion_at(&f->B->m, t);
+    double P[2], L[2], D[2];
+    world_point(&a, &w->verts[2 * (f->A->vert + f->va)], P);
+    world_point(&b, &w->verts[2 * (f->B->vert + f->vb)], L);
+    world_vector(&b, &w->edges[3 * (f->B->vert + f->vb)], D);
+    double u = (P[0] - L[0]) * D[0] + (P[1] - L[1]) * D[1];
+    double slack = w->cfg.tolerance;
+    return u >= -slack && u <= f->len + slack;
+}
+
+static void count_solve(m2c_world *w, int degree)
+{
+    w->st.solves++;
+    w->st.solves_by_degree[degree < 0 ? 0 : degree > 16 ? 16 : degree]++;
+}
+
+/* The first contact of the exact polynomial c (degree n, time from now) in (0, tmax]:
+ * 1 and *tau, else 0. tolp: |c0| within it is touching; vthr: a derivative below -vthr
+ * approaches. */
+static int first_contact(feat *f, double c[MAXC], int n, double tmax, double tolp, double vthr,
+                         double *tau)
+{
+    double t0 = 0.0;
+    if (c[0] <= tolp) {
+        if (c[0] >= -tolp || f->kind == F_PP) {   /* touching (or overlapping: Bannerman) */
+            if (n >= 1 && c[1] < -vthr && on_edge(f, 0.0)) {
+                *tau = 0.0;
+                return 1;
+            }
+            c[0] = 0.0;    /* separating or sliding: the next root after now */
+        }
+    }
+    for (int iter = 0; iter <= n + 1; iter++) {
+        double r;
+        int graze = 0;
+        count_solve(f->w, n);
+        if (m2c_first_root_ex(c, n, tmax - t0, &r, M2C_METHOD_INTERVAL, &graze) != 1)
+            return 0;
+        double tr = t0 + r;
+        if (!graze && derivative(c, n, r) < 0 && on_edge(f, tr)) {
+            *tau = tr;
+            return 1;
+        }
+        taylor_shift(c, n, r);
+        c[0] = 0.0;
+        if (graze)
+            c[1] = 0.0;
+        t0 = tr;
+        if (!(t0 < tmax))
+            return 0;
+    }
+    return 0;
+}
+
+static int solve_feature(feat *f, double tmax, double *tau)
+{
+    double c[MAXC] = {0};
+    double p[PL_NPARAMS + 1];
+    int n;
+    double dv = hypot(f->a.vx - f->b.vx, f->a.vy - f->b.vy)
+                + fabs(f->a.w) * hypot(f->pa[0], f->pa[1])
+                + fabs(f->b.w) * hypot(f->pb[0], f->pb[1]);
+    double vthr = 1e-12 * dv + DBL_MIN;
+    double tol = f->w->cfg.tolerance, tolp;
+    if (f->rot_a || f->rot_b)
+        return 0; /* rotation: not yet */
+    if (f->kind == F_PP) {
+        fill_pp(f, p, 0.0);
+        n = PP_COEF[0](p, c);
+        tolp = tol * (2 * f->R + tol);
+        vthr *= 2 * f->R;
+    } else {
+        fill_pl(f, p, 0.0);
+        n = PL_COEF[0](p, c);
+        tolp = tol;
+    }
+    return first_contact(f, c, n, tmax, tolp, vthr, tau);
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* A pair                                                                                       */
+/* ------------------------------------------------------------------------------------------ */
+
+static int nedges(const body *b)
+{
+    return b->nvert >= 3 ? b->nvert : b->nvert - 1;
+}
+
+static void set_point(const m2c_world *w, const body *B, const snap *s, int v, double out[2])
+{
+    world_vector(s, &w->verts[2 * (B->vert + v)], out);
+}
+
+static void try_feature(feat *f, contact *best, int swapped, int fa, int fb)
+{
+    const m2c_world *w = f->w;
+    double tmax = best->t - w->now, tau;
+    if (!(tmax > 0))
+        return;
+    if (solve_feature(f, tmax, &tau) && w->now + tau < best->t) {
+        best->t = w->now + tau;
+        best->feature = f->kind == F_PP ? F_PP : swapped ? F_LP : F_PL;
+        best->fa = fa;
+        best->fb = fb;
+        best->side = f->side;
+    }
+}
+
+/* Point features of A (vertices) against the edges of B. */
+static void points_on_edges(feat *f, contact *best, int swapped)
+{
+    const m2c_world *w = f->w;
+    const body *A = f->A, *B = f->B;
+    int ne = nedges(B);
+    if (ne <= 0)
+        return;
+    int closed = B->nvert >= 3;
+    f->kind = F_PL;
+    f->R = A->radius + B->radius;
+    f->rot_b = f->b.w != 0.0;
+    for (int eb = 0; eb < ne; eb++) {
+        const double *e = &w->edges[3 * (B->vert + eb)];
+        double D[2];
+        world_vector(&f->b, e, D);
+        set_point(w, B, &f->b, eb, f->pb);
+        f->vb = eb;
+        f->len = e[2];
+        for (int va = 0; va < A->nvert; va++) {
+            set_point(w, A, &f->a, va, f->pa);
+            f->va = va;
+            f->rot_a = f->a.w != 0.0 && (f->pa[0] != 0.0 || f->pa[1] != 0.0);
+            for (int side = 1; side >= (closed ? 1 : -1); side -= 2) {
+                f->side = side;
+                f->dir[0] = side * D[0];
+                f->dir[1] = side * D[1];
+                if (swapped)
+                    try_feature(f, best, 1, eb, va);
+                else
+                    try_feature(f, best, 0, va, eb);
+            }
+        }
+    }
+}
+
+int predict_pair(m2c_world *w, int i, int j, contact *c)
+{
+    const body *A = &w->b[i], *B = &w->b[j];
+    if (A->group >= 0 && A->group == B->group)
+        return 0;
+    if (A->kind != M2C_DYNAMIC && B->kind != M2C_DYNAMIC)
+        return 0;
+    w->st.pair_tests++;
+    double before = c->t;
+    feat f;
+    memset(&f, 0, sizeof f);
+    f.w = w;
+    f.A = A;
+    f.B = B;
+    f.a = motion_at(&A->m, w->now);
+    f.b = motion_at(&B->m, w->now);
+    /* points against points: only rounded shapes (sharp corners meet through the edges) */
+    if (A->radius + B->radius > 0) {
+        f.kind = F_PP;
+        f.R = A->radius + B->radius;
+        f.side = 1;
+        for (int va = 0; va < A->nvert; va++) {
+            set_point(w, A, &f.a, va, f.pa);
+            f.va = va;
+            f.rot_a = f.a.w != 0.0 && (f.pa[0] != 0.0 || f.pa[1] != 0.0);
+            for (int vb = 0; vb < B->nvert; vb++) {
+                set_point(w, B, &f.b, vb, f.pb);
+                f.vb = vb;
+                f.rot_b = f.b.w != 0.0 && (f.pb[0] != 0.0 || f.pb[1] != 0.0);
+                try_feature(&f, c, 0, va, vb);
+            }
+        }
+    }
+    points_on_edges(&f, c, 0);
+    /* the edges of A against the points of B: the same equation with the roles swapped */
+    feat g = f;
+    g.A = B;
+    g.B = A;
+    g.a = f.b;
+    g.b = f.a;
+    points_on_edges(&g, c, 1);
+    return c->t < before;
+}
