@@ -1,0 +1,13 @@
+"""Pictures of a simulation: PNG frames, animated GIF and MP4, SVG of one frame, a live window.
+
+The data interface is `max2code.render.model` (bodies, poses, frames, a view): it imports nothing
+beyond the standard library, so the engine can build frames without Pillow installed. The
+writers import Pillow / imageio only when called (pip install 'max2code[render]').
+"""
+
+from .model import (Body, Capsule, Circle, Contact, Frame, Polygon, Pose, RenderModelError,
+                    Segment, Shape, Style, View)
+from .fit import fit_view, world_extent
+
+__all__ = ["Body", "Capsule", "Circle", "Contact", "Frame", "Polygon", "Pose", "RenderModelError",
+           "Segment", "Shape", "Style", "View", "fit_view", "world_extent"]

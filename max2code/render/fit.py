@@ -1,0 +1,46 @@
+"""A camera that shows everything: the world rectangle covered by bodies over a run of frames."""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+
+from .model import Body, Capsule, Circle, Frame, Polygon, Pose, RenderModelError, Segment, Shape, View
+
+
+def world_extent(shape: Shape, pose: Pose) -> tuple[float, float, float, float]:
+    """(xmin, ymin, xmax, ymax) of a shape at a pose, exact for every shape kind."""
+    if isinstance(shape, Circle):
+        x, y = pose.apply(shape.centre)
+        return (x - shape.radius, y - shape.radius, x + shape.radius, y + shape.radius)
+    if isinstance(shape, Polygon):
+        pts = [pose.apply(v) for v in shape.vertices]
+        pad = 0.0
+    elif isinstance(shape, Capsule):
+        pts = [pose.apply(shape.a), pose.apply(shape.b)]
+        pad = shape.radius
+    elif isinstance(shape, Segment):
+        pts = [pose.apply(shape.a), pose.apply(shape.b)]
+        pad = 0.0
+    else:
+        raise RenderModelError(f"unknown shape {type(shape).__name__}")
+    xs, ys = [p[0] for p in pts], [p[1] for p in pts]
+    return (min(xs) - pad, min(ys) - pad, max(xs) + pad, max(ys) + pad)
+
+
+def fit_view(bodies: Sequence[Body], frames: Iterable[Frame], width: int = 640, height: int = 480,
+             margin: float = 0.05, **options: object) -> View:
+    """The smallest view holding every body in every frame, widened by `margin` (a fraction of
+    the larger side) so outlines are not cut at the border. `options` go to View."""
+    box = [float("inf"), float("inf"), float("-inf"), float("-inf")]
+    for frame in frames:
+        if len(frame.poses) != len(bodies):
+            raise RenderModelError(f"frame at t={frame.time} has {len(frame.poses)} poses "
+                                   f"for {len(bodies)} bodies")
+        for body, pose in zip(bodies, frame.poses):
+            e = world_extent(body.shape, pose)
+            box = [min(box[0], e[0]), min(box[1], e[1]), max(box[2], e[2]), max(box[3], e[3])]
+    if box[0] == float("inf"):
+        raise RenderModelError("no frames to fit a view to")
+    side = max(box[2] - box[0], box[3] - box[1], 1e-9)
+    pad = margin * side
+    return View(box[0] - pad, box[1] - pad, box[2] + pad, box[3] + pad, width, height, **options)
