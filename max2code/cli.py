@@ -20,6 +20,7 @@ SUBCOMMANDS = {
     "roles": "roles",
     "runtime": "runtime_info",
     "scene": "scene",
+    "sim": "sim",
 }
 
 

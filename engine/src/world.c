@@ -357,11 +357,6 @@ int m2c_world_step(m2c_world *w, double until, m2c_event *events, int capacity, 
         double next = t < tt ? t : tt;
         if (!(next <= until))
             break;
-        if (w->out_n + 4 > w->out_cap) {
-            *count = w->out_n;
-            w->out = NULL;
-            return 1;
-        }
         same = next == last ? same + 1 : 0;
         last = next;
         if (same > SAME_TIME_LIMIT) {
@@ -374,15 +369,21 @@ int m2c_world_step(m2c_world *w, double until, m2c_event *events, int capacity, 
             m2c_event e = {tt, M2C_EVENT_TIMER, w->timers[0].id, -1, 0, 0, 0, 0, 0, 0};
             memmove(w->timers, w->timers + 1, sizeof(timer) * (size_t)--w->ntimers);
             world_emit(w, &e);
-            continue;
+        } else {
+            if (next > w->now)
+                w->now = next;
+            process(w, i);
         }
-        if (next > w->now)
-            w->now = next;
-        process(w, i);
         if (w->cfg.max_events > 0 && ++processed > w->cfg.max_events) {
             w->out = NULL;
             *count = w->out_n;
             return fail(w, "the step exceeded max_events");
+        }
+        /* an event can report up to 4 records: stop while there is room (the caller resumes) */
+        if (w->out_n > 0 && w->out_n + 4 > w->out_cap) {
+            *count = w->out_n;
+            w->out = NULL;
+            return 1;
         }
     }
     if (until > w->now && isfinite(until))

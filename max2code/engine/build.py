@@ -22,7 +22,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-from .. import cache
+from .. import __version__, cache
 from ..paths import PACKAGE, ROOT, runtime_dir
 
 LIBRARY = "libmax2code_engine.so"
@@ -50,10 +50,22 @@ def _inputs() -> list[Path]:
     return files
 
 
+def _generator_files() -> list[Path]:
+    """What renders the generated C headers: max2code's generator code and the C templates
+    (not the engine's own Python, the renderer or the subcommands: editing those must not
+    rebuild the library)."""
+    pkg = PACKAGE
+    skip = {"sim.py", "scene.py", "check.py", "report.py", "roles.py", "build.py"}
+    files = [p for p in sorted(pkg.glob("*.py")) if p.name not in skip]
+    files += sorted(pkg.glob("*.lark")) + sorted((pkg / "languages").glob("*.py"))
+    files += sorted((ROOT / "templates" / "c").glob("*"))
+    return files
+
+
 def digest() -> str:
-    h = hashlib.sha256(cache.source_digest().encode())
+    h = hashlib.sha256(__version__.encode())
     h.update((shutil.which(os.environ.get("CC", "cc")) or "cc").encode())
-    for path in _inputs():
+    for path in _inputs() + _generator_files():
         h.update(str(path.relative_to(ROOT)).encode() + b"\0")
         h.update(hashlib.sha256(path.read_bytes()).digest())
     return h.hexdigest()[:20]

@@ -44,6 +44,7 @@ from __future__ import annotations
 
 import difflib
 import math
+import re
 from dataclasses import dataclass, field
 from pathlib import Path as FilePath
 
@@ -272,6 +273,9 @@ def _body(c: _Checker, raw: object, index: int, names: set[str]) -> BodySpec | N
     restitution = c.number(raw, "restitution", path, 1.0, lo=0.0, hi=1.0)
     group = c.string(raw, "group", path, None)
     color = c.string(raw, "color", path, None)
+    if color is not None and not re.fullmatch(r"#[0-9a-fA-F]{6}([0-9a-fA-F]{2})?", color):
+        c.error(path + ("color",), f"expected a colour '#rrggbb' or '#rrggbbaa', got '{color}'")
+        color = None
     if kind == "static" and ("velocity" in raw or "omega" in raw or "gravity" in raw):
         key = next(k for k in ("velocity", "omega", "gravity") if k in raw)
         c.error(path + (key,), "a static body does not move (make it kinematic)")

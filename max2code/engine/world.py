@@ -185,8 +185,11 @@ class World:
     def step_to(self, t: float) -> list[Event]:
         """Process every event up to time t (inclusive); returns the reported events."""
         out: list[Event] = []
+        # with callbacks the core stops after each reported event, so that a callback sees the
+        # world at its event's time (and may change it: set_velocity, add_timer)
+        room = 4 if self._callbacks or any(tm.callback for tm in self._timers.values()) else BUFFER
         while True:
-            status = self._lib.m2c_world_step(self._w, float(t), self._buf, BUFFER, self._count)
+            status = self._lib.m2c_world_step(self._w, float(t), self._buf, room, self._count)
             if status < 0:
                 raise EngineError(self.error())
             for k in range(self._count[0]):
