@@ -120,7 +120,15 @@ int grid_build(m2c_world *w)
         if (b->kind == M2C_KINEMATIC)
             continue;
         snap s = motion_at(&b->m, w->now);
-        extend(box, s.x, s.y, b->bound);
+        if (b->kind == M2C_STATIC) {
+            for (int k = 0; k < b->nvert; k++) {
+                double p[2];
+                world_point(&s, &w->verts[2 * (b->vert + k)], p);
+                extend(box, p[0], p[1], b->radius);
+            }
+        } else {
+            extend(box, s.x, s.y, b->bound);
+        }
         if (b->kind == M2C_DYNAMIC) {
             ndyn++;
             if (b->bound > w->bound_max)

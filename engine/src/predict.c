@@ -216,10 +216,26 @@ static void count_solve(m2c_world *w, int degree)
 /* The first contact of the exact polynomial c (degree n, time from now) in (0, tmax]:
  * 1 and *tau, else 0. tolp: |c0| within it is touching; vthr: a derivative below -vthr
  * approaches. */
+/* No root in (0, tmax] when c0 outweighs every other term there (the common case: most
+ * neighbours cannot meet before the body leaves its cell). */
+static int clearly_apart(const double c[], int n, double tmax, double tolp)
+{
+    if (!(c[0] > tolp))
+        return 0;
+    double sum = 0.0, tk = 1.0;
+    for (int k = 1; k <= n; k++) {
+        tk *= tmax;
+        sum += fabs(c[k]) * tk;
+    }
+    return c[0] > sum * (1 + 1e-12);
+}
+
 static int first_contact(feat *f, double c[MAXC], int n, double tmax, double tolp, double vthr,
                          double *tau)
 {
     double t0 = 0.0;
+    if (clearly_apart(c, n, tmax, tolp))
+        return 0;
     if (c[0] <= tolp) {
         if (c[0] >= -tolp || f->kind == F_PP) {   /* touching (or overlapping: Bannerman) */
             if (n >= 1 && c[1] < -vthr && on_edge(f, 0.0)) {
@@ -256,9 +272,10 @@ static int solve_feature(feat *f, double tmax, double *tau)
     double c[MAXC] = {0};
     double p[PL_NPARAMS + 1];
     int n;
-    double dv = hypot(f->a.vx - f->b.vx, f->a.vy - f->b.vy)
-                + fabs(f->a.w) * hypot(f->pa[0], f->pa[1])
-                + fabs(f->b.w) * hypot(f->pb[0], f->pb[1]);
+    /* a speed below vthr is no approach (rounding); a 1-norm bound of the relative speed */
+    double dv = fabs(f->a.vx - f->b.vx) + fabs(f->a.vy - f->b.vy)
+                + fabs(f->a.w) * (fabs(f->pa[0]) + fabs(f->pa[1]))
+                + fabs(f->b.w) * (fabs(f->pb[0]) + fabs(f->pb[1]));
     double vthr = 1e-12 * dv + DBL_MIN;
     double tol = f->w->cfg.tolerance, tolp;
     if (f->rot_a || f->rot_b)

@@ -182,8 +182,9 @@ class World:
         self._timers[k] = _Timer(callback)
         return k
 
-    def step_to(self, t: float) -> list[Event]:
-        """Process every event up to time t (inclusive); returns the reported events."""
+    def step_to(self, t: float, events: bool = True) -> list[Event]:
+        """Process every event up to time t (inclusive); returns the reported events (none with
+        events=False, which saves making Python objects of them: callbacks still run)."""
         out: list[Event] = []
         # with callbacks the core stops after each reported event, so that a callback sees the
         # world at its event's time (and may change it: set_velocity, add_timer)
@@ -192,11 +193,16 @@ class World:
             status = self._lib.m2c_world_step(self._w, float(t), self._buf, room, self._count)
             if status < 0:
                 raise EngineError(self.error())
+            if not events and not self._callbacks and not self._timers:
+                if status == 0:
+                    return out
+                continue
             for k in range(self._count[0]):
                 e = self._buf[k]
                 ev = Event(e.time, EVENT_KINDS.get(e.kind, str(e.kind)), e.a, e.b, (e.nx, e.ny),
                            (e.px, e.py), e.speed, e.impulse)
-                out.append(ev)
+                if events:
+                    out.append(ev)
                 self._dispatch(ev)
             if status == 0:
                 return out
