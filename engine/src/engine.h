@@ -32,6 +32,8 @@ typedef struct {
 } snap;
 
 enum { EV_NONE = 0, EV_CONTACT, EV_CELL, EV_WINDOW, EV_REST, EV_LEAVE };
+/* EV_REST: a resting body's bounce series ends (reported; asleep from then on if it sleeps);
+ * EV_LEAVE: a body sliding on an edge reaches its end. */
 /* Contact features: a point (vertex + rounding radius) of each body (PP), a point of the
  * body against an edge of the partner (PL), an edge of the body against a point of the
  * partner (LP). */
@@ -60,9 +62,16 @@ typedef struct {
     uint32_t counter;           /* bumped whenever the motion changes */
     int cx, cy;                 /* cell (dynamic bodies) */
     int next, prev;             /* the cell's list of dynamic bodies */
-    int state;                  /* AWAKE, RESTING, ASLEEP (the rest rule) */
-    int support;                /* RESTING: the body it rests on */
+    double gx, gy;              /* its own gravity (m.ax, m.ay differ while it rests) */
+    int state;                  /* AWAKE, RESTING, ASLEEP (the rest rule, rest.c) */
+    int support, support_edge;  /* RESTING: the body and edge it slides on */
+    int sleep_at_rest;          /* RESTING: fall asleep at rest_time */
+    double support_n[2];        /* RESTING: the edge's normal towards the body */
+    double rest_time;           /* RESTING: when the bounce series ends (reported then) */
     double last_contact;        /* time of its last collision (the collapse rule) */
+    int burst;                  /* collisions in a row, each within t_c of the last */
+    int elastic;                /* its burst's cluster rests on nothing: rule 2 applies */
+    int instant;                /* collisions in a row at one identical time (rule 5) */
     event ev;
 } body;
 
@@ -90,15 +99,20 @@ struct m2c_world {
     int *heap, *heap_pos;       /* indexed heap of dynamic bodies */
     int heap_n;
     int *kinematic;             /* kinematic bodies: every dynamic body checks them */
+    int *stack, *woken, *members;   /* scratch (waking a pile, freezing a cluster) */
     int nkin;
     grid g;
     int prepared;
     int broken;                 /* the generated headers do not match (see err) */
+    long long same;             /* events in a row at one identical time (a guard) */
+    double last_time;
     double bound_max;           /* largest bound of a dynamic body */
     timer *timers;
     int ntimers, captimers, next_timer_id;
     m2c_event *out;             /* the step's output buffer */
     int out_n, out_cap;
+    m2c_event *pending;         /* reported events that did not fit: given out first */
+    int npending, cappending;
     m2c_stats st;
     char err[256];
 };
@@ -131,7 +145,9 @@ void grid_neighbours(m2c_world *w, int i, visit_fn visit, void *ctx);
 /* predict.c */
 typedef struct {
     double t;                   /* absolute time */
+    double rate;                /* how fast the gap closes then (ties: the fastest first) */
     int feature, fa, fb, side;
+    int improved;               /* set when predict_pair found a better one */
 } contact;
 int predict_check_generated(m2c_world *w);
 /* The earliest contact of bodies i (dynamic) and j at a time in (now, now + tmax]; 1 and
@@ -139,7 +155,26 @@ int predict_check_generated(m2c_world *w);
 int predict_pair(m2c_world *w, int i, int j, contact *c);
 
 /* response.c */
-void respond(m2c_world *w, int i, int j, const event *ev);
+int respond(m2c_world *w, int i, int j, const event *ev);
+void contact_geometry(const m2c_world *w, int i, int j, const event *ev, double n[2], double p[2]);
+
+#define BURST 16 /* collisions in a row, each within t_c of the last: rules 2 and 4 of rest.c */
+#define INSTANT 64 /* collisions in a row at one instant: rule 5 of rest.c */
+
+/* rest.c: the rest rule and the inelastic-collapse rule (README: "The rest rule") */
+double rest_speed(const m2c_world *w, double gn);
+double collapse_time(const m2c_world *w);
+double wake_speed(const m2c_world *w, const body *b);
+int rest_after_contact(m2c_world *w, int k, int s, const event *ev, int k_is_a, double e);
+int wake_island(m2c_world *w, int i, int *woken, int cap);
+void rest_restore(m2c_world *w, int k);
+int body_still(const body *b);
+void fall_asleep(m2c_world *w, int k);
+void rest_burst(m2c_world *w, int k);
+double rest_leave_time(const m2c_world *w, int k, double tmax);
+
+/* motion.c */
+double first_crossing(double x, double v, double a, double edge, int dir, double tmax);
 
 /* world.c */
 void world_predict(m2c_world *w, int i);

@@ -11,7 +11,6 @@
 #include <stdlib.h>
 
 #include "engine.h"
-#include "max2code_roots.h"
 
 #define MAX_CELLS (1 << 22)
 
@@ -224,20 +223,6 @@ int grid_build(m2c_world *w)
     return 0;
 }
 
-/* First time in (0, tmax] at which the coordinate x + v s + a s^2/2 reaches `edge` moving
- * outwards (dir = +1: increasing through it), or INFINITY. */
-static double reach_edge(double x, double v, double a, double edge, int dir, double tmax)
-{
-    double c[3] = {dir * (edge - x), -dir * v, -dir * 0.5 * a};
-    if (c[0] < 0)
-        c[0] = 0; /* just crossed in (rounding): the next crossing strictly after now */
-    double t;
-    int graze = 0;
-    if (m2c_first_root_ex(c, 2, tmax, &t, M2C_METHOD_INTERVAL, &graze) == 1 && !graze)
-        return t;
-    return INFINITY;
-}
-
 double grid_crossing(const m2c_world *w, int i, double tmax, int *dx, int *dy)
 {
     const grid *g = &w->g;
@@ -245,18 +230,18 @@ double grid_crossing(const m2c_world *w, int i, double tmax, int *dx, int *dy)
     snap s = motion_at(&b->m, w->now);
     double best = INFINITY, t;
     *dx = *dy = 0;
-    if (b->cx > 0 && (t = reach_edge(s.x, s.vx, s.ax, g->x0 + b->cx * g->size, -1, tmax)) < best) {
+    if (b->cx > 0 && (t = first_crossing(s.x, s.vx, s.ax, g->x0 + b->cx * g->size, -1, tmax)) < best) {
         best = t; *dx = -1; *dy = 0;
     }
     if (b->cx < g->nx - 1 &&
-        (t = reach_edge(s.x, s.vx, s.ax, g->x0 + (b->cx + 1) * g->size, 1, tmax)) < best) {
+        (t = first_crossing(s.x, s.vx, s.ax, g->x0 + (b->cx + 1) * g->size, 1, tmax)) < best) {
         best = t; *dx = 1; *dy = 0;
     }
-    if (b->cy > 0 && (t = reach_edge(s.y, s.vy, s.ay, g->y0 + b->cy * g->size, -1, tmax)) < best) {
+    if (b->cy > 0 && (t = first_crossing(s.y, s.vy, s.ay, g->y0 + b->cy * g->size, -1, tmax)) < best) {
         best = t; *dx = 0; *dy = -1;
     }
     if (b->cy < g->ny - 1 &&
-        (t = reach_edge(s.y, s.vy, s.ay, g->y0 + (b->cy + 1) * g->size, 1, tmax)) < best) {
+        (t = first_crossing(s.y, s.vy, s.ay, g->y0 + (b->cy + 1) * g->size, 1, tmax)) < best) {
         best = t; *dx = 0; *dy = 1;
     }
     return best;

@@ -2,6 +2,7 @@
 #include <math.h>
 
 #include "engine.h"
+#include "max2code_roots.h"
 
 snap motion_at(const motion *m, double t)
 {
@@ -56,4 +57,19 @@ void world_point(const snap *s, const double off[2], double out[2])
     world_vector(s, off, r);
     out[0] = s->x + r[0];
     out[1] = s->y + r[1];
+}
+
+/* First time in (0, tmax] at which the coordinate x + v s + a s^2/2 reaches `edge` moving
+ * outwards (dir = +1: increasing through it, -1: decreasing), or INFINITY. Just past the edge
+ * (rounding, right after crossing it) counts as on it: the next crossing strictly after now. */
+double first_crossing(double x, double v, double a, double edge, int dir, double tmax)
+{
+    double c[3] = {dir * (edge - x), -dir * v, -dir * 0.5 * a};
+    if (c[0] < 0)
+        c[0] = 0;
+    double t;
+    int graze = 0;
+    if (m2c_first_root_ex(c, 2, tmax, &t, M2C_METHOD_INTERVAL, &graze) == 1 && !graze)
+        return t;
+    return INFINITY;
 }

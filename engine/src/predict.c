@@ -231,7 +231,7 @@ static int clearly_apart(const double c[], int n, double tmax, double tolp)
 }
 
 static int first_contact(feat *f, double c[MAXC], int n, double tmax, double tolp, double vthr,
-                         double *tau)
+                         double *tau, double *rate)
 {
     double t0 = 0.0;
     if (clearly_apart(c, n, tmax, tolp))
@@ -240,6 +240,14 @@ static int first_contact(feat *f, double c[MAXC], int n, double tmax, double tol
         if (c[0] >= -tolp || f->kind == F_PP) {   /* touching (or overlapping: Bannerman) */
             if (n >= 1 && c[1] < -vthr && on_edge(f, 0.0)) {
                 *tau = 0.0;
+                *rate = -c[1];
+                return 1;
+            }
+            /* pressed together with no speed (gravity onto a support): a contact now too,
+             * for the rest rule to decide -- else it would sink in */
+            if (n >= 2 && c[1] <= vthr && c[2] < 0 && on_edge(f, 0.0)) {
+                *tau = 0.0;
+                *rate = 0.0;
                 return 1;
             }
             c[0] = 0.0;    /* separating or sliding: the next root after now */
@@ -252,8 +260,10 @@ static int first_contact(feat *f, double c[MAXC], int n, double tmax, double tol
         if (m2c_first_root_ex(c, n, tmax - t0, &r, M2C_METHOD_INTERVAL, &graze) != 1)
             return 0;
         double tr = t0 + r;
-        if (!graze && derivative(c, n, r) < 0 && on_edge(f, tr)) {
+        double d = derivative(c, n, r);
+        if (!graze && d < 0 && on_edge(f, tr)) {
             *tau = tr;
+            *rate = -d;
             return 1;
         }
         taylor_shift(c, n, r);
@@ -267,7 +277,7 @@ static int first_contact(feat *f, double c[MAXC], int n, double tmax, double tol
     return 0;
 }
 
-static int solve_feature(feat *f, double tmax, double *tau)
+static int solve_feature(feat *f, double tmax, double *tau, double *rate)
 {
     double c[MAXC] = {0};
     double p[PL_NPARAMS + 1];
@@ -280,17 +290,22 @@ static int solve_feature(feat *f, double tmax, double *tau)
     double tol = f->w->cfg.tolerance, tolp;
     if (f->rot_a || f->rot_b)
         return 0; /* rotation: not yet */
+    double norm = 1.0;
     if (f->kind == F_PP) {
         fill_pp(f, p, 0.0);
         n = PP_COEF[0](p, c);
         tolp = tol * (2 * f->R + tol);
-        vthr *= 2 * f->R;
+        norm = 2 * f->R;
+        vthr *= norm;
     } else {
         fill_pl(f, p, 0.0);
         n = PL_COEF[0](p, c);
         tolp = tol;
     }
-    return first_contact(f, c, n, tmax, tolp, vthr, tau);
+    if (!first_contact(f, c, n, tmax, tolp, vthr, tau, rate))
+        return 0;
+    *rate /= norm; /* a speed, for both kinds */
+    return 1;
 }
 
 /* ------------------------------------------------------------------------------------------ */
@@ -310,11 +325,14 @@ static void set_point(const m2c_world *w, const body *B, const snap *s, int v, d
 static void try_feature(feat *f, contact *best, int swapped, int fa, int fb)
 {
     const m2c_world *w = f->w;
-    double tmax = best->t - w->now, tau;
-    if (!(tmax > 0))
+    double tmax = best->t - w->now, tau, rate = 0.0;
+    if (!(tmax >= 0))
         return;
-    if (solve_feature(f, tmax, &tau) && w->now + tau < best->t) {
+    if (solve_feature(f, tmax > 0 ? tmax : 0x1p-1074, &tau, &rate)
+        && (w->now + tau < best->t || (w->now + tau == best->t && rate > best->rate))) {
         best->t = w->now + tau;
+        best->rate = rate;
+        best->improved = 1;
         best->feature = f->kind == F_PP ? F_PP : swapped ? F_LP : F_PL;
         best->fa = fa;
         best->fb = fb;
@@ -365,8 +383,10 @@ int predict_pair(m2c_world *w, int i, int j, contact *c)
         return 0;
     if (A->kind != M2C_DYNAMIC && B->kind != M2C_DYNAMIC)
         return 0;
+    if (A->state == RESTING && A->support == j)
+        return 0; /* in contact by construction (the rest rule) */
     w->st.pair_tests++;
-    double before = c->t;
+    c->improved = 0;
     feat f;
     memset(&f, 0, sizeof f);
     f.w = w;
@@ -399,5 +419,5 @@ int predict_pair(m2c_world *w, int i, int j, contact *c)
     g.a = f.b;
     g.b = f.a;
     points_on_edges(&g, c, 1);
-    return c->t < before;
+    return c->improved;
 }

@@ -44,6 +44,10 @@ void m2c_world_free(m2c_world *w)
     free(w->heap);
     free(w->heap_pos);
     free(w->kinematic);
+    free(w->stack);
+    free(w->woken);
+    free(w->members);
+    free(w->pending);
     free(w->timers);
     grid_free(&w->g);
     free(w);
@@ -132,6 +136,18 @@ static int grow(m2c_world *w, int nverts)
         if (!k)
             return -1;
         w->kinematic = k;
+        int *st = realloc(w->stack, sizeof(int) * (size_t)cap);
+        if (!st)
+            return -1;
+        w->stack = st;
+        int *wk = realloc(w->woken, sizeof(int) * (size_t)cap);
+        if (!wk)
+            return -1;
+        w->woken = wk;
+        int *mb = realloc(w->members, sizeof(int) * (size_t)cap);
+        if (!mb)
+            return -1;
+        w->members = mb;
     }
     if (w->nverts + nverts > w->capverts) {
         int cap = w->capverts ? 2 * w->capverts : 64;
@@ -205,6 +221,10 @@ int m2c_world_add_body(m2c_world *w, const m2c_body_def *d)
     b->vert = w->nverts;
     b->group = d->group;
     b->support = -1;
+    b->gx = b->m.ax;
+    b->gy = b->m.ay;
+    b->rest_time = NAN;
+    b->state = AWAKE;
     b->last_contact = -INFINITY;
     b->next = b->prev = -1;
     b->ev.t = INFINITY;
@@ -242,11 +262,31 @@ int m2c_world_add_body(m2c_world *w, const m2c_body_def *d)
 
 int world_emit(m2c_world *w, const m2c_event *e)
 {
-    if (w->out && w->out_n < w->out_cap) {
+    if (w->out && w->out_n < w->out_cap && w->npending == 0) {
         w->out[w->out_n++] = *e;
         return 0;
     }
-    return -1;
+    if (w->npending == w->cappending) {
+        int cap = w->cappending ? 2 * w->cappending : 64;
+        m2c_event *p = realloc(w->pending, sizeof(m2c_event) * (size_t)cap);
+        if (!p)
+            return -1;
+        w->pending = p;
+        w->cappending = cap;
+    }
+    w->pending[w->npending++] = *e;
+    return 0;
+}
+
+/* Hand out events that did not fit last time; 1 when some are still waiting. */
+static int flush_pending(m2c_world *w)
+{
+    int k = 0;
+    while (k < w->npending && w->out_n < w->out_cap)
+        w->out[w->out_n++] = w->pending[k++];
+    memmove(w->pending, w->pending + k, sizeof(m2c_event) * (size_t)(w->npending - k));
+    w->npending -= k;
+    return w->npending > 0;
 }
 
 typedef struct {
@@ -270,6 +310,11 @@ void world_predict(m2c_world *w, int i)
     ev.t = INFINITY;
     ev.kind = EV_NONE;
     ev.partner = -1;
+    if (b->state == ASLEEP) {
+        b->ev = ev;
+        heap_update(w, i);
+        return;
+    }
     int dx, dy;
     double tc = grid_crossing(w, i, INFINITY, &dx, &dy);
     if (tc < INFINITY) {
@@ -278,9 +323,21 @@ void world_predict(m2c_world *w, int i)
         ev.dx = dx;
         ev.dy = dy;
     }
+    if (b->state == RESTING) {
+        if (b->rest_time < ev.t) {
+            ev.t = b->rest_time > w->now ? b->rest_time : w->now;
+            ev.kind = EV_REST;
+        }
+        double tl = rest_leave_time(w, i, ev.t - w->now);
+        if (w->now + tl < ev.t) {
+            ev.t = w->now + tl;
+            ev.kind = EV_LEAVE;
+        }
+    }
     best_contact bc;
     memset(&bc, 0, sizeof bc);
     bc.c.t = ev.t;
+    bc.c.rate = -INFINITY;
     bc.partner = -1;
     grid_neighbours(w, i, visit, &bc);
     if (bc.partner >= 0) {
@@ -314,12 +371,32 @@ static void process(m2c_world *w, int i)
             world_predict(w, i);
             break;
         }
-        respond(w, i, j, &ev);
+        int woken = respond(w, i, j, &ev);
         world_predict(w, i);
         if (w->b[j].kind == M2C_DYNAMIC)
             world_predict(w, j);
+        for (int k = 0; k < woken; k++)
+            if (w->woken[k] != j)
+                world_predict(w, w->woken[k]);
         break;
     }
+    case EV_REST: {
+        body *b = &w->b[i];
+        m2c_event e = {w->now, M2C_EVENT_REST, i, b->support, 0, 0, 0, 0, 0, 0};
+        world_emit(w, &e);
+        b->rest_time = NAN;
+        if (b->sleep_at_rest) {
+            fall_asleep(w, i);
+        } else {
+            w->st.rests++;
+            world_predict(w, i);
+        }
+        break;
+    }
+    case EV_LEAVE:
+        rest_restore(w, i);
+        world_predict(w, i);
+        break;
     case EV_WINDOW:
         w->st.windows++;
         world_predict(w, i);
@@ -348,8 +425,12 @@ int m2c_world_step(m2c_world *w, double until, m2c_event *events, int capacity, 
     w->out_n = 0;
     if (!w->prepared && prepare(w) != 0)
         return -1;
-    long long processed = 0, same = 0;
-    double last = w->now;
+    if (flush_pending(w)) {
+        *count = w->out_n;
+        w->out = NULL;
+        return 1;
+    }
+    long long processed = 0;
     for (;;) {
         int i = heap_top(w);
         double t = i >= 0 ? w->b[i].ev.t : INFINITY;
@@ -357,9 +438,9 @@ int m2c_world_step(m2c_world *w, double until, m2c_event *events, int capacity, 
         double next = t < tt ? t : tt;
         if (!(next <= until))
             break;
-        same = next == last ? same + 1 : 0;
-        last = next;
-        if (same > SAME_TIME_LIMIT) {
+        w->same = next == w->last_time ? w->same + 1 : 0;
+        w->last_time = next;
+        if (w->same > SAME_TIME_LIMIT) {
             w->out = NULL;
             *count = w->out_n;
             return fail(w, "more than a million events at one instant (a body stuck in a corner?)");
@@ -380,7 +461,8 @@ int m2c_world_step(m2c_world *w, double until, m2c_event *events, int capacity, 
             return fail(w, "the step exceeded max_events");
         }
         /* an event can report up to 4 records: stop while there is room (the caller resumes) */
-        if (w->out_n > 0 && w->out_n + 4 > w->out_cap) {
+        if (w->npending > 0 || (w->out_n > 0 && w->out_n + 4 > w->out_cap)) {
+            flush_pending(w);
             *count = w->out_n;
             w->out = NULL;
             return 1;
@@ -442,7 +524,7 @@ int m2c_world_set_velocity(m2c_world *w, int i, double vx, double vy, double ome
     b->m.vy = vy;
     b->m.w = omega;
     b->counter++;
-    b->state = AWAKE;
+    rest_restore(w, i);
     if (w->prepared)
         world_predict(w, i);
     return 0;
@@ -478,7 +560,7 @@ double m2c_world_energy(const m2c_world *w, double t)
             continue;
         snap s = motion_at(&b->m, t < b->m.t ? b->m.t : t);
         e += 0.5 * b->mass * (s.vx * s.vx + s.vy * s.vy) + 0.5 * b->inertia * s.w * s.w
-             - b->mass * (s.ax * s.x + s.ay * s.y);
+             - b->mass * (b->gx * s.x + b->gy * s.y);
     }
     return e;
 }
