@@ -18,10 +18,11 @@ build: setup
 test: setup
 	$(PYTHON) -m pytest
 
-# Speed against accuracy: root methods, Taylor model error, example scenes -> bench/results/
-# (needs numpy and matplotlib: pip install -e .[bench]).
+# Speed against accuracy: root methods, Taylor model error, example scenes, the engine against
+# pymunk and Box2D -> bench/results/ (needs the bench extra: pip install -e .[bench]).
 bench: setup
 	$(PYTHON) bench/roots.py
+	$(PYTHON) bench/engine.py
 
 clean:
 	rm -rf build runtime/rust/target

@@ -5,6 +5,8 @@ from __future__ import annotations
 import os
 import sys
 import tempfile
+from collections.abc import Iterator
+from contextlib import contextmanager
 
 from .diagnostics import Pos, error
 
@@ -43,3 +45,27 @@ def write_if_changed(path: str, text: str) -> bool:
             pass
         raise error(Pos(path, 1, 1), f"cannot write output: {exc.strerror}") from None
     return True
+
+
+@contextmanager
+def replaced_atomically(path: str) -> Iterator[str]:
+    """A temporary path beside `path` (same suffix, so writers that pick a format from the name
+    still do) for a library that insists on writing a file itself (Pillow, ffmpeg); renamed over
+    `path` when the block ends without an exception, removed otherwise. Errors come out as
+    `path:1:1: error: ...` like every output's."""
+    folder = os.path.dirname(os.path.abspath(path))
+    suffix = os.path.splitext(path)[1]
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=".max2code-", suffix=suffix, dir=folder)
+        os.close(fd)
+    except OSError as exc:
+        raise error(Pos(path, 1, 1), f"cannot write output: {exc.strerror}") from None
+    try:
+        yield tmp
+        os.chmod(tmp, 0o644)
+        os.replace(tmp, path)
+    except OSError as exc:
+        raise error(Pos(path, 1, 1), f"cannot write output: {exc.strerror}") from None
+    finally:
+        if os.path.exists(tmp):
+            os.unlink(tmp)

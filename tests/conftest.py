@@ -25,6 +25,19 @@ def require(tool: str) -> str:
     return path
 
 
+def require_module(name: str):
+    """An installed Python module (scripts/setup installs the extras the tests need); a missing
+    one fails under CI (CI=true) and skips, clearly, elsewhere."""
+    import importlib
+    try:
+        return importlib.import_module(name)
+    except ImportError:
+        message = f"Python module '{name}' is not installed (run 'make setup')"
+        if os.environ.get("CI"):
+            pytest.fail(message + " -- required in CI")
+        pytest.skip(message)
+
+
 def pytest_addoption(parser: pytest.Parser) -> None:
     parser.addoption("--update-golden", action="store_true",
                      help="rewrite tests/golden/ from the current output instead of comparing")

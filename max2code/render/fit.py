@@ -14,7 +14,7 @@ def world_extent(shape: Shape, pose: Pose) -> tuple[float, float, float, float]:
         return (x - shape.radius, y - shape.radius, x + shape.radius, y + shape.radius)
     if isinstance(shape, Polygon):
         pts = [pose.apply(v) for v in shape.vertices]
-        pad = 0.0
+        pad = shape.radius
     elif isinstance(shape, Capsule):
         pts = [pose.apply(shape.a), pose.apply(shape.b)]
         pad = shape.radius

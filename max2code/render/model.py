@@ -79,13 +79,18 @@ class Circle:
 
 @dataclass(frozen=True)
 class Polygon:
-    """A convex polygon; vertices in order (either winding: renderers do not care)."""
+    """A convex polygon; vertices in order (either winding: renderers do not care). A `radius`
+    rounds it: every point within radius of the polygon (the engine's rounded polygons)."""
 
     vertices: tuple[Point, ...]
+    radius: float = 0.0
 
     def __post_init__(self) -> None:
         vs = tuple(_point(f"polygon vertex {i}", v) for i, v in enumerate(self.vertices))
         _set(self, "vertices", vs)
+        _set(self, "radius", _finite("polygon radius", self.radius))
+        if self.radius < 0:
+            raise RenderModelError(f"polygon radius must not be negative, not {self.radius!r}")
         if len(vs) < 3:
             raise RenderModelError(f"a polygon needs at least 3 vertices, not {len(vs)}")
         signs, turning = set(), 0.0
@@ -134,6 +139,43 @@ class Capsule:
 
 Shape = Union[Circle, Polygon, Segment, Capsule]
 SHAPES = (Circle, Polygon, Segment, Capsule)
+
+
+def shape_from_vertices(vertices: tuple[Point, ...] | list[Point], radius: float = 0.0) -> Shape:
+    """The engine's way of giving a shape, as a Shape: one vertex and a radius is a circle
+    (centred on the vertex), two vertices a segment (a capsule with a radius), three or more a
+    convex polygon (rounded by the radius)."""
+    vs = tuple(vertices)
+    if len(vs) == 1:
+        return Circle(radius, vs[0])
+    if len(vs) == 2:
+        return Capsule(vs[0], vs[1], radius) if radius > 0 else Segment(vs[0], vs[1])
+    return Polygon(vs, radius)
+
+
+# The basic colour names of HTML and CSS, for scene files written by hand.
+NAMED_COLOURS = {
+    "black": "#000000", "silver": "#c0c0c0", "gray": "#808080", "grey": "#808080",
+    "white": "#ffffff", "maroon": "#800000", "red": "#ff0000", "purple": "#800080",
+    "fuchsia": "#ff00ff", "green": "#008000", "lime": "#00ff00", "olive": "#808000",
+    "yellow": "#ffff00", "navy": "#000080", "blue": "#0000ff", "teal": "#008080",
+    "aqua": "#00ffff", "orange": "#ffa500",
+}
+
+
+def colour(text: str) -> str:
+    """A colour as the model takes it (#rrggbb or #rrggbbaa) from what a person writes: those,
+    #rgb, or a basic name (NAMED_COLOURS). Anything else is refused, with the forms allowed."""
+    if isinstance(text, str):
+        t = text.strip().lower()
+        if t in NAMED_COLOURS:
+            return NAMED_COLOURS[t]
+        if re.fullmatch(r"#[0-9a-f]{3}", t):
+            return "#" + "".join(c * 2 for c in t[1:])
+        if _COLOUR.fullmatch(t):
+            return t
+    raise RenderModelError(f"unknown colour {text!r}: use #rrggbb, #rrggbbaa, #rgb or one of "
+                           + ", ".join(sorted(NAMED_COLOURS)))
 
 
 # --- style, pose, frame, view ------------------------------------------------------------------

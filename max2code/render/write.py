@@ -1,0 +1,173 @@
+"""Pictures to files: PNG (one frame or a numbered folder), animated GIF, MP4, SVG.
+
+Every file is written to a temporary name beside it and renamed (output.replaced_atomically), so
+an interrupted or failed run leaves the previous file as it was. Frames may come from a generator:
+MP4 and PNG folders are written as they come; a GIF is held in memory (Pillow writes it whole),
+as palette images, about width x height bytes per frame.
+
+Timing. An MP4 has `fps` frames per second, exactly. A GIF stores delays in hundredths of a
+second and browsers treat delays under 0.02 s as 0.1 s, so above 50 frames per second every k-th
+frame is kept (k = ceil(fps / 50)) and delays are rounded cumulatively: the GIF's total duration
+is the frames' duration to within 0.01 s, and never drifts.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import re
+from collections.abc import Iterable, Sequence
+from pathlib import Path
+
+from ..diagnostics import Pos, error
+from ..output import replaced_atomically, write_if_changed
+from .model import Body, Frame, RenderModelError, View
+
+GIF_MAX_FPS = 50
+PNG_NAME = "frame-{:05d}.png"
+_PNG_NAME = re.compile(r"frame-(\d{5,})\.png")
+
+
+class RenderUnavailable(RuntimeError):
+    """A library that this kind of output needs is not installed."""
+
+
+def _imports() -> tuple[object, object]:
+    """raster (numpy + Pillow), imported on first use so the model works without them."""
+    try:
+        from . import raster
+        from PIL import Image
+    except ImportError as exc:
+        raise RenderUnavailable(f"pictures need numpy and Pillow ({exc.name} is missing): "
+                                "pip install 'max2code[render]'") from None
+    return raster, Image
+
+
+def _check_fps(fps: float) -> float:
+    if isinstance(fps, bool) or not isinstance(fps, (int, float)) or not (math.isfinite(fps) and fps > 0):
+        raise RenderModelError(f"fps must be a positive number, not {fps!r}")
+    return float(fps)
+
+
+def write_png(path: str | os.PathLike, bodies: Sequence[Body], frame: Frame, view: View) -> None:
+    raster, _ = _imports()
+    image = raster.frame_image(bodies, frame, view)
+    with replaced_atomically(os.fspath(path)) as tmp:
+        image.save(tmp, format="PNG")
+
+
+def write_png_dir(folder: str | os.PathLike, bodies: Sequence[Body], frames: Iterable[Frame],
+                  view: View) -> list[Path]:
+    """frame-00000.png, frame-00001.png, ... in `folder` (made if missing). Numbered frames left
+    from an earlier, longer run are removed, so the folder holds exactly this run (other files
+    are not touched). Returns the paths written."""
+    out = Path(folder)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise error(Pos(str(out), 1, 1), f"cannot make the frame folder: {exc.strerror}") from None
+    written = []
+    for i, frame in enumerate(frames):
+        path = out / PNG_NAME.format(i)
+        write_png(path, bodies, frame, view)
+        written.append(path)
+    for old in out.iterdir():
+        m = _PNG_NAME.fullmatch(old.name)
+        if m and int(m.group(1)) >= len(written) and old.is_file():
+            old.unlink()
+    return written
+
+
+def gif_timing(count: int, fps: float) -> tuple[int, list[int]]:
+    """(keep every k-th frame, delay of each kept frame in ms, multiples of 10) for `count`
+    frames at `fps`: delays of at least 20 ms, summing to the kept frames' duration."""
+    fps = _check_fps(fps)
+    step = max(1, math.ceil(fps / GIF_MAX_FPS - 1e-9))
+    kept = range(0, count, step)
+    ends = [min(i + step, count) for i in kept]
+    cs = [round(100 * e / fps) for e in ends]
+    delays = [10 * (b - a) for a, b in zip([0] + cs[:-1], cs)]
+    return step, [max(d, 20) for d in delays]
+
+
+def write_gif(path: str | os.PathLike, bodies: Sequence[Body], frames: Iterable[Frame], view: View,
+              fps: float) -> int:
+    """An animated GIF that loops; returns the number of frames kept (see the module's timing)."""
+    raster, Image = _imports()
+    fps = _check_fps(fps)
+    step = max(1, math.ceil(fps / GIF_MAX_FPS - 1e-9))
+    images = []
+    count = 0
+    for i, frame in enumerate(frames):
+        count += 1
+        if i % step == 0:
+            rgb = raster.frame_image(bodies, frame, view)
+            images.append(rgb.quantize(colors=256, method=Image.Quantize.MEDIANCUT,
+                                       dither=Image.Dither.NONE))
+    if not images:
+        raise RenderModelError("an animation needs at least one frame")
+    _, delays = gif_timing(count, fps)
+    with replaced_atomically(os.fspath(path)) as tmp:
+        images[0].save(tmp, format="GIF", save_all=True, append_images=images[1:], duration=delays,
+                       loop=0, disposal=1, optimize=False)
+    return len(images)
+
+
+def write_mp4(path: str | os.PathLike, bodies: Sequence[Body], frames: Iterable[Frame], view: View,
+              fps: float, quality: float = 8.0) -> int:
+    """An H.264 MP4 (yuv420p, so every player takes it) through the ffmpeg binary shipped in the
+    imageio-ffmpeg wheel; odd picture sizes are padded by one pixel of background, as H.264 in
+    4:2:0 needs even ones. Returns the number of frames."""
+    raster, _ = _imports()
+    fps = _check_fps(fps)
+    try:
+        import imageio.v2 as imageio
+        import imageio_ffmpeg  # noqa: F401  (the ffmpeg binary)
+        import numpy as np
+    except ImportError as exc:
+        raise RenderUnavailable(f"MP4 needs imageio and imageio-ffmpeg ({exc.name} is missing): "
+                                "pip install 'max2code[render]'") from None
+    pad_w, pad_h = view.width % 2, view.height % 2
+    background = np.array([int(view.background[i:i + 2], 16) for i in (1, 3, 5)], dtype=np.uint8)
+    count = 0
+    with replaced_atomically(os.fspath(path)) as tmp:
+        writer = imageio.get_writer(tmp, format="FFMPEG", mode="I", fps=fps, codec="libx264",
+                                    pixelformat="yuv420p", quality=quality, macro_block_size=1,
+                                    ffmpeg_log_level="error")
+        try:
+            for frame in frames:
+                pixels = np.asarray(raster.frame_image(bodies, frame, view))
+                if pad_w or pad_h:
+                    full = np.empty((view.height + pad_h, view.width + pad_w, 3), dtype=np.uint8)
+                    full[:] = background
+                    full[:view.height, :view.width] = pixels
+                    pixels = full
+                writer.append_data(pixels)
+                count += 1
+        finally:
+            writer.close()
+        if count == 0:
+            raise RenderModelError("an animation needs at least one frame")
+    return count
+
+
+def write_svg(path: str | os.PathLike, bodies: Sequence[Body], frame: Frame, view: View) -> None:
+    from .svg import svg_text
+    write_if_changed(os.fspath(path), svg_text(bodies, frame, view))
+
+
+def save(path: str | os.PathLike, bodies: Sequence[Body], frames: Sequence[Frame], view: View,
+         fps: float = 30.0) -> None:
+    """By the file's suffix: .gif and .mp4 animate every frame; .png and .svg show the last one
+    (the state at the end of the run)."""
+    suffix = Path(path).suffix.lower()
+    if suffix == ".gif":
+        write_gif(path, bodies, frames, view, fps)
+    elif suffix == ".mp4":
+        write_mp4(path, bodies, frames, view, fps)
+    elif suffix in (".png", ".svg"):
+        if not frames:
+            raise RenderModelError("no frame to draw")
+        (write_png if suffix == ".png" else write_svg)(path, bodies, frames[-1], view)
+    else:
+        raise RenderModelError(f"unknown picture type {suffix!r}: use .png, .svg, .gif or .mp4")
