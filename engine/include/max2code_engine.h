@@ -77,7 +77,8 @@ typedef struct {
     long long events;          /* popped from the queue (all kinds) */
     long long collisions;      /* impulses applied */
     long long cell_crossings;
-    long long windows;         /* prediction windows ended (rotating bodies re-expanded) */
+    long long windows;         /* window-end events (a rotating search resumed) */
+    long long windows_solved;  /* rotating-model windows solved (Taylor models) */
     long long stale;           /* events found stale when popped (partner changed) */
     long long predictions;     /* bodies predicted */
     long long pair_tests;      /* pairs examined */

@@ -148,6 +148,7 @@ typedef struct {
     double rate;                /* how fast the gap closes then (ties: the fastest first) */
     int feature, fa, fb, side;
     int improved;               /* set when predict_pair found a better one */
+    double window;              /* rotation searched only up to here (then predict again) */
 } contact;
 int predict_check_generated(m2c_world *w);
 /* The earliest contact of bodies i (dynamic) and j at a time in (now, now + tmax]; 1 and

@@ -23,6 +23,8 @@
 #include <float.h>
 #include <math.h>
 #include <string.h>
+#include <stdio.h>
+#include <stdlib.h>
 
 #include "engine.h"
 #include "max2code_roots.h"
@@ -107,6 +109,7 @@ typedef struct {
     double pa[2], pb[2];    /* world-frame offsets at now: A's point; B's point or edge start */
     double dir[2], len;     /* PL: the edge's unit direction at now (times side), its length */
     int rot_a, rot_b;       /* does rotation move A's point / B's point or line? */
+    int no_touch;           /* a two-sided edge's other side: touching now is no contact */
 } feat;
 
 static double derivative(const double c[], int n, double t)
@@ -236,7 +239,9 @@ static int first_contact(feat *f, double c[MAXC], int n, double tmax, double tol
     double t0 = 0.0;
     if (clearly_apart(c, n, tmax, tolp))
         return 0;
-    if (c[0] <= tolp) {
+    if (c[0] <= tolp && f->no_touch) {
+        c[0] = 0.0; /* on the line, belonging to the other side: only later roots count */
+    } else if (c[0] <= tolp) {
         if (c[0] >= -tolp || f->kind == F_PP) {   /* touching (or overlapping: Bannerman) */
             if (n >= 1 && c[1] < -vthr && on_edge(f, 0.0)) {
                 *tau = 0.0;
@@ -277,6 +282,300 @@ static int first_contact(feat *f, double c[MAXC], int n, double tmax, double tol
     return 0;
 }
 
+/* ------------------------------------------------------------------------------------------ */
+/* Rotation: Taylor models in windows, proved by inflated and deflated models                  */
+/* ------------------------------------------------------------------------------------------ */
+
+#define MAX_WINDOWS 16       /* windows per feature and prediction; then the body re-predicts */
+static const double FACT[MAX_ORDER + 2] = {1, 1, 2, 6, 24, 120};
+
+/* The feature's bodies, offsets and edge direction at absolute time t (exact motion). */
+static void feat_at(feat *f, double t)
+{
+    const m2c_world *w = f->w;
+    f->a = motion_at(&f->A->m, t);
+    f->b = motion_at(&f->B->m, t);
+    world_vector(&f->a, &w->verts[2 * (f->A->vert + f->va)], f->pa);
+    world_vector(&f->b, &w->verts[2 * (f->B->vert + f->vb)], f->pb);
+    if (f->kind == F_PL) {
+        double D[2];
+        world_vector(&f->b, &w->edges[3 * (f->B->vert + f->vb)], D);
+        f->dir[0] = f->side * D[0];
+        f->dir[1] = f->side * D[1];
+    }
+}
+
+/* The exact gap function at absolute time t: |P - Q|^2 - R^2, or side (P - L) x D - R. */
+static double exact_gap(const feat *f, double t)
+{
+    const m2c_world *w = f->w;
+    snap a = motion_at(&f->A->m, t), b = motion_at(&f->B->m, t);
+    double P[2], Q[2];
+    world_point(&a, &w->verts[2 * (f->A->vert + f->va)], P);
+    world_point(&b, &w->verts[2 * (f->B->vert + f->vb)], Q);
+    double dx = P[0] - Q[0], dy = P[1] - Q[1];
+    if (f->kind == F_PP)
+        return dx * dx + dy * dy - f->R * f->R;
+    double D[2];
+    world_vector(&b, &w->edges[3 * (f->B->vert + f->vb)], D);
+    return f->side * (dx * D[1] - dy * D[0]) - f->R;
+}
+
+/* A down-crossing of the exact gap in [lo, hi] (absolute times, g(lo) >= 0 >= g(hi)), by the
+ * Illinois method: to the last bit. */
+static double refine(const feat *f, double lo, double hi)
+{
+    double glo = exact_gap(f, lo), ghi = exact_gap(f, hi);
+    if (!(glo > 0))
+        return lo;
+    if (!(ghi < 0))
+        return hi;
+    int side = 0;
+    for (int it = 0; it < 100 && hi - lo > 2 * DBL_EPSILON * fabs(hi); it++) {
+        double m = (lo * ghi - hi * glo) / (ghi - glo);
+        if (!(m > lo && m < hi))
+            m = 0.5 * (lo + hi);
+        double gm = exact_gap(f, m);
+        if (gm > 0) {
+            lo = m;
+            glo = gm;
+            if (side == 1)
+                ghi *= 0.5;
+            side = 1;
+        } else {
+            hi = m;
+            ghi = gm;
+            if (side == -1)
+                glo *= 0.5;
+            side = -1;
+        }
+    }
+    return hi;
+}
+
+/* Position error bound factor of the order-n model: |exact - model| <= sum rho |w|^(n+1) t^(n+1) /
+ * (n+1)! for the rotating offsets (and the unit direction of a rotating edge). */
+static double rot_term(const feat *f, int n)
+{
+    double s = 0.0;
+    double ra = hypot(f->pa[0], f->pa[1]), rb = hypot(f->pb[0], f->pb[1]);
+    if (f->rot_a)
+        s += ra * pow(fabs(f->a.w), n + 1);
+    if (f->rot_b)
+        s += rb * pow(fabs(f->b.w), n + 1);
+    return s / FACT[n + 1];
+}
+
+/* First root of the model c (degree n) in (0, h] at which it crosses in direction dir (-1 down,
+ * +1 up); 1 and *t, else 0. */
+static int crossing(m2c_world *w, const double c_in[MAXC], int n, double h, int dir, double *t)
+{
+    double c[MAXC];
+    memcpy(c, c_in, sizeof c);
+    double t0 = 0.0;
+    for (int iter = 0; iter <= n + 1; iter++) {
+        double r;
+        int graze = 0;
+        count_solve(w, n);
+        if (m2c_first_root_ex(c, n, h - t0, &r, M2C_METHOD_INTERVAL, &graze) != 1)
+            return 0;
+        double d = derivative(c, n, r);
+        if (graze || dir * d > 0) {
+            *t = t0 + r;
+            return 1;
+        }
+        taylor_shift(c, n, r);
+        c[0] = 0.0;
+        if (graze)
+            c[1] = 0.0;
+        t0 += r;
+        if (!(t0 < h))
+            return 0;
+    }
+    return 0;
+}
+
+/* When could the rotating feature touch at the earliest? Its rotating points stay within
+ * their offsets' circles about the bodies' (polynomially moving) reference points, so the
+ * exact, non-rotating contact of those circles (or of the circle and a non-rotating edge) comes
+ * first: 1 and *t (0 when they overlap now), or 0 when even they never meet before tmax. */
+static int bound_start(feat *f, double tmax, double *t)
+{
+    feat g = *f;
+    double p[PL_NPARAMS + 1], c[MAXC] = {0};
+    int n;
+    double ra = f->rot_a ? hypot(f->pa[0], f->pa[1]) : 0.0;
+    g.rot_a = 0;
+    g.pa[0] = f->rot_a ? 0.0 : f->pa[0];
+    g.pa[1] = f->rot_a ? 0.0 : f->pa[1];
+    if (f->kind == F_PL && !f->rot_b) {
+        g.R = f->R + ra;
+        fill_pl(&g, p, 0.0);
+        n = PL_COEF[0](p, c);
+    } else {
+        double rb = f->rot_b ? (f->kind == F_PP ? hypot(f->pb[0], f->pb[1]) : f->B->rho) : 0.0;
+        g.rot_b = 0;
+        if (f->rot_b || f->kind == F_PL) {
+            g.pb[0] = g.pb[1] = 0.0;
+        }
+        double extra = ra + rb + (f->kind == F_PL ? f->B->radius : 0.0);
+        const body *A = f->A, *B = f->B;
+        double r1 = f->kind == F_PP ? A->radius : f->R - B->radius;
+        double r2 = f->kind == F_PP ? B->radius : B->radius;
+        fill_pp(&g, p, 0.0);
+        p[R1] = r1 + extra;
+        p[R2] = r2;
+        n = PP_COEF[0](p, c);
+    }
+    if (c[0] <= 0) {
+        *t = 0.0;
+        return 1;
+    }
+    double r;
+    int graze = 0;
+    count_solve(f->w, n);
+    if (m2c_first_root_ex(c, n, tmax, &r, M2C_METHOD_INTERVAL, &graze) != 1)
+        return 0;
+    *t = r;
+    return 1;
+}
+
+/* The rotating feature's first contact in (0, tmax] from now: 1 and *tau; 0 for none; 2 when
+ * the search stopped at *tau (MAX_WINDOWS): the body must be predicted again by then. */
+static int solve_rotating(feat *f, double tmax, double tolp, double vthr, double *tau, double *rate)
+{
+    m2c_world *w = f->w;
+    double tol = w->cfg.tolerance;
+    double t0 = 0.0;
+    if (!bound_start(f, tmax, &t0))
+        return 0;
+    enum { ABOVE, INSIDE } mode = ABOVE;
+    int after_root = 0;
+    for (int win = 0; win < MAX_WINDOWS; win++) {
+        if (!(t0 < tmax))
+            return 0;
+        double tabs = w->now + t0;
+        feat_at(f, tabs);
+        double H = tmax - t0;
+        /* distance-like gap now, for the budget of the model error and the reach test */
+        double dx = f->a.x - f->b.x + f->pa[0] - f->pb[0], dy = f->a.y - f->b.y + f->pa[1] - f->pb[1];
+        double dist = f->kind == F_PP ? hypot(dx, dy) - f->R
+                                      : dx * f->dir[1] - dy * f->dir[0] - f->R;
+        double dv = hypot(f->a.vx - f->b.vx, f->a.vy - f->b.vy);
+        double da = hypot(f->a.ax - f->b.ax, f->a.ay - f->b.ay);
+        double ra = hypot(f->pa[0], f->pa[1]), span = hypot(dx, dy) + f->R;
+        double spin = fabs(f->a.w) * ra + fabs(f->b.w) * (f->kind == F_PP ? hypot(f->pb[0], f->pb[1]) : span + ra);
+        double eps = fmax(tol, 0.25 * fabs(dist));
+        /* the lowest order whose remainder over the rest of the horizon meets eps; else order
+         * 4 over the longest window that does */
+        int order = 0;
+        double h = H;
+        for (int n = 1; n <= MAX_ORDER; n++)
+            if (rot_term(f, n) * pow(H, n + 1) <= eps) {
+                order = n;
+                break;
+            }
+        if (!order) {
+            order = MAX_ORDER;
+            h = pow(eps / rot_term(f, order), 1.0 / (order + 1));
+            if (!(h < H))
+                h = H;
+        }
+        /* reach test: can the gap close within the window at all? */
+        double reach = dv * h + 0.5 * da * h * h + spin * h;
+        if (!after_root && (mode == ABOVE ? dist : -dist) - reach > 0) {
+            t0 += h; /* cannot close (or, inside, open) the gap within the window */
+            continue;
+        }
+        w->st.windows_solved++;
+        double p[PL_NPARAMS + 1], c[MAXC] = {0};
+        int n = f->kind == F_PP ? (fill_pp(f, p, 0.0), PP_COEF[order](p, c))
+                                : (fill_pl(f, p, 0.0), PL_COEF[order](p, c));
+        /* the model's error bound B(t) = kappa t^(n+1) on the gap function */
+        double e_h = rot_term(f, order) * pow(h, order + 1);
+        double kappa;
+        if (f->kind == F_PP) {
+            double reachmax = span + dv * h + 0.5 * da * h * h + 2 * ra + 2 * hypot(f->pb[0], f->pb[1]);
+            kappa = rot_term(f, order) * (2 * reachmax * exp(fabs(f->a.w) * h + fabs(f->b.w) * h) + e_h);
+        } else {
+            double qmax = span + dv * h + 0.5 * da * h * h + 2 * ra + 2 * hypot(f->pb[0], f->pb[1]);
+            double eD = f->rot_b ? pow(fabs(f->b.w), order + 1) / FACT[order + 1] : 0.0;
+            kappa = rot_term(f, order) * exp(fabs(f->b.w) * h) + qmax * eD + rot_term(f, order) * eD * pow(h, order + 1);
+        }
+        int deg = n > order + 1 ? n : order + 1;
+        double ca[MAXC], cb[MAXC];
+        memcpy(ca, c, sizeof ca);
+        memcpy(cb, c, sizeof cb);
+        ca[order + 1] -= kappa;
+        cb[order + 1] += kappa;
+        double g0 = c[0], g1 = c[1];
+        if (!after_root && fabs(g0) <= tolp && f->no_touch) {
+            mode = g1 < 0 ? INSIDE : ABOVE;
+            after_root = 1;
+        } else if (!after_root && fabs(g0) <= tolp) {
+            if (g1 < -vthr) { /* touching and approaching: a contact now, if on the edge */
+                if (on_edge(f, t0)) {
+                    *tau = t0;
+                    *rate = -g1;
+                    return 1;
+                }
+                mode = INSIDE;
+            } else {
+                mode = ABOVE;
+            }
+            after_root = 1;
+        } else if (!after_root) {
+            mode = g0 > 0 ? ABOVE : INSIDE;
+        }
+        if (after_root)
+            ca[0] = cb[0] = 0.0;
+        after_root = 0;
+        double ta, tb;
+        if (mode == INSIDE) {
+            /* below zero until the deflated model comes up: skip to there */
+            if (!crossing(w, cb, deg, h, +1, &ta)) {
+                t0 += h;
+                continue;
+            }
+            t0 += ta;
+            mode = ABOVE;
+            after_root = exact_gap(f, w->now + t0) <= tolp;
+            continue;
+        }
+        if (!crossing(w, ca, deg, h, -1, &ta)) { /* even the inflated model stays apart */
+            t0 += h;
+            continue;
+        }
+        int have_b = crossing(w, cb, deg, h, -1, &tb);
+        if (getenv("M2C_DEBUG"))
+            fprintf(stderr, "win %d t0=%.17g h=%g order=%d dist=%g g0=%g ta=%.17g tb=%.17g have_b=%d kappa=%g\n",
+                    win, t0, h, order, dist, g0, ta, have_b ? tb : -1.0, have_b, kappa);
+        double vrel = dv + da * h + spin + DBL_MIN;
+        if (have_b && tb >= ta && ((tb - ta) * vrel <= tol || tb - ta <= 4 * DBL_EPSILON * (tabs + tb))) {
+            double lo = tabs + ta, hi = tabs + tb;
+            double tc = refine(f, lo, hi);
+            if (on_edge(f, tc - w->now)) {
+                *tau = tc - w->now;
+                *rate = vrel;
+                return 1;
+            }
+            /* off the edge: the point went into the band beyond an end; later roots count */
+            t0 = tc - w->now;
+            mode = INSIDE;
+            after_root = 1;
+            continue;
+        }
+        /* no contact before t0 + ta: re-expand from the exact state there */
+        if (!(ta > 0))
+            ta = fmax(h * 1e-3, 4 * DBL_EPSILON * (tabs + 1));
+        t0 += ta;
+    }
+    *tau = t0;
+    if (getenv("M2C_DEBUG"))
+        fprintf(stderr, "WINDOWS EXHAUSTED t0=%g now=%g kind=%d va=%d vb=%d side=%d\n", t0, w->now, f->kind, f->va, f->vb, f->side);
+    return 2;
+}
+
 static int solve_feature(feat *f, double tmax, double *tau, double *rate)
 {
     double c[MAXC] = {0};
@@ -288,8 +587,15 @@ static int solve_feature(feat *f, double tmax, double *tau, double *rate)
                 + fabs(f->b.w) * (fabs(f->pb[0]) + fabs(f->pb[1]));
     double vthr = 1e-12 * dv + DBL_MIN;
     double tol = f->w->cfg.tolerance, tolp;
-    if (f->rot_a || f->rot_b)
-        return 0; /* rotation: not yet */
+    if (f->rot_a || f->rot_b) {
+        double norm = f->kind == F_PP ? 2 * f->R : 1.0;
+        tolp = f->kind == F_PP ? tol * (2 * f->R + tol) : tol;
+        int r = solve_rotating(f, tmax, tolp, vthr * norm, tau, rate);
+        feat_at(f, f->w->now); /* the caller's loops go on from now */
+        if (r == 1)
+            *rate /= norm;
+        return r;
+    }
     double norm = 1.0;
     if (f->kind == F_PP) {
         fill_pp(f, p, 0.0);
@@ -328,7 +634,13 @@ static void try_feature(feat *f, contact *best, int swapped, int fa, int fb)
     double tmax = best->t - w->now, tau, rate = 0.0;
     if (!(tmax >= 0))
         return;
-    if (solve_feature(f, tmax > 0 ? tmax : 0x1p-1074, &tau, &rate)
+    int r = solve_feature(f, tmax > 0 ? tmax : 0x1p-1074, &tau, &rate);
+    if (r == 2) { /* searched up to now + tau only: predict again by then */
+        if (w->now + tau < best->window)
+            best->window = w->now + tau;
+        return;
+    }
+    if (r == 1
         && (w->now + tau < best->t || (w->now + tau == best->t && rate > best->rate))) {
         best->t = w->now + tau;
         best->rate = rate;
@@ -363,8 +675,23 @@ static void points_on_edges(feat *f, contact *best, int swapped)
             set_point(w, A, &f->a, va, f->pa);
             f->va = va;
             f->rot_a = f->a.w != 0.0 && (f->pa[0] != 0.0 || f->pa[1] != 0.0);
+            /* a two-sided edge: a point on its line belongs to the side it is moving to (it has
+             * just bounced off that side); touching the other side now is no contact */
+            int own = 0;
+            if (!closed) {
+                double q[2] = {f->a.x - f->b.x + f->pa[0] - f->pb[0], f->a.y - f->b.y + f->pa[1] - f->pb[1]};
+                double across = q[0] * D[1] - q[1] * D[0];
+                if (fabs(across) <= w->cfg.tolerance + f->R) {
+                    double vq[2] = {f->a.vx - f->a.w * f->pa[1] - (f->b.vx - f->b.w * f->pb[1]),
+                                    f->a.vy + f->a.w * f->pa[0] - (f->b.vy + f->b.w * f->pb[0])};
+                    double rate = vq[0] * D[1] - vq[1] * D[0] + f->b.w * (q[0] * D[0] + q[1] * D[1]);
+                    double where = fabs(across) > w->cfg.tolerance ? across : rate;
+                    own = where > 0 ? 1 : where < 0 ? -1 : 2;
+                }
+            }
             for (int side = 1; side >= (closed ? 1 : -1); side -= 2) {
                 f->side = side;
+                f->no_touch = own != 0 && own != side;
                 f->dir[0] = side * D[0];
                 f->dir[1] = side * D[1];
                 if (swapped)
@@ -394,6 +721,27 @@ int predict_pair(m2c_world *w, int i, int j, contact *c)
     f.B = B;
     f.a = motion_at(&A->m, w->now);
     f.b = motion_at(&B->m, w->now);
+    f.no_touch = 0;
+    /* several features: first the bounding circles about the reference points (exact, no
+     * rotation), unless one of them is a wall's (its reference point is anywhere) */
+    if ((A->nvert > 1 || B->nvert > 1) && B->kind != M2C_STATIC) {
+        double p[PP_NPARAMS], cc[MAXC] = {0}, r;
+        int graze = 0;
+        f.pa[0] = f.pa[1] = f.pb[0] = f.pb[1] = 0.0;
+        f.rot_a = f.rot_b = 0;
+        fill_pp(&f, p, 0.0);
+        p[R1] = A->bound;
+        p[R2] = B->bound;
+        int n = PP_COEF[0](p, cc);
+        double tmax = c->t - w->now;
+        if (cc[0] > 0) {
+            if (clearly_apart(cc, n, tmax, 0.0))
+                return 0;
+            count_solve(w, n);
+            if (m2c_first_root_ex(cc, n, tmax > 0 ? tmax : 0x1p-1074, &r, M2C_METHOD_INTERVAL, &graze) != 1)
+                return 0;
+        }
+    }
     /* points against points: only rounded shapes (sharp corners meet through the edges) */
     if (A->radius + B->radius > 0) {
         f.kind = F_PP;

@@ -114,10 +114,6 @@ static int check_def(m2c_world *w, const m2c_body_def *d)
                 return fail(w, "a polygon must be convex with its vertices anticlockwise");
         }
     }
-    if (d->kind == M2C_DYNAMIC && d->nvertices > 1)
-        return fail(w, "dynamic polygons and segments need rotation (not built yet)");
-    if (d->kind == M2C_KINEMATIC && d->omega != 0)
-        return fail(w, "rotating kinematic bodies need rotation (not built yet)");
     return 0;
 }
 
@@ -338,8 +334,14 @@ void world_predict(m2c_world *w, int i)
     memset(&bc, 0, sizeof bc);
     bc.c.t = ev.t;
     bc.c.rate = -INFINITY;
+    bc.c.window = INFINITY;
     bc.partner = -1;
     grid_neighbours(w, i, visit, &bc);
+    if (bc.c.window < bc.c.t) { /* a rotating search stopped early: resume by then */
+        ev.t = bc.c.window;
+        ev.kind = EV_WINDOW;
+        bc.partner = -1;
+    }
     if (bc.partner >= 0) {
         ev.t = bc.c.t;
         ev.kind = EV_CONTACT;
