@@ -114,6 +114,11 @@ int m2c_world_set_velocity(m2c_world *w, int body, double vx, double vy, double 
 /* A timer: an M2C_EVENT_TIMER event (a = the returned id) at time t. */
 int m2c_world_add_timer(m2c_world *w, double t);
 
+/* The first contact of bodies i and j alone, as if nothing else existed and nothing changed,
+ * in (now, now + tmax] (any kinds of body): 1 and *t (absolute), 0 when none. The prediction
+ * the event loop uses (`max2code scene` shows it per pair). */
+int m2c_world_first_contact(m2c_world *w, int i, int j, double tmax, double *t);
+
 /* Energy: kinetic + potential (-m a.x) of the dynamic bodies at time t. */
 double m2c_world_energy(const m2c_world *w, double t);
 /* 1 when the body is asleep (the rest rule), else 0. */

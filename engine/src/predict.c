@@ -266,7 +266,9 @@ static int first_contact(feat *f, double c[MAXC], int n, double tmax, double tol
             return 0;
         double tr = t0 + r;
         double d = derivative(c, n, r);
-        if (!graze && d < 0 && on_edge(f, tr)) {
+        /* a touch without crossing (a graze) is no collision, but it is a first contact for
+         * m2c_world_first_contact */
+        if ((graze ? f->w->any_kinds : d < 0) && on_edge(f, tr)) {
             *tau = tr;
             *rate = -d;
             return 1;
@@ -708,7 +710,7 @@ int predict_pair(m2c_world *w, int i, int j, contact *c)
     const body *A = &w->b[i], *B = &w->b[j];
     if (A->group >= 0 && A->group == B->group)
         return 0;
-    if (A->kind != M2C_DYNAMIC && B->kind != M2C_DYNAMIC)
+    if (A->kind != M2C_DYNAMIC && B->kind != M2C_DYNAMIC && !w->any_kinds)
         return 0;
     if (A->state == RESTING && A->support == j)
         return 0; /* in contact by construction (the rest rule) */

@@ -576,3 +576,32 @@ void m2c_world_stats(const m2c_world *w, m2c_stats *out)
 {
     *out = w->st;
 }
+
+int m2c_world_first_contact(m2c_world *w, int i, int j, double tmax, double *t)
+{
+    if (w->broken || i < 0 || j < 0 || i >= w->n || j >= w->n || i == j || !(tmax > 0))
+        return fail(w, "first_contact: bad bodies or horizon");
+    double now = w->now, end = now + tmax;
+    int found = 0;
+    w->any_kinds = 1;
+    for (int guard = 0; guard < 1000000; guard++) {
+        contact c;
+        memset(&c, 0, sizeof c);
+        c.t = end;
+        c.rate = -INFINITY;
+        c.window = INFINITY;
+        predict_pair(w, i, j, &c);
+        if (c.window < c.t && c.window < end) { /* a rotating search stopped: go on from there */
+            w->now = c.window;
+            continue;
+        }
+        if (c.improved) {
+            *t = c.t;
+            found = 1;
+        }
+        break;
+    }
+    w->any_kinds = 0;
+    w->now = now;
+    return found;
+}

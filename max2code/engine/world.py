@@ -246,6 +246,15 @@ class World:
             raise EngineError(f"poses at {t}: before some body's last event")
         return [(buf[3 * i], buf[3 * i + 1], buf[3 * i + 2]) for i in range(n)]
 
+    def first_contact(self, a: int, b: int, horizon: float) -> float | None:
+        """When bodies a and b would first touch within `horizon` from now, were they alone
+        and nothing changed (any kinds: kinematic orbits too); None when they would not."""
+        t = self._ffi.new("double *")
+        r = self._lib.m2c_world_first_contact(self._w, a, b, float(horizon), t)
+        if r < 0:
+            raise EngineError(self.error())
+        return t[0] if r == 1 else None
+
     def energy(self, t: float | None = None) -> float:
         """Kinetic plus potential energy (-m a.x) of the dynamic bodies."""
         return float(self._lib.m2c_world_energy(self._w, self.time if t is None else float(t)))
@@ -257,8 +266,9 @@ class World:
         s = self._ffi.new("m2c_stats *")
         self._lib.m2c_world_stats(self._w, s)
         out: dict[str, object] = {}
-        for name in ("events", "collisions", "cell_crossings", "windows", "stale", "predictions",
-                     "pair_tests", "solves", "rests", "wakes", "ncells_x", "ncells_y", "cell_size"):
+        for name in ("events", "collisions", "cell_crossings", "windows", "windows_solved", "stale",
+                     "predictions", "pair_tests", "solves", "rests", "wakes", "ncells_x", "ncells_y",
+                     "cell_size"):
             out[name] = getattr(s, name)
         out["solves_by_degree"] = {d: s.solves_by_degree[d] for d in range(17) if s.solves_by_degree[d]}
         return out
