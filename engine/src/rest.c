@@ -43,7 +43,8 @@
  *    10 rest_speed when that is given). Rule 1a uses v_s too for a body landing on an asleep
  *    one. Frictionless balls in a heap would otherwise flow for a long time in resting contact,
  *    which an event-driven engine can only follow as a storm of tiny contacts.
- * 5. Jams: a body with 64 (128, 256, ...) collisions in a row at one identical instant is jammed
+ * 5. Jams: a body with 64 (128, 256, ...) collisions in a row at one instant (within a few
+ *    ulps: a pressing contact found again just after the last) is jammed
  *    between others: the pairwise impulses of a contact network converge only geometrically
  *    (or not at all), never in finitely many steps. Its cluster falls asleep if it rests on
  *    something static or asleep, whatever its speed (the motion it loses is lost to the
@@ -54,6 +55,7 @@
  * parting speeds of 1c and 2 (at most m (g_n t_c / 2)^2 / 2 per pressing contact); the others
  * only remove motion.
  */
+#include <float.h>
 #include <math.h>
 #include <string.h>
 
@@ -101,6 +103,8 @@ static double circle_gap(const m2c_world *w, int k, int j, double n[2])
     double c[2];
     world_point(&a, &w->verts[2 * K->vert], c);
     double best = INFINITY;
+    n[0] = 0.0;
+    n[1] = 1.0;
     int nedges = J->nvert >= 3 ? J->nvert : J->nvert - 1;
     for (int v = 0; v < J->nvert; v++) {
         double p[2];
@@ -163,6 +167,43 @@ static int project_velocity(body *K, const double (*nrm)[2], int count)
     K->m.vy = best[1];
     K->counter++;
     return 1;
+}
+
+/* Distance between the shapes of bodies k and j now (any shapes; touching ~ 0): the least
+ * distance of a vertex of one to a vertex or edge of the other, minus the radii. */
+static double body_gap(const m2c_world *w, int k, int j)
+{
+    const body *B[2] = {&w->b[k], &w->b[j]};
+    snap s[2] = {motion_at(&B[0]->m, w->now), motion_at(&B[1]->m, w->now)};
+    double best = INFINITY;
+    for (int side = 0; side < 2; side++) {
+        const body *P = B[side], *E = B[1 - side];
+        const snap *sp = &s[side], *se = &s[1 - side];
+        int nedges = E->nvert >= 3 ? E->nvert : E->nvert - 1;
+        for (int v = 0; v < P->nvert; v++) {
+            double c[2];
+            world_point(sp, &w->verts[2 * (P->vert + v)], c);
+            for (int u = 0; u < E->nvert; u++) {
+                double q[2];
+                world_point(se, &w->verts[2 * (E->vert + u)], q);
+                double d = hypot(c[0] - q[0], c[1] - q[1]);
+                if (d < best)
+                    best = d;
+                if (u < nedges) {
+                    double dir[2];
+                    const double *e = &w->edges[3 * (E->vert + u)];
+                    world_vector(se, e, dir);
+                    double along = (c[0] - q[0]) * dir[0] + (c[1] - q[1]) * dir[1];
+                    if (along > 0 && along < e[2]) {
+                        double across = fabs((c[0] - q[0]) * dir[1] - (c[1] - q[1]) * dir[0]);
+                        if (across < best)
+                            best = across;
+                    }
+                }
+            }
+        }
+    }
+    return best - B[0]->radius - B[1]->radius;
 }
 
 /* Is the direction `up` in the cone of the normals? */
@@ -334,10 +375,7 @@ static void push_asleep(m2c_world *w, int k, int j, void *ctx)
     body *J = &w->b[j];
     if (J->kind != M2C_DYNAMIC || !still(J) || f->top >= f->cap)
         return;
-    double n[2];
-    double gap = w->b[k].nvert == 1 ? circle_gap(w, k, j, n)
-                                    : (J->nvert == 1 ? circle_gap(w, j, k, n) : 0.0);
-    if (gap <= f->slack)
+    if (body_gap(w, k, j) <= f->slack)
         w->stack[f->top++] = j;
 }
 
@@ -382,13 +420,10 @@ static void cluster_visit(m2c_world *w, int k, int j, void *ctx)
 {
     cluster *c = ctx;
     body *J = &w->b[j];
-    double n[2];
-    if (w->b[k].nvert != 1)
-        return;
     int fixed = J->kind == M2C_STATIC || body_still(J);
     if (J->kind == M2C_KINEMATIC)
         return;
-    if (circle_gap(w, k, j, n) > c->slack)
+    if (body_gap(w, k, j) > c->slack)
         return;
     if (fixed) {
         c->supported = 1;
@@ -414,7 +449,9 @@ void rest_burst(m2c_world *w, int k)
     body *K = &w->b[k];
     double tc = collapse_time(w);
     K->burst = (tc > 0 && w->now - K->last_contact < tc) ? K->burst + 1 : 0;
-    K->instant = w->now == K->last_contact ? K->instant + 1 : 0;
+    /* at one instant: the same time, or within a few ulps (a contact found again just after
+     * the last one, the rounding of a pressing contact) */
+    K->instant = w->now - K->last_contact <= 64 * DBL_EPSILON * (1 + fabs(w->now)) ? K->instant + 1 : 0;
     if (K->burst == 0)
         K->elastic = 0;
     double gl = hypot(K->gx, K->gy);
@@ -423,7 +460,7 @@ void rest_burst(m2c_world *w, int k)
     /* tried at 16, 32, 64, ... collisions into a burst: a flood per event would cost O(N) */
     if (!jammed && (K->burst < BURST || (K->burst & (K->burst - 1)) != 0))
         return;
-    if (vr < 0 || K->nvert != 1 || !(gl > 0))
+    if (vr < 0 || !(gl > 0))
         return;
     double vmax = jammed ? INFINITY : settle_speed(w, K);
     cluster c = {0, w->cap, 0, 0, 0, 2 * vr * vr / gl + w->cfg.tolerance, vmax};
@@ -435,7 +472,7 @@ void rest_burst(m2c_world *w, int k)
         int j = w->stack[--c.top];
         w->members[n++] = j;
         snap s = motion_at(&w->b[j].m, w->now);
-        if (hypot(s.vx, s.vy) + fabs(s.w) * w->b[j].rho > vmax || w->b[j].nvert != 1)
+        if (hypot(s.vx, s.vy) + fabs(s.w) * w->b[j].rho > vmax)
             c.fast = 1;
         grid_neighbours(w, j, cluster_visit, &c);
     }
