@@ -23,8 +23,6 @@
 #include <float.h>
 #include <math.h>
 #include <string.h>
-#include <stdio.h>
-#include <stdlib.h>
 
 #include "engine.h"
 #include "max2code_roots.h"
@@ -448,7 +446,7 @@ static int solve_rotating(feat *f, double tmax, double tolp, double vthr, double
 {
     m2c_world *w = f->w;
     double tol = w->cfg.tolerance;
-    double t0 = 0.0;
+    double t0 = 0.0, t_safe = -1.0;
     if (!bound_start(f, tmax, &t0))
         return 0;
     enum { ABOVE, INSIDE } mode = ABOVE;
@@ -511,7 +509,25 @@ static int solve_rotating(feat *f, double tmax, double tolp, double vthr, double
         ca[order + 1] -= kappa;
         cb[order + 1] += kappa;
         double g0 = c[0], g1 = c[1];
-        if (!after_root && fabs(g0) <= tolp && f->no_touch) {
+        /* touching counts only where the prediction starts (after a response); later, a
+         * re-expansion that finds the gap closed has passed the crossing: it lies after the
+         * last point known to be apart, and is refined there on the exact motion */
+        int at_start = t0 == 0.0;
+        if (!after_root && !at_start && mode == ABOVE && g0 <= 0 && t_safe >= 0) {
+            double tc = refine(f, w->now + t_safe, tabs);
+            if (on_edge(f, tc - w->now)) {
+                *tau = tc - w->now;
+                *rate = -g1;
+                return 1;
+            }
+            t0 = tc - w->now;
+            mode = INSIDE;
+            after_root = 1;
+            continue;
+        }
+        if (!after_root && !at_start) {
+            mode = g0 > 0 ? ABOVE : INSIDE;
+        } else if (!after_root && fabs(g0) <= tolp && f->no_touch) {
             mode = g1 < 0 ? INSIDE : ABOVE;
             after_root = 1;
         } else if (!after_root && fabs(g0) <= tolp) {
@@ -531,6 +547,8 @@ static int solve_rotating(feat *f, double tmax, double tolp, double vthr, double
         }
         if (after_root)
             ca[0] = cb[0] = 0.0;
+        else if (g0 > 0)
+            t_safe = t0;
         after_root = 0;
         double ta, tb;
         if (mode == INSIDE) {
@@ -549,9 +567,6 @@ static int solve_rotating(feat *f, double tmax, double tolp, double vthr, double
             continue;
         }
         int have_b = crossing(w, cb, deg, h, -1, &tb);
-        if (getenv("M2C_DEBUG"))
-            fprintf(stderr, "win %d t0=%.17g h=%g order=%d dist=%g g0=%g ta=%.17g tb=%.17g have_b=%d kappa=%g\n",
-                    win, t0, h, order, dist, g0, ta, have_b ? tb : -1.0, have_b, kappa);
         double vrel = dv + da * h + spin + DBL_MIN;
         if (have_b && tb >= ta && ((tb - ta) * vrel <= tol || tb - ta <= 4 * DBL_EPSILON * (tabs + tb))) {
             double lo = tabs + ta, hi = tabs + tb;
@@ -573,8 +588,6 @@ static int solve_rotating(feat *f, double tmax, double tolp, double vthr, double
         t0 += ta;
     }
     *tau = t0;
-    if (getenv("M2C_DEBUG"))
-        fprintf(stderr, "WINDOWS EXHAUSTED t0=%g now=%g kind=%d va=%d vb=%d side=%d\n", t0, w->now, f->kind, f->va, f->vb, f->side);
     return 2;
 }
 

@@ -360,8 +360,6 @@ static void process(m2c_world *w, int i)
 {
     event ev = w->b[i].ev;
     w->st.events++;
-    if (getenv("M2C_DEBUG"))
-        fprintf(stderr, "EVENT t=%.17g body=%d kind=%d partner=%d feature=%d fa=%d fb=%d side=%d\n", ev.t, i, ev.kind, ev.partner, ev.feature, ev.fa, ev.fb, ev.side);
     switch (ev.kind) {
     case EV_CELL:
         w->st.cell_crossings++;
