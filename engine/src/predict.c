@@ -108,7 +108,18 @@ typedef struct {
     double dir[2], len;     /* PL: the edge's unit direction at now (times side), its length */
     int rot_a, rot_b;       /* does rotation move A's point / B's point or line? */
     int no_touch;           /* a two-sided edge's other side: touching now is no contact */
+    double rx, ry;          /* A's reference point minus B's, at the snapshots' time */
 } feat;
+
+/* A's reference point minus B's at time t, from their own reference states: the difference of
+ * the reference positions first (exact when they are close), then the small motions -- never
+ * two positions rounded at their own magnitude (bodies far from the origin keep their digits) */
+static void relative_position(const body *A, const body *B, double t, double *rx, double *ry)
+{
+    double sa = t - A->m.t, sb = t - B->m.t;
+    *rx = (A->m.x - B->m.x) + (sa * (A->m.vx + 0.5 * A->m.ax * sa) - sb * (B->m.vx + 0.5 * B->m.ax * sb));
+    *ry = (A->m.y - B->m.y) + (sa * (A->m.vy + 0.5 * A->m.ay * sa) - sb * (B->m.vy + 0.5 * B->m.ay * sb));
+}
 
 static double derivative(const double c[], int n, double t)
 {
@@ -128,8 +139,8 @@ static void taylor_shift(double c[], int n, double r)
 
 static void fill_pp(const feat *f, double p[PP_NPARAMS], double dr)
 {
-    p[CX1] = f->a.x - f->b.x;
-    p[CY1] = f->a.y - f->b.y;
+    p[CX1] = f->rx;
+    p[CY1] = f->ry;
     p[VX1] = f->a.vx - f->b.vx;
     p[VY1] = f->a.vy - f->b.vy;
     p[AX1] = f->a.ax - f->b.ax;
@@ -160,8 +171,8 @@ static void fill_pp(const feat *f, double p[PP_NPARAMS], double dr)
 
 static void fill_pl(const feat *f, double p[PL_NPARAMS], double dr)
 {
-    p[CPX] = f->a.x - f->b.x;
-    p[CPY] = f->a.y - f->b.y;
+    p[CPX] = f->rx;
+    p[CPY] = f->ry;
     p[VPX] = f->a.vx - f->b.vx;
     p[VPY] = f->a.vy - f->b.vy;
     p[APX] = f->a.ax - f->b.ax;
@@ -295,6 +306,7 @@ static void feat_at(feat *f, double t)
     const m2c_world *w = f->w;
     f->a = motion_at(&f->A->m, t);
     f->b = motion_at(&f->B->m, t);
+    relative_position(f->A, f->B, t, &f->rx, &f->ry);
     world_vector(&f->a, &w->verts[2 * (f->A->vert + f->va)], f->pa);
     world_vector(&f->b, &w->verts[2 * (f->B->vert + f->vb)], f->pb);
     if (f->kind == F_PL) {
@@ -458,7 +470,7 @@ static int solve_rotating(feat *f, double tmax, double tolp, double vthr, double
         feat_at(f, tabs);
         double H = tmax - t0;
         /* distance-like gap now, for the budget of the model error and the reach test */
-        double dx = f->a.x - f->b.x + f->pa[0] - f->pb[0], dy = f->a.y - f->b.y + f->pa[1] - f->pb[1];
+        double dx = f->rx + f->pa[0] - f->pb[0], dy = f->ry + f->pa[1] - f->pb[1];
         double dist = f->kind == F_PP ? hypot(dx, dy) - f->R
                                       : dx * f->dir[1] - dy * f->dir[0] - f->R;
         double dv = hypot(f->a.vx - f->b.vx, f->a.vy - f->b.vy);
@@ -694,7 +706,7 @@ static void points_on_edges(feat *f, contact *best, int swapped)
              * just bounced off that side); touching the other side now is no contact */
             int own = 0;
             if (!closed) {
-                double q[2] = {f->a.x - f->b.x + f->pa[0] - f->pb[0], f->a.y - f->b.y + f->pa[1] - f->pb[1]};
+                double q[2] = {f->rx + f->pa[0] - f->pb[0], f->ry + f->pa[1] - f->pb[1]};
                 double across = q[0] * D[1] - q[1] * D[0];
                 if (fabs(across) <= w->cfg.tolerance + f->R) {
                     double vq[2] = {f->a.vx - f->a.w * f->pa[1] - (f->b.vx - f->b.w * f->pb[1]),
@@ -730,13 +742,26 @@ int predict_pair(m2c_world *w, int i, int j, contact *c)
     w->st.pair_tests++;
     c->improved = 0;
     feat f;
-    memset(&f, 0, sizeof f);
     f.w = w;
     f.A = A;
     f.B = B;
     f.a = motion_at(&A->m, w->now);
     f.b = motion_at(&B->m, w->now);
+    relative_position(A, B, w->now, &f.rx, &f.ry);
     f.no_touch = 0;
+    f.dir[0] = f.dir[1] = f.len = 0.0;
+    /* the cheapest test first: can the bounding circles about the reference points meet before
+     * the current best at all? (1-norm bounds of the relative speed and acceleration; a wall's
+     * circle is too large to tell anything) */
+    if (!(B->kind == M2C_STATIC && B->nvert > 1)) {
+        double T = c->t - w->now;
+        double dx = f.rx, dy = f.ry;
+        double reach = (fabs(f.a.vx - f.b.vx) + fabs(f.a.vy - f.b.vy)) * T
+                       + 0.5 * (fabs(f.a.ax - f.b.ax) + fabs(f.a.ay - f.b.ay)) * T * T;
+        double need = A->bound + B->bound + reach + w->cfg.tolerance;
+        if (dx * dx + dy * dy > need * need * (1 + 1e-12))
+            return 0;
+    }
     /* several features: first the bounding circles about the reference points (exact, no
      * rotation), unless one of them is a wall's (its reference point is anywhere) */
     if ((A->nvert > 1 || B->nvert > 1) && B->kind != M2C_STATIC) {
@@ -774,13 +799,18 @@ int predict_pair(m2c_world *w, int i, int j, contact *c)
             }
         }
     }
-    points_on_edges(&f, c, 0);
-    /* the edges of A against the points of B: the same equation with the roles swapped */
-    feat g = f;
-    g.A = B;
-    g.B = A;
-    g.a = f.b;
-    g.b = f.a;
-    points_on_edges(&g, c, 1);
+    if (B->nvert > 1)
+        points_on_edges(&f, c, 0);
+    if (A->nvert > 1) {
+        /* the edges of A against the points of B: the same equation with the roles swapped */
+        feat g = f;
+        g.A = B;
+        g.B = A;
+        g.a = f.b;
+        g.b = f.a;
+        g.rx = -f.rx;
+        g.ry = -f.ry;
+        points_on_edges(&g, c, 1);
+    }
     return c->improved;
 }
