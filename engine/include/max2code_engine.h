@@ -58,8 +58,8 @@ typedef struct {
 typedef struct {
     double tolerance;          /* lengths: contact slack, Taylor remainder budget (> 0) */
     double cell_size;          /* broad-phase cell width; 0: chosen from the bodies; < 0: one cell */
-    double rest_speed;         /* the rest rule (see the README): 0 disables it */
-    double collapse_time;      /* t_c of the inelastic-collapse rule: 0 disables it */
+    double rest_speed;         /* v_r of the rest rule (README): 0 automatic, < 0 off */
+    double collapse_time;      /* t_c of the collapse rules: 0 automatic (1e-3 s), < 0 off */
     long long max_events;      /* a step processing more events than this fails (0: no limit) */
 } m2c_config;
 

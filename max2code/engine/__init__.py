@@ -20,6 +20,8 @@ its Python face (cffi, ABI mode).
     frame = w.poses(2.0)               # every body's (x, y, angle): what a frame draws
     w.set_velocity(ball, (0, 3))       # an input event, at the world's time
     w.add_timer(2.5, callback)         # a timer event
+    w.first_contact(ball, box, 1.0)    # a pair's first contact alone (no response): max2code scene
+    w.stats()                          # events, collisions, cell crossings, solves by degree, ...
 
 Bodies (`World.add_body(vertices, radius=, kind=, position=, angle=, velocity=, omega=,
 gravity=, mass= | density=, inertia=, restitution=, group=, name=, color=)`, returns the id):
@@ -39,8 +41,10 @@ inertia, restitution, group, color): with `poses()` it is all a renderer needs.
 
 Events (`Event`: time, kind "collision" | "rest" | "wake" | "timer", a, b, normal from a to
 b, contact point, closing speed, impulse) come back from `step_to` in time order and go to
-the callbacks at their time. Equal times are ordered by body id: the same world gives the
-same events, bit for bit.
+the callbacks at their time (`step_to(t, events=False)` makes no Event objects: cheaper when
+nothing reads them). Equal times are ordered by body id: the same world gives the same
+events, bit for bit. World(rest_speed=, collapse_time=) tune the rest rule (README): 0 is
+automatic, a negative value turns the rules off.
 
 Scenes: `max2code.engine.scenefile.load(path)` reads a scene file (TOML or JSON, schema in
 that module and the README) and `build_world(scene)` makes its World; `max2code sim` runs one.

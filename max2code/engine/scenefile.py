@@ -9,8 +9,8 @@
 
     [engine]                         # optional tuning (README: the rest rule)
     cell_size = 0.0                  # 0: chosen from the bodies; < 0: one cell (no broad phase)
-    rest_speed = 0.0                 # the rest rule's speed; 0: off
-    collapse_time = 0.0              # the inelastic-collapse rule's t_c; 0: off
+    rest_speed = 0.0                 # the rest rule's v_r; 0: automatic; < 0: the rules off
+    collapse_time = 0.0              # the collapse rules' t_c; 0: automatic (1e-3 s); < 0: off
     max_events = 0                   # a step processing more fails (0: no limit)
 
     [[bodies]]
@@ -359,8 +359,8 @@ def check(doc: Located, shown: str, stem: str = "scene") -> Scene:
         eng = {}
     c.keys(eng, ENGINE_KEYS, ("engine",))
     cell_size = c.number(eng, "cell_size", ("engine",), 0.0)
-    rest_speed = c.number(eng, "rest_speed", ("engine",), 0.0, nonneg=True)
-    collapse_time = c.number(eng, "collapse_time", ("engine",), 0.0, nonneg=True)
+    rest_speed = c.number(eng, "rest_speed", ("engine",), 0.0)
+    collapse_time = c.number(eng, "collapse_time", ("engine",), 0.0)
     max_events = c.number(eng, "max_events", ("engine",), 0.0, nonneg=True)
     raw_bodies = data.get("bodies")
     bodies: list[tuple[int, BodySpec]] = []
