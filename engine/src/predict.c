@@ -137,7 +137,15 @@ static void taylor_shift(double c[], int n, double r)
             c[j] += r * c[j + 1];
 }
 
-static void fill_pp(const feat *f, double p[PP_NPARAMS], double dr)
+/* Both equations list the two bodies' motions alike: a point's centre, velocity,
+ * acceleration, rotating offset and angular velocity (indices 0-8), then the second body's
+ * (10-17, its angular velocity at w2): in the pair's relative frame, with an offset that does
+ * not rotate folded into its centre (so that more parameters are exactly zero). */
+_Static_assert((int)CX1 == (int)CPX && (int)OY1 == (int)OPY && (int)W1 == (int)WP
+                   && (int)CX2 == (int)CLX && (int)OY2 == (int)OLY,
+               "circles_orbit and circle_orbit_line list the motions alike");
+
+static void fill_motion(const feat *f, double p[], int w2)
 {
     p[CX1] = f->rx;
     p[CY1] = f->ry;
@@ -154,50 +162,30 @@ static void fill_pp(const feat *f, double p[PP_NPARAMS], double dr)
         p[CY1] += f->pa[1];
         p[OX1] = p[OY1] = p[W1] = 0.0;
     }
-    p[R1] = f->A->radius + dr;
     p[VX2] = p[VY2] = p[AX2] = p[AY2] = 0.0;
     if (f->rot_b) {
         p[CX2] = p[CY2] = 0.0;
         p[OX2] = f->pb[0];
         p[OY2] = f->pb[1];
-        p[W2] = f->b.w;
+        p[w2] = f->b.w;
     } else {
         p[CX2] = f->pb[0];
         p[CY2] = f->pb[1];
-        p[OX2] = p[OY2] = p[W2] = 0.0;
+        p[OX2] = p[OY2] = p[w2] = 0.0;
     }
+}
+
+static void fill_pp(const feat *f, double p[PP_NPARAMS], double dr)
+{
+    fill_motion(f, p, W2);
+    p[R1] = f->A->radius + dr;
     p[R2] = f->B->radius;
 }
 
 static void fill_pl(const feat *f, double p[PL_NPARAMS], double dr)
 {
-    p[CPX] = f->rx;
-    p[CPY] = f->ry;
-    p[VPX] = f->a.vx - f->b.vx;
-    p[VPY] = f->a.vy - f->b.vy;
-    p[APX] = f->a.ax - f->b.ax;
-    p[APY] = f->a.ay - f->b.ay;
-    if (f->rot_a) {
-        p[OPX] = f->pa[0];
-        p[OPY] = f->pa[1];
-        p[WP] = f->a.w;
-    } else {
-        p[CPX] += f->pa[0];
-        p[CPY] += f->pa[1];
-        p[OPX] = p[OPY] = p[WP] = 0.0;
-    }
+    fill_motion(f, p, WL);
     p[RR] = f->R + dr;
-    p[VLX] = p[VLY] = p[ALX] = p[ALY] = 0.0;
-    if (f->rot_b) {
-        p[CLX] = p[CLY] = 0.0;
-        p[OLX] = f->pb[0];
-        p[OLY] = f->pb[1];
-        p[WL] = f->b.w;
-    } else {
-        p[CLX] = f->pb[0];
-        p[CLY] = f->pb[1];
-        p[OLX] = p[OLY] = p[WL] = 0.0;
-    }
     p[DX] = f->dir[0];
     p[DY] = f->dir[1];
 }
@@ -365,6 +353,20 @@ static double refine(const feat *f, double lo, double hi)
     return hi;
 }
 
+/* The crossing refined in [lo, hi] (absolute times): 1 and *tau (from now) when its contact
+ * point lies on the edge; else 0 with *t0 moved to it -- the point went into the band beyond an
+ * end, and the search goes on for later roots. */
+static int take_crossing(const feat *f, double lo, double hi, double *t0, double *tau)
+{
+    double tc = refine(f, lo, hi);
+    if (on_edge(f, tc - f->w->now)) {
+        *tau = tc - f->w->now;
+        return 1;
+    }
+    *t0 = tc - f->w->now;
+    return 0;
+}
+
 /* Position error bound factor of the order-n model: |exact - model| <= sum rho |w|^(n+1) t^(n+1) /
  * (n+1)! for the rotating offsets (and the unit direction of a rotating edge). */
 static double rot_term(const feat *f, int n)
@@ -526,13 +528,10 @@ static int solve_rotating(feat *f, double tmax, double tolp, double vthr, double
          * last point known to be apart, and is refined there on the exact motion */
         int at_start = t0 == 0.0;
         if (!after_root && !at_start && mode == ABOVE && g0 <= 0 && t_safe >= 0) {
-            double tc = refine(f, w->now + t_safe, tabs);
-            if (on_edge(f, tc - w->now)) {
-                *tau = tc - w->now;
+            if (take_crossing(f, w->now + t_safe, tabs, &t0, tau)) {
                 *rate = -g1;
                 return 1;
             }
-            t0 = tc - w->now;
             mode = INSIDE;
             after_root = 1;
             continue;
@@ -581,15 +580,10 @@ static int solve_rotating(feat *f, double tmax, double tolp, double vthr, double
         int have_b = crossing(w, cb, deg, h, -1, &tb);
         double vrel = dv + da * h + spin + DBL_MIN;
         if (have_b && tb >= ta && ((tb - ta) * vrel <= tol || tb - ta <= 4 * DBL_EPSILON * (tabs + tb))) {
-            double lo = tabs + ta, hi = tabs + tb;
-            double tc = refine(f, lo, hi);
-            if (on_edge(f, tc - w->now)) {
-                *tau = tc - w->now;
+            if (take_crossing(f, tabs + ta, tabs + tb, &t0, tau)) {
                 *rate = vrel;
                 return 1;
             }
-            /* off the edge: the point went into the band beyond an end; later roots count */
-            t0 = tc - w->now;
             mode = INSIDE;
             after_root = 1;
             continue;

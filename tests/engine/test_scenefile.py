@@ -71,16 +71,19 @@ BAD_TOML = [
 ]
 
 
-@pytest.mark.parametrize("what,text,line,col,words", BAD_TOML, ids=[b[0] for b in BAD_TOML])
-def test_bad_toml(tmp_path: Path, what: str, text: str, line: int, col: int, words: list[str]) -> None:
-    path = tmp_path / "scene.toml"
+def first_error(path: Path, text: str) -> str:
     path.write_text(text)
     with pytest.raises(SceneError) as info:
         load(path)
-    first = info.value.diagnostics[0]
+    return info.value.diagnostics[0]
+
+
+@pytest.mark.parametrize("what,text,line,col,words", BAD_TOML, ids=[b[0] for b in BAD_TOML])
+def test_bad_toml(tmp_path: Path, what: str, text: str, line: int, col: int, words: list[str]) -> None:
+    path = tmp_path / "scene.toml"
+    first = first_error(path, text)
     assert first.startswith(f"{path}:{line}:{col}: error: "), first
-    for word in words:
-        assert word in first, (word, first)
+    assert all(word in first for word in words), (words, first)
 
 
 BAD_JSON = [
@@ -101,13 +104,9 @@ BAD_JSON = [
 @pytest.mark.parametrize("what,text,line,col,words", BAD_JSON, ids=[b[0] for b in BAD_JSON])
 def test_bad_json(tmp_path: Path, what: str, text: str, line: int, col: int, words: list[str]) -> None:
     path = tmp_path / "scene.json"
-    path.write_text(text)
-    with pytest.raises(SceneError) as info:
-        load(path)
-    first = info.value.diagnostics[0]
+    first = first_error(path, text)
     assert first.startswith(f"{path}:{line}:{col}: error: "), first
-    for word in words:
-        assert word in first, (word, first)
+    assert all(word in first for word in words), (words, first)
 
 
 def test_every_problem_reported(tmp_path: Path) -> None:
