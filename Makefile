@@ -11,8 +11,8 @@ setup:
 	./scripts/setup
 
 build: setup
-	$(PYTHON) -m max2code build -o build
-	$(PYTHON) -m max2code report -o build/report > /dev/null
+	$(PYTHON) -m max2code build -o build equations/*.mxm
+	$(PYTHON) -m max2code report -o build/report equations/*.mxm > /dev/null
 	@echo "variant report: build/report/report.md (also .json, .html)"
 
 test: setup

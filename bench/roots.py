@@ -28,6 +28,14 @@ rationals and rounded once to double:
                  coefficients 0 or 1e-30..1e-12 relative (no relative rotation, rounding)
   scale8         generic8 scaled by 10^-8..10^8 in t, with leading coefficient 10^-30..10^30
   near0_8        first root 1e-14..1e-6, the others of order 1
+  collision8     orbiting circles (the shipped circles-orbit equation: rotation to order 4): two
+                 bodies with random game-like states, |d(t)|^2 - (r1 + r2)^2 over the window
+                 where the expansion holds (|w| t <= 0.5); about half of them collide in it
+  noroot8_near   no root in the window, complex pairs close to it (real part inside, imaginary
+                 part 1e-3..1e-1 of it)
+  noroot8_inf    no positive real root at all, tmax infinite
+  generic12/16   generic8's construction at degrees 12 and 16 (the order-6 and order-8 orbit
+                 models' degrees)
 
 Per method and family: median ns per solve (each call timed on its own, in shuffled order; the
 median over sweeps per polynomial, then the median over the family) and its ratio to GSL in the
@@ -71,7 +79,7 @@ METHODS = ("interval", "interval-nograze", "gsl", "closed")  # C numbering 0..3
 LABELS = {"interval": "INTERVAL (default)", "interval-nograze": "INTERVAL_NOGRAZE", "gsl": "GSL",
           "closed": "CLOSED", "numpy": "numpy.roots (Python)"}
 FAMILIES = ("generic2", "generic4", "generic8", "noroot8", "graze8", "cluster8", "drop8",
-            "scale8", "near0_8")
+            "scale8", "near0_8", "collision8", "noroot8_near", "noroot8_inf", "generic12", "generic16")
 REL = 1e-6  # what counts as "the same root" for miss / false-collision
 
 
@@ -163,6 +171,63 @@ def _near0(rng: random.Random) -> tuple[tuple[float, ...], float]:
     return cases.poly_from_roots([r0, *rest], _pairs(rng, npairs), lead=_lead(rng)), math.inf
 
 
+def _rot4(w: Fraction, o: tuple[Fraction, Fraction]) -> tuple[list[Fraction], list[Fraction]]:
+    """R(w t) o with cos and sin expanded to order 4 in t, as polynomials in t (low first)."""
+    cos = [Fraction(1), Fraction(0), -w**2 / 2, Fraction(0), w**4 / 24]
+    sin = [Fraction(0), w, Fraction(0), -w**3 / 6, Fraction(0)]
+    x = [cos[i] * o[0] - sin[i] * o[1] for i in range(5)]
+    y = [sin[i] * o[0] + cos[i] * o[1] for i in range(5)]
+    return x, y
+
+
+def _collision(rng: random.Random) -> tuple[tuple[float, ...], float]:
+    """|d(t)|^2 - R^2 for two orbiting circles (centre c + v t + a t^2/2, a point offset o
+    rotating at w), multiplied out exactly from the double parameters, rounded once."""
+    def f(lo: float, hi: float) -> Fraction:
+        return Fraction(rng.uniform(lo, hi))
+    R = f(0.2, 0.8) + f(0.2, 0.8)
+    ws = [f(0.3, 4) * rng.choice((1, -1)) for _ in range(2)]
+    h = 0.5 / float(max(abs(w) for w in ws))  # the order-4 model's window
+    # relative state: closing at a speed that meets within about the window half the time
+    dist = float(R) + rng.uniform(0.05, 3.0)
+    ang = rng.uniform(0, 2 * math.pi)
+    speed = (dist - float(R)) / h * rng.uniform(0.3, 2.0)
+    dc = (Fraction(dist * math.cos(ang)), Fraction(dist * math.sin(ang)))
+    dv = (Fraction(-speed * math.cos(ang + rng.uniform(-0.3, 0.3))),
+          Fraction(-speed * math.sin(ang + rng.uniform(-0.3, 0.3))))
+    da = (f(-1, 1), f(-1, 1))
+    dx = [dc[0], dv[0], da[0] / 2, Fraction(0), Fraction(0)]
+    dy = [dc[1], dv[1], da[1] / 2, Fraction(0), Fraction(0)]
+    for sign, w in zip((1, -1), ws):
+        rx, ry = _rot4(w, (f(-0.6, 0.6), f(-0.6, 0.6)))
+        dx = [dx[i] + sign * rx[i] for i in range(5)]
+        dy = [dy[i] + sign * ry[i] for i in range(5)]
+    c = [Fraction(0)] * 9
+    for i in range(5):
+        for j in range(5):
+            c[i + j] += dx[i] * dx[j] + dy[i] * dy[j]
+    c[0] -= R * R
+    return tuple(float(x) for x in c), h
+
+
+def _noroot_near(rng: random.Random) -> tuple[tuple[float, ...], float]:
+    tmax = _mag(rng, -1, 0.5)
+    npairs = rng.randint(1, 4)
+    pairs = []
+    for _ in range(npairs):
+        re = tmax * rng.uniform(0.05, 0.95)
+        pairs.append((re, re * 10 ** rng.uniform(-3, -1)))
+    reals = [-_mag(rng) if rng.random() < 0.5 else tmax * rng.uniform(1.1, 20)
+             for _ in range(8 - 2 * npairs)]
+    return cases.poly_from_roots(reals, pairs, lead=_lead(rng)), tmax
+
+
+def _noroot_inf(rng: random.Random) -> tuple[tuple[float, ...], float]:
+    npairs = rng.randint(1, 4)
+    reals = [-_mag(rng) for _ in range(8 - 2 * npairs)]
+    return cases.poly_from_roots(reals, _pairs(rng, npairs), lead=_lead(rng)), math.inf
+
+
 MAKERS = {
     "generic2": lambda rng: _generic(rng, 2),
     "generic4": lambda rng: _generic(rng, 4),
@@ -173,6 +238,11 @@ MAKERS = {
     "drop8": _drop,
     "scale8": _scale,
     "near0_8": _near0,
+    "collision8": _collision,
+    "noroot8_near": _noroot_near,
+    "noroot8_inf": _noroot_inf,
+    "generic12": lambda rng: _generic(rng, 12),
+    "generic16": lambda rng: _generic(rng, 16),
 }
 
 
@@ -245,15 +315,20 @@ def run_c(exe: Path, polys: list[tuple[str, tuple[float, ...], float]], sweeps: 
     r = subprocess.run([str(exe), str(sweeps)], input="\n".join(lines) + "\n", capture_output=True,
                        text=True, check=True)
     out: dict[tuple[int, str], tuple[int, float, bool, float]] = {}
-    overhead = math.nan
+    overhead = horner = math.nan
     for line in r.stdout.splitlines():
         if line.startswith("#"):
-            overhead = float(line.split()[2])
+            words = line.split()
+            if words[1] == "overhead_ns":
+                overhead = float(words[2])
+            elif words[1] == "horner8_ns":
+                horner = float(words[2])
             continue
         i, m, st, t, g, ns = line.split()
         out[(int(i), METHODS[int(m)])] = (int(st), float.fromhex(t) if t != "nan" and "nan" not in t
                                           else math.nan, g == "1", float(ns))
     out["overhead"] = overhead  # type: ignore[index]
+    out["horner8"] = horner  # type: ignore[index]
     return out
 
 
@@ -269,9 +344,10 @@ def numpy_first_root(np, c: tuple[float, ...], tmax: float) -> tuple[int, float]
     return (1, best) if best < math.inf else (0, math.nan)
 
 
-def run_numpy(polys: list[tuple[str, tuple[float, ...], float]], sweeps: int) -> dict:
-    import numpy as np
-    out = {}
+def time_calls(polys: list, sweeps: int, solve, seed: int) -> dict[int, tuple[int, float, float]]:
+    """In-process timing, as the harnesses do it: every call on its own (perf_counter_ns, the
+    median empty region subtracted), polynomials in an order shuffled anew per sweep;
+    {index: (status, t, median ns)} with solve(c, tmax) -> (status, t)."""
     clock = time.perf_counter_ns
     empty = []
     for _ in range(2001):
@@ -279,17 +355,23 @@ def run_numpy(polys: list[tuple[str, tuple[float, ...], float]], sweeps: int) ->
         empty.append(clock() - a)
     overhead = sorted(empty)[1000]
     samples: dict[int, list[float]] = {i: [] for i in range(len(polys))}
+    answers = {}
     order = list(range(len(polys)))
-    rng = random.Random(5)
+    rng = random.Random(seed)
     for _ in range(sweeps):
         rng.shuffle(order)
         for i in order:
             _, c, tmax = polys[i]
             a = clock()
-            st, t = numpy_first_root(np, c, tmax)
+            answers[i] = solve(c, tmax)
             samples[i].append(clock() - a - overhead)
-            out[i] = (st, t, False)
-    return {(i, "numpy"): (*out[i], sorted(s)[len(s) // 2]) for i, s in samples.items()}
+    return {i: (*answers[i], sorted(v)[len(v) // 2]) for i, v in samples.items()}
+
+
+def run_numpy(polys: list[tuple[str, tuple[float, ...], float]], sweeps: int) -> dict:
+    import numpy as np
+    got = time_calls(polys, sweeps, lambda c, tmax: numpy_first_root(np, c, tmax), 5)
+    return {(i, "numpy"): (st, t, False, ns) for i, (st, t, ns) in got.items()}
 
 
 # ---------------------------------------------------------------------------
@@ -445,7 +527,7 @@ def chart(summary: dict, methods, meta: dict, path: Path) -> None:
     import matplotlib.pyplot as plt
 
     markers = {"interval": "o", "interval-nograze": "s", "closed": "^", "gsl": "D", "numpy": "P"}
-    colours = dict(zip(FAMILIES, plt.get_cmap("tab10").colors))
+    colours = dict(zip(FAMILIES, plt.get_cmap("tab20").colors))
     floor = 1e-18
     fig, axes = plt.subplots(1, 2, figsize=(15, 6.5), sharex=True, sharey=True)
     for ax, key, title in ((axes[0], "err_median", "median error"),
@@ -490,27 +572,42 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("-o", "--out", default=str(RESULTS), help="results folder")
     ap.add_argument("--only-roots", action="store_true",
                     help="skip the model-error study and the scenes")
+    ap.add_argument("--rounds", type=int, default=3, help="C/Rust alternations (default 3)")
+    ap.add_argument("--pure-share", type=int, default=5,
+                    help="pure Python times every Nth polynomial (default 5)")
+    ap.add_argument("--only-runtimes", action="store_true",
+                    help="only the runtime comparison (roots_runtimes.md)")
     args = ap.parse_args(argv)
     if args.quick:
         args.count, args.sweeps = 60, 5
     start = time.time()
     polys = polynomials(args.count)
-    truths = oracles(polys, args.jobs)
+    cmd = " ".join(["python bench/roots.py", *(argv if argv is not None else sys.argv[1:])])
+    meta = {"date": datetime.date.today().isoformat(), "machine": machine(),
+            "cores": os.cpu_count(), "count": args.count, "sweeps": args.sweeps, "command": cmd,
+            "rounds": args.rounds, "pure_share": args.pure_share}
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
     with tempfile.TemporaryDirectory() as tmp:
         exe = build_harness(Path(tmp))
+        cmp = runtime_comparison(polys, args.sweeps, args.rounds, exe, args.pure_share)
+        cmp["batch"] = batch_comparison(polys)
+        cmp["counts"] = cost_counts(polys, Path(tmp))
+        (out / "roots_runtimes.md").write_text(runtime_table(cmp, meta) + counts_table(cmp["counts"], cmp))
+        (out / "roots_runtimes.json").write_text(json.dumps({"meta": meta, **cmp}, indent=1))
+        print((out / "roots_runtimes.md").read_text(), flush=True)
+        if args.only_runtimes:
+            return 0
+        truths = oracles(polys, args.jobs)
         answers = run_c(exe, polys, args.sweeps)
     methods = list(METHODS)
     if not args.no_numpy:
         answers.update(run_numpy(polys, args.sweeps))
         methods.append("numpy")
     summary = summarise(polys, truths, answers, methods)
-    cmd = "python bench/roots.py" + (" --quick" if args.quick else "")
-    meta = {"date": datetime.date.today().isoformat(), "machine": machine(),
-            "cores": os.cpu_count(), "count": args.count, "sweeps": args.sweeps, "command": cmd,
-            "overhead_ns": answers["overhead"]}
+    meta["overhead_ns"] = answers["overhead"]
+    meta["horner8_ns"] = answers["horner8"]
     meta["targets"] = targets(summary)
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
     (out / "roots.md").write_text(table(summary, methods, meta))
     (out / "roots.json").write_text(json.dumps({"meta": meta, "summary": summary}, indent=1))
     chart(summary, methods, meta, out / "roots.png")
@@ -524,6 +621,266 @@ def main(argv: list[str] | None = None) -> int:
         print((out / "scenes.md").read_text())
     print(f"done in {time.time() - start:.0f} s")
     return 0
+
+
+# ---------------------------------------------------------------------------
+# The runtimes side by side (issue 10's table)
+# ---------------------------------------------------------------------------
+
+RUST_DIR = ROOT / "runtime" / "rust"
+TABLE = (("generic8", "generic octic"), ("noroot8", "no root in window"),
+         ("noroot8_near", "no root, complex roots near the window"),
+         ("noroot8_inf", "no root, tmax = inf"), ("collision8", "collision polynomials (orbiting circles)"),
+         ("generic4", "generic quartic"), ("graze8", "grazing"), ("generic12", "generic, degree 12"),
+         ("generic16", "generic, degree 16"))
+# Yuksel's cyPolynomial (HPG 2022) as issue 10 measured it (not measured here, not vendored):
+# its time over the C INTERVAL solver's of that day, finest / default accuracy.
+CY_REFERENCE = {"generic8": (3.0, 1.46), "noroot8": (2.1, 1.3), "collision8": (1.5, 0.84),
+                "generic4": (1.0, 0.61), "graze8": (1.2, 0.55)}
+# ... and that day's INTERVAL in units of one degree-8 Horner evaluation (23 ns there).
+ISSUE_INTERVAL_EVALS = {"generic8": 792 / 23, "noroot8": 311 / 23, "collision8": 511 / 23,
+                        "generic4": 491 / 23, "graze8": 3600 / 23}
+TARGET_EVALS = {"generic8": 15, "noroot8": 6, "noroot8_near": 6, "noroot8_inf": 6, "graze8": 40,
+                "collision8": 0.84 * 511 / 23, "generic4": 0.61 * 491 / 23}
+
+
+def build_rust_bench() -> Path | None:
+    cargo = shutil.which("cargo") or str(Path.home() / ".cargo" / "bin" / "cargo")
+    if not Path(cargo).exists():
+        print("bench: cargo not found: the Rust column is left out", flush=True)
+        return None
+    env = dict(os.environ, CARGO_TARGET_DIR=str(RUST_DIR / "target"))
+    r = subprocess.run([cargo, "build", "--quiet", "--release", "--example", "roots_bench"],
+                       cwd=RUST_DIR, env=env, capture_output=True, text=True)
+    if r.returncode != 0:
+        sys.exit(f"bench: building the Rust harness failed:\n{r.stderr}")
+    return RUST_DIR / "target" / "release" / "examples" / "roots_bench"
+
+
+def run_rust(exe: Path, polys: list, sweeps: int) -> dict[int, tuple[int, float, float]]:
+    lines = [" ".join([repr(t), str(len(c) - 1), *(repr(x) for x in c)]) for _, c, t in polys]
+    r = subprocess.run([str(exe), str(sweeps)], input="\n".join(lines) + "\n", capture_output=True,
+                       text=True, check=True)
+    out = {}
+    for line in r.stdout.splitlines():
+        if line.startswith("#"):
+            continue
+        i, st, t, ns = line.split()
+        out[int(i)] = (int(st), float(t), float(ns))
+    return out
+
+
+def run_python(polys: list, sweeps: int, backend) -> dict[int, tuple[int, float, float]]:
+    """Per call, through the public first_root_status with the given backend (None: pure
+    Python)."""
+    sys.path.insert(0, str(ROOT / "runtime" / "python"))
+    import max2code_runtime as rt
+    saved = rt._C
+    rt._C = backend
+    try:
+        return time_calls(polys, sweeps, lambda c, tmax: rt.first_root_status(c, tmax)[:2], 7)
+    finally:
+        rt._C = saved
+
+
+def runtime_comparison(polys: list, sweeps: int, rounds: int, exe_c: Path, pure_share: int) -> dict:
+    """C and Rust alternately for `rounds` rounds (ratios per round, then their median), Python
+    through cffi and pure Python after; answers compared with C's bit for bit."""
+    fams = [f for f, _ in TABLE]
+    idx = [i for i, (f, _, _) in enumerate(polys) if f in fams]
+    sub = [polys[i] for i in idx]
+    rust_exe = build_rust_bench()
+    rounds_c, rounds_r, horner = [], [], []
+    for _ in range(rounds):
+        ans = run_c_interval(exe_c, sub, sweeps)
+        rounds_c.append(ans)
+        horner.append(ans["horner8"])
+        if rust_exe is not None:
+            rounds_r.append(run_rust(rust_exe, sub, sweeps))
+    sys.path.insert(0, str(ROOT / "runtime" / "python"))
+    import max2code_runtime as rt
+    cffi = rt._load_c()
+    py_c = run_python(sub, sweeps, cffi) if cffi is not None else None
+    pure_idx = [k for k in range(len(sub)) if k % pure_share == 0]
+    py_pure = run_python([sub[k] for k in pure_idx], 1, None)
+    py_pure = {pure_idx[k]: v for k, v in py_pure.items()}
+
+    def fam_median(ans: dict, fam: str, keys=None) -> float:
+        ks = [k for k in range(len(sub)) if sub[k][0] == fam and (keys is None or k in keys)]
+        return quantile([ans[k][-1] for k in ks], 0.5)
+
+    out = {"horner8_ns": statistics_median(horner), "families": {}, "mismatch": {}}
+    c0 = rounds_c[0]
+    for fam in fams:
+        row = {}
+        cs = [fam_median(a, fam) for a in rounds_c]
+        row["c_ns"] = statistics_median(cs)
+        row["c_evals"] = row["c_ns"] / out["horner8_ns"]
+        if rounds_r:
+            row["rust_ratio"] = statistics_median([fam_median(r, fam) / c for r, c in zip(rounds_r, cs)])
+        if py_c is not None:
+            row["py_c_ratio"] = fam_median(py_c, fam) / row["c_ns"]
+        keys = set(pure_idx)
+        row["py_pure_ratio"] = fam_median(py_pure, fam, keys) / statistics_median(
+            [fam_median(a, fam, keys) for a in rounds_c])
+        out["families"][fam] = row
+    for name, ans in (("rust", rounds_r[0] if rounds_r else None), ("python-c", py_c), ("python", py_pure)):
+        if ans is None:
+            continue
+        bad = 0
+        for k, v in ans.items():
+            st, t = c0[k][0], c0[k][1]
+            if v[0] != st or (st == 1 and v[1] != t):
+                bad += 1
+        out["mismatch"][name] = (bad, len(ans))
+    return out
+
+
+def batch_comparison(polys: list, repeats: int = 7) -> dict:
+    """first_roots on an (M, 9) array against M calls of first_root, per backend: ns per
+    polynomial, best of `repeats` (the collision family, one tmax: the smallest of the family's
+    windows, so that every row has the same window)."""
+    import numpy as np
+    sys.path.insert(0, str(ROOT / "runtime" / "python"))
+    import max2code_runtime as rt
+    rows = [c for f, c, _ in polys if f == "collision8"]
+    tmax = min(t for f, _, t in polys if f == "collision8")
+    arr = np.array(rows)
+    out = {"M": len(rows)}
+    saved = rt._C
+    try:
+        for name, backend in (("c", rt._load_c()), ("python", None)):
+            if name == "c" and backend is None:
+                continue
+            rt._C = backend
+            single, batch = [], []
+            for _ in range(repeats if name == "c" else 1):
+                a = time.perf_counter_ns()
+                loop = [rt.first_root(r, tmax) for r in rows]
+                single.append(time.perf_counter_ns() - a)
+                a = time.perf_counter_ns()
+                got = rt.first_roots(arr, tmax)
+                batch.append(time.perf_counter_ns() - a)
+            same = all((x is None and math.isnan(y)) or x == y for x, y in zip(loop, got))
+            out[name] = {"single_ns": min(single) / len(rows), "batch_ns": min(batch) / len(rows),
+                         "same": same}
+    finally:
+        rt._C = saved
+    return out
+
+
+def cost_counts(polys: list, workdir: Path) -> dict:
+    """The C runtime's own accounting (-DM2C_COUNT) per family: mean multiply-adds by phase in
+    units of a degree-8 Horner evaluation (8 multiply-adds), Newton steps, Taylor points and
+    derivative-method calls per solve: where the evaluations go, and so what a target takes."""
+    exe = workdir / "roots_count"
+    cmd = [shutil.which("gcc") or "gcc", "-O2", "-std=c11", "-DM2C_COUNT", "-I", str(C_DIR),
+           str(ROOT / "bench" / "roots_harness.c"), str(C_DIR / "max2code_roots.c"), "-o", str(exe),
+           "-lgsl", "-lgslcblas", "-lm"]
+    subprocess.run(cmd, check=True, capture_output=True)
+    fams = [f for f, _ in TABLE]
+    sub = [p for p in polys if p[0] in fams]
+    lines = [" ".join([t.hex(), str(len(c) - 1), *(x.hex() for x in c)]) for _, c, t in sub]
+    r = subprocess.run([str(exe), "count"], input="\n".join(lines) + "\n", capture_output=True,
+                       text=True, check=True)
+    rows = [list(map(float, ln.split()[1:])) for ln in r.stdout.splitlines()]
+    out = {}
+    for fam in fams:
+        mine = [row for (f, _, _), row in zip(sub, rows) if f == fam]
+        mean = [sum(col) / len(mine) for col in zip(*mine)]
+        out[fam] = {"prep": mean[0] / 8, "isolate": mean[1] / 8, "newton": mean[2] / 8,
+                    "derivative": mean[3] / 8, "plain_steps": mean[4], "precise_steps": mean[5],
+                    "taylor_points": mean[6], "derivative_calls": mean[7],
+                    "share_derivative": sum(1 for row in mine if row[7] > 0) / len(mine)}
+    return out
+
+
+def counts_table(counts: dict, cmp: dict) -> str:
+    lines = ["", "## Where the evaluations go", "",
+             "The C runtime's own accounting (built with `-DM2C_COUNT`, one solve per polynomial): "
+             "mean multiply-adds per solve by phase, in degree-8 Horner evaluations (8 multiply-adds; "
+             "a compensated Horner step counted as 10), beside the measured time in the same unit. "
+             "Budan-Fourier: Taylor coefficients at the window's points (one point costs (n+1)(n+2) "
+             "multiply-adds: 11 evaluations at degree 8) and the exclusion tests.", "",
+             "| family | measured (evaluations) | counted: Budan-Fourier | Newton | derivative method | Taylor points | Newton steps plain / compensated | solves using the derivative method |",
+             "|---|---:|---:|---:|---:|---:|---:|---:|"]
+    for fam, label in TABLE:
+        c = counts[fam]
+        lines.append(f"| {label} | {cmp['families'][fam]['c_evals']:.1f} | {c['isolate']:.1f} | "
+                     f"{c['newton']:.1f} | {c['derivative']:.1f} | {c['taylor_points']:.2f} | "
+                     f"{c['plain_steps']:.1f} / {c['precise_steps']:.1f} | {100 * c['share_derivative']:.0f} % |")
+    return "\n".join(lines) + "\n"
+
+
+def statistics_median(xs: list[float]) -> float:
+    return quantile(xs, 0.5) if len(xs) % 2 else 0.5 * (sorted(xs)[len(xs) // 2 - 1] + sorted(xs)[len(xs) // 2])
+
+
+def run_c_interval(exe: Path, polys: list, sweeps: int) -> dict:
+    """The C harness on INTERVAL alone: {k: (status, t, ns)} and the Horner unit."""
+    lines = [" ".join([t.hex(), str(len(c) - 1), *(x.hex() for x in c)]) for _, c, t in polys]
+    r = subprocess.run([str(exe), str(sweeps), "1"], input="\n".join(lines) + "\n", capture_output=True,
+                       text=True, check=True)
+    out: dict = {}
+    for line in r.stdout.splitlines():
+        words = line.split()
+        if words[0] == "#":
+            if words[1] == "horner8_ns":
+                out["horner8"] = float(words[2])
+            continue
+        i, _m, st, t, _g, ns = words
+        out[int(i)] = (int(st), float.fromhex(t) if "nan" not in t else math.nan, float(ns))
+    return out
+
+
+def runtime_table(cmp: dict, meta: dict) -> str:
+    h = cmp["horner8_ns"]
+    lines = [
+        f"# The runtimes side by side ({meta['date']})", "",
+        f"Machine: {meta['machine']}, {meta['cores']} cores, shared with other work (absolute times "
+        f"are noisy; the ratios come from one run). Command: `{meta['command']}`. C: gcc -O2; Rust: "
+        f"cargo --release; Python 3: the public `first_root_status`, per call.", "",
+        f"Unit: one degree-8 Horner evaluation, timed like the solves in the same C run: "
+        f"**{h:.1f} ns**. C and Rust ran alternately, {meta['rounds']} rounds of {meta['sweeps']} "
+        f"sweeps; ratios are the median over rounds of the per-round ratio. Python (C backend) is the "
+        f"C runtime through cffi; Python (pure) is the pure-Python port, on every {meta['pure_share']}th "
+        f"polynomial. cyPolynomial: issue 10's measurement of Yuksel's cyPolynomial (HPG 2022), as "
+        f"its time over that day's C INTERVAL (finest / default accuracy) -- quoted as the reference, "
+        f"not measured here.", "",
+        "| family | C INTERVAL | in Horner evaluations | target | cyPolynomial (issue 10) finest / default | Rust runtime | Python (C backend) | Python (pure) |",
+        "|---|---:|---:|---:|---|---:|---:|---:|",
+    ]
+    for fam, label in TABLE:
+        r = cmp["families"][fam]
+        cy = CY_REFERENCE.get(fam)
+        cy_s = (f"{cy[0]:.2g}× / {cy[1]:.2g}× of that day's {ISSUE_INTERVAL_EVALS[fam]:.0f} evaluations "
+                f"(= {cy[0] * ISSUE_INTERVAL_EVALS[fam]:.0f} / {cy[1] * ISSUE_INTERVAL_EVALS[fam]:.0f})"
+                if cy else "–")
+        tgt = TARGET_EVALS.get(fam)
+        tgt_s = "–" if tgt is None else (f"≤ {tgt:.0f}" if fam not in ("collision8", "generic4") else f"< {tgt:.1f}")
+        met = "" if tgt is None else (" ✓" if r["c_evals"] <= tgt else " ✗")
+        lines.append(
+            f"| {label} | {r['c_ns']:.0f} ns | {r['c_evals']:.1f}{met} | {tgt_s} | {cy_s} | "
+            f"{r.get('rust_ratio', math.nan):.2f}× | {r.get('py_c_ratio', math.nan):.1f}× | "
+            f"{r['py_pure_ratio']:.0f}× |")
+    lines += ["", "Answers against C's (status and root, bit for bit): " + ", ".join(
+        f"{name} {bad} different of {n}" for name, (bad, n) in cmp["mismatch"].items()) + "."]
+    b = cmp.get("batch")
+    if b:
+        lines += ["", f"Batches (`first_roots`, an ({b['M']}, 9) numpy array of the collision family, one "
+                  f"window) against the same {b['M']} `first_root` calls, ns per polynomial (best of 7 "
+                  "for the C backend, one run for pure Python):", "",
+                  "| Python backend | one call each | one `first_roots` call | speed-up | same answers |",
+                  "|---|---:|---:|---:|---|"]
+        for name in ("c", "python"):
+            if name in b:
+                r = b[name]
+                lines.append(f"| {name} | {r['single_ns']:.0f} | {r['batch_ns']:.0f} | "
+                             f"{r['single_ns'] / r['batch_ns']:.1f}× | {'yes' if r['same'] else 'NO'} |")
+        lines += ["", "The C backend hands the whole array to `m2c_first_roots` (one call into C, no "
+                  "copy); the pure-Python fallback solves the rows one by one (nothing to vectorise: "
+                  "each row's solve branches on its own data)."]
+    return "\n".join(lines) + "\n"
 
 
 def scenes_report(meta: dict) -> str:

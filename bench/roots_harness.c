@@ -4,7 +4,23 @@
  * runtime/c/max2code_roots.c and reads the output).
  *
  * Input (stdin), one polynomial a line:   TMAX DEGREE C0 .. CDEGREE   (hex floats)
- * Argument 1: number of sweeps (default 7).
+ * Argument 1: number of sweeps (default 7).  Argument 2: the methods to run, as
+ * a count from 0 (default 4: all; 1: only INTERVAL, for the runtime comparison).
+ *
+ * The unit of cost: each sweep also times, the same way, evaluations of a
+ * degree-8 polynomial by Horner's rule (a separate, not inlined function, on
+ * the polynomials' coefficients padded to degree 8, at a point of their
+ * window), HORNER_BATCH different ones per timed region, each waiting for
+ * the last (as the evaluations in a solve do), so that the clock's own
+ * jitter (one evaluation is about as long as reading the clock) does not
+ * dominate; the median per evaluation is printed as
+ * "# horner8_ns", so that solve times can be expressed in evaluations
+ * measured in the same run.
+ *
+ * Built with -DM2C_COUNT (against the runtime built so too) and run with the
+ * argument "count", it solves each polynomial once by INTERVAL and prints the
+ * runtime's cost accounting instead: "INDEX" then the ten counters of
+ * m2c_count (multiply-adds by phase, Newton steps, Taylor points, ...).
  *
  * Each sweep visits every polynomial once, in an order shuffled anew per
  * sweep, and for each calls every method once, in a rotating order; every call
@@ -28,6 +44,7 @@
 #include "max2code_roots.h"
 
 #define NMETHODS 4
+#define HORNER_BATCH 16
 #define MAXSWEEPS 31
 
 typedef struct {
@@ -66,11 +83,27 @@ static unsigned long long xorshift(void)
 
 volatile double sink;
 
+/* One degree-8 Horner evaluation: the unit of cost. */
+__attribute__((noinline)) static double horner8(const double c[9], double x)
+{
+    double acc = c[8];
+    for (int i = 7; i >= 0; i--)
+        acc = acc * x + c[i];
+    return acc;
+}
+
+#ifdef M2C_COUNT
+extern double m2c_count[10];
+#endif
+
 int main(int argc, char **argv)
 {
-    int sweeps = argc > 1 ? atoi(argv[1]) : 7;
+    int counting = argc > 1 && strcmp(argv[1], "count") == 0;
+    int sweeps = argc > 1 && !counting ? atoi(argv[1]) : 7;
     if (sweeps < 1) sweeps = 1;
     if (sweeps > MAXSWEEPS) sweeps = MAXSWEEPS;
+    int nmethods = argc > 2 ? atoi(argv[2]) : NMETHODS;
+    if (nmethods < 1 || nmethods > NMETHODS) nmethods = NMETHODS;
 
     size_t cap = 1024, n = 0;
     Poly *ps = malloc(cap * sizeof *ps);
@@ -94,6 +127,23 @@ int main(int argc, char **argv)
         ps[n++] = q;
     }
 
+#ifdef M2C_COUNT
+    if (counting) {
+        for (size_t i = 0; i < n; i++) {
+            double t;
+            memset(m2c_count, 0, sizeof m2c_count);
+            m2c_first_root_ex(ps[i].c, ps[i].degree, ps[i].tmax, &t, 0, NULL);
+            printf("%zu", i);
+            for (int k = 0; k < 10; k++)
+                printf(" %.0f", m2c_count[k]);
+            printf("\n");
+        }
+        free(ps);
+        return 0;
+    }
+#else
+    (void)counting;
+#endif
     /* cost of an empty timed region */
     double empty[4001];
     for (int i = 0; i < 4001; i++) {
@@ -109,6 +159,15 @@ int main(int argc, char **argv)
     double *root = malloc(n * NMETHODS * sizeof *root);
     size_t *order = malloc(n * sizeof *order);
     for (size_t i = 0; i < n; i++) order[i] = i;
+    double *hns = malloc(n * (size_t)sweeps * sizeof *hns);
+    double (*c8)[9] = calloc(n, sizeof *c8);
+    double *x8 = malloc(n * sizeof *x8);
+    for (size_t i = 0; i < n; i++) {
+        for (int j = 0; j <= ps[i].degree && j <= 8; j++)
+            c8[i][j] = ps[i].c[j];
+        x8[i] = isfinite(ps[i].tmax) ? 0.5 * ps[i].tmax : 1.0;
+    }
+    size_t nh = 0;
 
     for (int s = 0; s < sweeps; s++) {
         for (size_t i = n; i > 1; i--) { /* Fisher-Yates */
@@ -120,8 +179,19 @@ int main(int argc, char **argv)
         for (size_t k = 0; k < n; k++) {
             size_t i = order[k];
             const Poly *q = &ps[i];
-            for (int mm = 0; mm < NMETHODS; mm++) {
-                int m = (mm + (int)k) % NMETHODS;
+            {
+                double v = 0;
+                double t0 = now_ns();
+                for (size_t h = 0; h < HORNER_BATCH; h++) {
+                    size_t j = (i + h) % n; /* each waits for the last: latency */
+                    v = horner8(c8[j], x8[j] + v * 0.0);
+                }
+                double t1 = now_ns();
+                sink = v;
+                hns[nh++] = (t1 - t0 - overhead) / HORNER_BATCH;
+            }
+            for (int mm = 0; mm < nmethods; mm++) {
+                int m = (mm + (int)k) % nmethods;
                 double t = NAN;
                 int g = 0;
                 double t0 = now_ns();
@@ -136,8 +206,9 @@ int main(int argc, char **argv)
         }
     }
     printf("# overhead_ns %.2f sweeps %d\n", overhead, sweeps);
+    printf("# horner8_ns %.2f\n", median(hns, (int)nh));
     for (size_t i = 0; i < n; i++)
-        for (int m = 0; m < NMETHODS; m++) {
+        for (int m = 0; m < nmethods; m++) {
             size_t k = i * NMETHODS + (size_t)m;
             double med = median(&ns[k * (size_t)sweeps], sweeps);
             printf("%zu %d %d %a %d %.2f\n", i, m, status[k], root[k], graze[k], med);
@@ -147,6 +218,9 @@ int main(int argc, char **argv)
     free(graze);
     free(root);
     free(order);
+    free(hns);
+    free(c8);
+    free(x8);
     free(ps);
     return 0;
 }

@@ -29,8 +29,9 @@ def timed_build(out: Path, cache: Path, jobs: int) -> float:
     env = {**os.environ, "MAX2CODE_CACHE": str(cache), "PYTHONPATH": str(ROOT)}
     env.pop("MAX2CODE_NO_CACHE", None)
     start = time.perf_counter()
-    proc = subprocess.run([sys.executable, "-m", "max2code", "build", "-o", str(out), "-j", str(jobs)],
-                          cwd=ROOT, env=env, capture_output=True, text=True)
+    equations = [str(p) for p in sorted((ROOT / "equations").glob("*.mxm"))]
+    proc = subprocess.run([sys.executable, "-m", "max2code", "build", "-o", str(out), "-j", str(jobs),
+                           *equations], cwd=ROOT, env=env, capture_output=True, text=True)
     seconds = time.perf_counter() - start
     if proc.returncode != 0:
         sys.exit(f"max2code build failed:\n{proc.stderr}")

@@ -1,4 +1,7 @@
-"""`max2code build`: the main job. Every shipped equation, every language, and a summary.
+"""`max2code build`: the main job. Every equation, every language, and a summary.
+
+The equations are the files named, else the .mxm files of the current folder (never the
+shipped ones: `make` names those).
 
 Each equation is expanded by Maxima once and rendered for every registered language as a
 module into OUT/<lang>/; a Markdown summary (degree, parameters, Maxima time, lines per
@@ -23,7 +26,7 @@ from pathlib import Path
 from . import cache, depfile, maxima
 from .diagnostics import Max2CodeError
 from .output import write_if_changed
-from .paths import shipped_equations
+from .paths import inputs_or_folder, no_inputs
 
 
 @dataclass(frozen=True)
@@ -61,7 +64,7 @@ def build_one(path: str, out: Path, langs: list[str] | None, timeout: float) -> 
         folder = out / lang_name
         target = folder / f"{name}{lang.extension}"
         result = generate(spec, poly, lang, "module", str(target))
-        messages += [str(w) for w in result.warnings]
+        messages += [str(w) for w in result.warnings if str(w) not in messages]
         outputs += [*result.companions, (str(target), result.text)]
         lines.append((lang_name, result.text.count("\n") + sum(t.count("\n") for _, t in result.companions)))
     row = Row(path, name, poly.degree, len(poly.parameters), poly.maxima_seconds, tuple(lines))
@@ -141,7 +144,7 @@ def _languages() -> list[str]:
 def main(argv: list[str]) -> int:
     ap = argparse.ArgumentParser(prog="max2code build", description=__doc__.splitlines()[0])
     ap.add_argument("inputs", nargs="*", metavar="FILE.mxm",
-                    help="equations (default: the shipped equations/*.mxm)")
+                    help="equations (default: the .mxm files of the current folder)")
     ap.add_argument("-o", "--out", default="build", help="output folder (default: build)")
     ap.add_argument("--lang", action="append", metavar="LANG",
                     help="only this language (repeatable; default: all registered ones)")
@@ -156,7 +159,9 @@ def main(argv: list[str]) -> int:
     if opts.jobs < 0:
         ap.error("--jobs must be 0 or more")
     jobs = opts.jobs or os.cpu_count() or 1
-    inputs = opts.inputs or shipped_equations()
+    inputs = inputs_or_folder(opts.inputs)
+    if not inputs:
+        ap.error(no_inputs("build"))
     langs: list[str] | None = None  # None: every registered language (looked up only if needed)
     if opts.lang:
         known = _languages()

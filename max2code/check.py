@@ -37,7 +37,10 @@ from pathlib import Path
 
 from . import cache, maxima
 from .diagnostics import Max2CodeError
-from .paths import ROOT
+from .paths import ROOT, inputs_or_folder, no_inputs
+from .vectors import Vector, VectorError, cached_vectors, load_vectors, parse_double
+
+__all__ = ["Vector", "VectorError", "load_vectors", "parse_double", "check", "judge", "Report"]
 
 EPS = 2.0 ** -52
 
@@ -55,77 +58,25 @@ TOLERANCES = Tolerances(coef=32 * EPS, root_rel=64 * EPS)
 # Vectors
 # ---------------------------------------------------------------------------------------------
 
-@dataclass(frozen=True)
-class Vector:
-    line: int
-    family: str
-    params: tuple[float, ...]
-    tmax: float
-    coefficients: tuple[Fraction, ...]
-    first_root: Fraction | None
-    graze: bool
-    note: str = ""
-
-
-class VectorError(Exception):
-    pass
-
-
-def parse_double(text: object) -> float:
-    """An exact double from a vector file: a hex float, or a decimal string that is one exactly."""
-    if isinstance(text, (int, float)):
-        return float(text)
-    s = str(text)
-    if "0x" in s.lower():
-        return float.fromhex(s)
-    value = float(s)
-    if math.isfinite(value) and Fraction(s) != Fraction(value):
-        raise VectorError(f"{s!r} is not exactly a double (write it as a hex float)")
-    return value
-
-
 def default_vectors(mxm: Path) -> Path:
+    """A shipped equation's hand-made vectors (tests/vectors/<stem>.jsonl)."""
     return ROOT / "tests" / "vectors" / f"{mxm.stem}.jsonl"
 
 
-def load_vectors(path: Path, parameters: tuple[str, ...]) -> list[Vector]:
-    """The vectors of one file, after its header; the header's parameters must be the module's."""
-    out = []
+def is_shipped(mxm: Path) -> bool:
     try:
-        lines = path.read_text(encoding="utf-8").splitlines()
-    except OSError as exc:
-        raise VectorError(f"{path}: {exc.strerror}") from None
-    for number, text in enumerate(lines, 1):
-        if not text.strip():
-            continue
-        where = f"{path}:{number}"
-        try:
-            obj = json.loads(text)
-        except json.JSONDecodeError as exc:
-            raise VectorError(f"{where}: {exc}") from None
-        if "max2code_vectors" in obj:
-            if tuple(obj.get("parameters", parameters)) != tuple(parameters):
-                raise VectorError(f"{where}: parameters {obj['parameters']} differ from the "
-                                  f"equation's {list(parameters)}")
-            continue
-        try:
-            params = obj["params"]
-            if set(params) != set(parameters):
-                raise VectorError(f"{where}: params name {sorted(params)}, the equation has "
-                                  f"{sorted(parameters)}")
-            root = obj["first_root"]
-            out.append(Vector(
-                line=number, family=str(obj["family"]),
-                params=tuple(parse_double(params[n]) for n in parameters),
-                tmax=parse_double(obj["tmax"]),
-                coefficients=tuple(Fraction(str(c)) for c in obj["coefficients"]),
-                first_root=None if root is None else Fraction(str(root)),
-                graze=bool(obj.get("graze", False)), note=str(obj.get("note", ""))))
-        except (KeyError, ValueError, TypeError) as exc:
-            raise VectorError(f"{where}: bad vector: {exc!r}") from None
-    if not out:
-        raise VectorError(f"{path}: no vectors")
-    return out
+        return mxm.resolve().parent == (ROOT / "equations").resolve()
+    except OSError:
+        return False
+
+
+def vectors_for(mxm: Path, scratch: Path, timeout: float) -> tuple[Path, str]:
+    """The vector file of an equation and where it came from: a shipped equation's own, else
+    the oracle's generic vectors, made once per content and cached (vectors.py)."""
+    if is_shipped(mxm) and default_vectors(mxm).exists():
+        return default_vectors(mxm), "shipped"
+    path, made = cached_vectors(str(mxm), scratch, timeout)
+    return path, "made by the oracle" if made else "the oracle's, cached"
 
 
 # ---------------------------------------------------------------------------------------------
@@ -224,16 +175,17 @@ class Report:
     rows: list[Row] = field(default_factory=list)
     failures: list[str] = field(default_factory=list)  # one line per failed vector or build
     errors: list[str] = field(default_factory=list)  # builds, tools, vector files
+    sources: list[str] = field(default_factory=list)  # where each equation's vectors came from
 
     @property
     def ok(self) -> bool:
-        return not self.errors and all(r.failed == 0 for r in self.rows)
+        return not self.errors and bool(self.rows) and all(r.failed == 0 for r in self.rows)
 
     def text(self) -> str:
         t = TOLERANCES
         out = [f"tolerances: coefficients {t.coef:.2g} of the largest; first root "
                f"{t.root_rel:.2g} relative + what that coefficient error allows "
-               f"(max2code/check.py); missed 0, spurious 0", ""]
+               f"(max2code/check.py); missed 0, spurious 0", *self.sources, ""]
         header = (f"{'equation':<18} {'lang':<7} {'family':<12} {'n':>3} {'coef err':>9} "
                   f"{'root rel err':>12} {'of bound':>9} {'missed':>6} {'spurious':>8}  result")
         out += [header, "-" * len(header)]
@@ -249,7 +201,7 @@ class Report:
         return "\n".join(out) + "\n"
 
     def json(self) -> dict:
-        return {"ok": self.ok, "tolerances": asdict(TOLERANCES),
+        return {"ok": self.ok, "tolerances": asdict(TOLERANCES), "sources": self.sources,
                 "rows": [asdict(r) for r in self.rows],
                 "failures": self.failures, "errors": self.errors}
 
@@ -273,46 +225,64 @@ def check(equations: list[Path], vectors: dict[Path, Path] | None = None,
           timeout: float = maxima.DEFAULT_TIMEOUT) -> Report:
     """Build every language's module for each equation, run it on the vectors, compare.
 
-    `vectors` maps an equation to its vector file (default tests/vectors/<stem>.jsonl)."""
-    from .generate import load
-    from .harness import HARNESSES, Case, HarnessError, Unit
+    `vectors` maps an equation to its vector file (default: `vectors_for`). No language is
+    built for an equation without vectors (an error in the report instead)."""
+    from .harness import HARNESSES
 
     report = Report()
     langs = langs or list(HARNESSES)
     build_dir = build_dir or build_directory()
     build_dir.mkdir(parents=True, exist_ok=True)
+    with tempfile.TemporaryDirectory(prefix="max2code-check-") as tmp:
+        _check(equations, vectors, langs, build_dir, timeout, Path(tmp), report)
+    report.rows.sort(key=lambda r: (r.equation, langs.index(r.lang)))
+    return report
+
+
+def _check(equations: list[Path], vectors: dict[Path, Path] | None, langs: list[str],
+           build_dir: Path, timeout: float, tmp: Path, report: Report) -> None:
+    from .generate import load
+    from .harness import HARNESSES, Case, HarnessError, Unit
+
     units, by_name = [], {}
     for mxm in equations:
         spec, poly = load(str(mxm), timeout)
-        path = (vectors or {}).get(mxm, default_vectors(mxm))
+        if vectors and mxm in vectors:
+            path, origin = vectors[mxm], "given"
+        else:
+            path, origin = vectors_for(mxm, tmp / "vectors", timeout)
+        report.sources.append(f"{mxm}: vectors {path} ({origin})")
         try:
             vs = load_vectors(path, poly.parameters)
         except VectorError as exc:
             report.errors.append(f"{mxm}: {exc}")
             continue
+        if not vs:
+            report.errors.append(f"{mxm}: {path}: no vectors (nothing to check; no module "
+                                 f"built)")
+            continue
         unit = Unit(spec, poly, tuple(Case(v.params, v.tmax) for v in vs))
         units.append(unit)
         by_name[unit.name] = (mxm, path, vs)
-    with tempfile.TemporaryDirectory(prefix="max2code-check-") as tmp:
-        for lang in langs:
-            workdir = Path(tmp) / lang
-            workdir.mkdir()
-            try:
-                outcomes = HARNESSES[lang].run(units, workdir, build_dir)
-            except HarnessError as exc:
-                report.errors.append(f"{lang}: {exc}")
-                continue
-            for unit in units:
-                mxm, path, vs = by_name[unit.name]
-                rows: dict[str, Row] = {}
-                for v, o in zip(vs, outcomes[unit.name]):
-                    verdict = judge(v, o.coefficients, o.root)
-                    rows.setdefault(v.family, Row(mxm.stem, lang, v.family)).add(verdict)
-                    if not verdict.ok:
-                        report.failures.append(_failure(path, lang, verdict, o.root))
-                report.rows += rows.values()
-    report.rows.sort(key=lambda r: (r.equation, langs.index(r.lang)))
-    return report
+    if not units:
+        return
+    for lang in langs:
+        workdir = tmp / lang
+        workdir.mkdir()
+        try:
+            outcomes = HARNESSES[lang].run(units, workdir, build_dir)
+        except HarnessError as exc:
+            report.errors.append(f"{lang}: {exc}")
+            continue
+        for unit in units:
+            mxm, path, vs = by_name[unit.name]
+            rows: dict[str, Row] = {}
+            for v, o in zip(vs, outcomes[unit.name]):
+                verdict = judge(v, o.coefficients, o.root)
+                rows.setdefault(v.family, Row(mxm.stem, lang, v.family)).add(verdict)
+                if not verdict.ok:
+                    report.failures.append(_failure(path, lang, verdict, o.root))
+            report.rows += rows.values()
 
 
 def _failure(path: Path, lang: str, v: Verdict, root: float | None) -> str:
@@ -338,10 +308,10 @@ def main(argv: list[str]) -> int:
                     "oracle vectors and report the worst errors; exit 0 when all languages meet "
                     "the tolerances.")
     ap.add_argument("inputs", nargs="*", metavar="FILE.mxm",
-                    help="equations (default: every shipped one, equations/*.mxm)")
+                    help="equations (default: the .mxm files of the current folder)")
     ap.add_argument("--vectors", metavar="V.jsonl",
-                    help="the vector file (with one equation; default "
-                         "tests/vectors/<stem>.jsonl)")
+                    help="the vector file (with one equation; default: a shipped equation's "
+                         "own, else the oracle's, made once and cached: max2code vectors)")
     ap.add_argument("--lang", action="append", choices=languages(), metavar="LANG",
                     help=f"a language to check (repeatable; default all: "
                          f"{', '.join(languages())})")
@@ -352,7 +322,9 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--timeout", type=float, default=maxima.DEFAULT_TIMEOUT, metavar="SECONDS",
                     help="limit on one Maxima run")
     opts = ap.parse_args(argv)
-    equations = [Path(p) for p in opts.inputs] or shipped_equations()
+    equations = [Path(p) for p in inputs_or_folder(opts.inputs)]
+    if not equations:
+        ap.error(no_inputs("check"))
     if opts.vectors and len(equations) != 1:
         ap.error("--vectors needs exactly one FILE.mxm")
     vectors = {equations[0]: Path(opts.vectors)} if opts.vectors else None

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import importlib
 import os
+import signal
 import sys
 
 from . import __version__, cache, depfile, maxima
@@ -21,6 +22,19 @@ SUBCOMMANDS = {
     "runtime": "runtime_info",
     "scene": "scene",
     "sim": "sim",
+    "vectors": "vectors",
+}
+# What each subcommand does, for the top-level --help (tests/test_cli.py: one per subcommand).
+SUMMARIES = {
+    "build": "generate every language for each .mxm (default: the current folder's), with a "
+             "summary",
+    "check": "build each equation in every language and compare with the oracle's vectors",
+    "report": "the variant report: Markdown, JSON and HTML with a chart",
+    "roles": "which parameters (alone, in pairs, as vectors) are worth a role",
+    "runtime": "where the runtimes are, and the flags and CMake package to build with them",
+    "scene": "every pair's first contact in a frozen scene, predicted by the engine",
+    "sim": "run a scene in the predictive engine: event log, pictures (GIF, MP4, PNG, SVG)",
+    "vectors": "test vectors for any .mxm from the independent oracle (Maxima + mpmath)",
 }
 
 
@@ -30,8 +44,12 @@ def _parser() -> argparse.ArgumentParser:
 
     ap = argparse.ArgumentParser(
         prog="max2code",
-        description="Turn a Maxima collision equation (.mxm) into C, Python, ... code. "
-                    "Subcommands: 'max2code build --help', 'max2code runtime --help'.")
+        description="Turn a Maxima collision equation (.mxm) into C, Python, Rust or Modula-2 "
+                    "code: max2code --lang=L FILE.mxm [-o OUT]. Or run a subcommand "
+                    "(max2code NAME --help for its options).",
+        epilog="subcommands:\n" + "\n".join(f"  {name:<9} {SUMMARIES.get(name, '')}"
+                                            for name in SUBCOMMANDS),
+        formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--version", action="version", version=f"max2code {__version__}")
     ap.add_argument("--lang", choices=sorted(LANGUAGES), required=True,
                     help="target language")
@@ -70,7 +88,12 @@ def report(exc: Max2CodeError) -> int:
 def main(argv: list[str] | None = None) -> int:
     """Entry point; an unexpected failure is reported in one line, not as a traceback."""
     try:
-        return _main(argv)
+        try:
+            return _main(argv)
+        finally:  # also after --help's SystemExit: a closed pipe shows here at the latest
+            sys.stdout.flush()
+    except BrokenPipeError:
+        return closed_pipe()
     except Max2CodeError as exc:
         return report(exc)
     except KeyboardInterrupt:
@@ -81,6 +104,18 @@ def main(argv: list[str] | None = None) -> int:
         print(f"max2code: internal error: {type(exc).__name__}: {exc} "
               f"(set MAX2CODE_DEBUG=1 for a traceback, and please report it)", file=sys.stderr)
         return 2
+
+
+def closed_pipe() -> int:
+    """The reader of our output went away (`max2code scene ... | head -3`): stop quietly, as
+    Unix tools do, with the status of a process killed by SIGPIPE (128 + 13). Standard output
+    is pointed at /dev/null first, so that the interpreter's last flush cannot fail again."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    except OSError:
+        pass
+    return 128 + signal.SIGPIPE
 
 
 def _main(argv: list[str] | None) -> int:

@@ -13,16 +13,17 @@ from pathlib import Path
 import jinja2
 
 from . import __version__
-from .diagnostics import error
+from .diagnostics import Diagnostic, Pos, error
 from .languages.base import Language
+from .names import choose
 from .paths import templates_dir
 from .expr import symbols
 from .poly import Polynomial
 from .spec import CodeBlock, Spec
-from .variants import DEFAULT_STRATEGY, Variant, family
+from .variants import DEFAULT_STRATEGY, Variant, family, role_notes
 
 RESUME = "@@M2C_RESUME@@"
-MAX_MODULE_DEGREE = 8
+MAX_MODULE_DEGREE = 16  # the runtimes solve degree <= 16 (runtime/c/max2code_roots.h)
 
 
 @dataclass(frozen=True)
@@ -89,6 +90,8 @@ class Context:
     # The parameters some variant's condition tests, in parameter order.
     tested: tuple[Param, ...] = ()
     resume: str = RESUME
+    # Parameters renamed in a way the user sees (names.py).
+    warnings: tuple[Diagnostic, ...] = ()
 
     @property
     def header(self) -> str:
@@ -121,15 +124,36 @@ def _environment(folder: str) -> jinja2.Environment:
     )
 
 
+def parameters_pos(spec: Spec) -> Pos:
+    """Where the parameters are named: their declaration, else the equation."""
+    return spec.parameters.pos if spec.parameters is not None else spec.program.last_pos
+
+
+def module_name_pos(spec: Spec) -> Pos:
+    return spec.function.pos if spec.function is not None else Pos(spec.path, 1, 1)
+
+
+def check_module_name(spec: Spec, lang: Language) -> None:
+    """A module name the language cannot use is an error (renaming a module would break the
+    user's imports); the .mxm can declare another with `function NAME`."""
+    name = module_name(spec)
+    problem = lang.module_name_problem(name)
+    if problem is not None:
+        how = "declared" if spec.function is not None else "taken from the file name"
+        raise error(module_name_pos(spec), f"the module name '{name}' ({how}) is {problem}; "
+                    f"declare another with 'function NAME'")
+
+
 def context(spec: Spec, poly: Polynomial, lang: Language, strategy: str = DEFAULT_STRATEGY,
-            with_variants: bool = True) -> Context:
-    idents = [lang.identifier(p) for p in poly.parameters]
-    clash = {i for i in idents if idents.count(i) > 1}
-    if clash:
-        raise error(spec.program.last_pos, f"parameter names collide in {lang.name} after "
-                    f"mangling: {', '.join(sorted(clash))}")
+            with_variants: bool = True, form: str = "module") -> Context:
+    name = module_name(spec)
+    if form == "module":
+        check_module_name(spec, lang)
+    naming = choose(poly.parameters, lang, name if form == "module" else None,
+                    parameters_pos(spec))
+    lang = lang.with_names(naming.idents)
     used: set[str] = set().union(*(symbols(c) for c in poly.coefficients))
-    params = tuple(Param(p, i, k, p in used) for k, (p, i) in enumerate(zip(poly.parameters, idents)))
+    params = tuple(Param(p, naming.idents[p], k, p in used) for k, p in enumerate(poly.parameters))
     prefixes = spec.term_prefixes(lang.name)
     coefs = []
     terms = []
@@ -143,16 +167,23 @@ def context(spec: Spec, poly: Polynomial, lang: Language, strategy: str = DEFAUL
         coefs.append(Coef(k, code, lang.line_directive(pos)))
         if term:
             terms.append(FragmentTerm(term.prefix.text.strip(), code, lang.line_directive(term.prefix.pos)))
-    variants = tuple(_variant(spec, v, params, lang, prefixes)
-                     for v in family(poly, strategy, lang.temp_prefix, with_variants))
+    kept = family(poly, strategy, lang.temp_prefix, with_variants)
+    variants = tuple(_variant(spec, v, params, lang, prefixes) for v in kept)
+    notes: tuple[Diagnostic, ...] = ()
+    if form == "module" and with_variants:
+        why = role_notes(poly, {r.name: r.params for r in spec.roles}, kept, strategy,
+                         lang.temp_prefix)
+        notes = tuple(Diagnostic(r.pos, f"role '{r.name}' gives no variant: {why[r.name]}",
+                                 "note") for r in spec.roles if r.name in why)
     return Context(
-        name=module_name(spec), source=spec.path, version=__version__, lang=lang, params=params,
+        name=name, source=spec.path, version=__version__, lang=lang, params=params,
         degree=poly.degree, coefficients=tuple(coefs),
         initialise=_block(spec.block_for(spec.initialise, lang.name), lang),
         terms=tuple(terms),
         finalise=_block(spec.block_for(spec.finalise, lang.name), lang),
         variants=variants, strategy=strategy,
         tested=tuple(p for p in params if any(p in v.zeros for v in variants)),
+        warnings=naming.warnings + notes,
     )
 
 
@@ -193,30 +224,31 @@ def _block(block: CodeBlock | None, lang: Language) -> Block | None:
                  lang.line_directive(block.pos))
 
 
+@dataclass(frozen=True)
+class Rendered:
+    """One output: its text, the files written beside it as (path, text), and warnings."""
+
+    text: str
+    companions: tuple[tuple[str, str], ...]
+    warnings: tuple[Diagnostic, ...]
+
+
 def render(spec: Spec, poly: Polynomial, lang: Language, form: str, out_name: str,
-           strategy: str = DEFAULT_STRATEGY, with_variants: bool = True) -> str:
-    """Render `form` ('module' or 'fragment') and fix the directives that point back into it."""
+           strategy: str = DEFAULT_STRATEGY, with_variants: bool = True) -> Rendered:
+    """Render `form` ('module' or 'fragment'), and for a module the files the language writes
+    beside it (`out_name` with each companion's extension, or '-' when the module goes to
+    standard output); fix the directives that point back into each."""
     if form == "module" and poly.degree > MAX_MODULE_DEGREE:
         raise error(spec.program.last_pos, f"degree {poly.degree} is above {MAX_MODULE_DEGREE}, "
                     f"the most the runtimes solve; emit a fragment instead")
-    text = template(lang.name, form).render(ctx=context(spec, poly, lang, strategy, with_variants))
-    return _resume_lines(text, lang, out_name)
-
-
-def render_companions(spec: Spec, poly: Polynomial, lang: Language, form: str,
-                      out_name: str, strategy: str = DEFAULT_STRATEGY,
-                      with_variants: bool = True) -> tuple[tuple[str, str], ...]:
-    """The files `lang` writes beside a module, as (path, text): `out_name` with each companion's
-    extension (or '-' when the module goes to standard output). Empty for a fragment."""
-    if form != "module" or not lang.companions:
-        return ()
-    ctx = context(spec, poly, lang, strategy, with_variants)
-    out = []
-    for extension, stem in lang.companions:
+    ctx = context(spec, poly, lang, strategy, with_variants, form)
+    text = _resume_lines(template(lang.name, form).render(ctx=ctx), lang, out_name)
+    companions = []
+    for extension, stem in (lang.companions if form == "module" else ()):
         path = "-" if out_name in ("-", "<stdout>") else str(Path(out_name).with_suffix(extension))
-        text = template(lang.name, stem).render(ctx=ctx)
-        out.append((path, _resume_lines(text, lang, path)))
-    return tuple(out)
+        companions.append((path, _resume_lines(template(lang.name, stem).render(ctx=ctx), lang,
+                                               path)))
+    return Rendered(text, tuple(companions), ctx.warnings)
 
 
 def _resume_lines(text: str, lang: Language, out_name: str) -> str:

@@ -6,7 +6,7 @@ from dataclasses import dataclass
 
 from . import maxima
 from .diagnostics import Diagnostic, error
-from .emit import render, render_companions
+from .emit import render
 from .languages import LANGUAGES, Language
 from .parse import parse_file
 from .poly import Polynomial, check_declared_terms, polynomial
@@ -55,6 +55,5 @@ def generate(spec: Spec, poly: Polynomial, lang: Language, form: str, out_name: 
         if mismatch.severity == "error":
             raise error(mismatch.pos, mismatch.message)
         warnings.append(mismatch)
-    text = render(spec, poly, lang, form, out_name, strategy, with_variants)
-    companions = render_companions(spec, poly, lang, form, out_name, strategy, with_variants)
-    return Generated(spec, poly, text, form, tuple(warnings), companions)
+    out = render(spec, poly, lang, form, out_name, strategy, with_variants)
+    return Generated(spec, poly, out.text, form, tuple(warnings) + out.warnings, out.companions)

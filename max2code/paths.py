@@ -33,3 +33,18 @@ def display(path: Path) -> str:
 def shipped_equations() -> list[str]:
     """The shipped equations/*.mxm, as `display` paths."""
     return [display(p) for p in sorted((ROOT / "equations").glob("*.mxm"))]
+
+
+def inputs_or_folder(inputs: list[str]) -> list[str]:
+    """The files named on the command line, else the .mxm files of the current folder (sorted),
+    as Make uses the Makefile it finds: a command run in a user's folder works on the user's
+    equations, never on the shipped ones. Empty when there are none (a usage error)."""
+    if inputs:
+        return inputs
+    return sorted(str(p) for p in Path(".").glob("*.mxm") if p.is_file())
+
+
+def no_inputs(command: str) -> str:
+    """The usage error for a command given no .mxm and finding none in the current folder."""
+    return (f"no FILE.mxm given, and the current folder ({os.path.abspath('.')}) has no .mxm "
+            f"file; name the equations: max2code {command} FILE.mxm ...")

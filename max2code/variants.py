@@ -58,10 +58,15 @@ def straight(poly: Polynomial, strategy: str, prefix: str = "m2c_t") -> Straight
     return Straight((), poly.coefficients)
 
 
+def cheaper(degree: int, ops: int, than_degree: int, than_ops: int) -> bool:
+    """Worth a branch of its own: a lower degree, or at least 10% and 3 operations fewer."""
+    if degree != than_degree:
+        return degree < than_degree
+    return ops <= 0.9 * than_ops and ops <= than_ops - 3
+
+
 def _cheaper(v: Variant, u: Variant) -> bool:
-    if v.degree != u.degree:
-        return v.degree < u.degree
-    return v.ops.total <= 0.9 * u.ops.total and v.ops.total <= u.ops.total - 3
+    return cheaper(v.degree, v.ops.total, u.degree, u.ops.total)
 
 
 def family(poly: Polynomial, strategy: str = DEFAULT_STRATEGY, prefix: str = "m2c_t",
@@ -84,3 +89,35 @@ def family(poly: Polynomial, strategy: str = DEFAULT_STRATEGY, prefix: str = "m2
         kept.append(v)
     kept.sort(key=lambda v: (v.degree, v.ops.total, -len(v.zeros), v.zeros))
     return tuple(Variant(i, v.poly, v.code) for i, v in enumerate(kept))
+
+
+def role_notes(poly: Polynomial, roles: dict[str, tuple[str, ...]], kept: tuple[Variant, ...],
+               strategy: str = DEFAULT_STRATEGY, prefix: str = "m2c_t") -> dict[str, str]:
+    """Why each role (name -> its parameters) that no kept variant carries yields none, so that
+    a role never vanishes silently."""
+    carried = {r for v in kept for r in v.roles}
+    general = next(v for v in kept if not v.zeros)
+    singles = {v.roles: v for v in poly.variants if len(v.roles) == 1}
+    out = {}
+    for name, params in roles.items():
+        if name in carried:
+            continue
+        zeros = ", ".join(params)
+        candidate = singles.get((name,))
+        if candidate is None:
+            out[name] = (f"with {zeros} zero no polynomial in {poly.variable} is left to solve "
+                         f"(the equation vanishes or no longer depends on {poly.variable})")
+            continue
+        if candidate.coefficients == poly.coefficients:
+            out[name] = f"it is the general polynomial ({zeros} zero changes nothing)"
+            continue
+        same = [v for v in kept if v.poly.coefficients == candidate.coefficients]
+        if same:
+            out[name] = f"it is the same polynomial as variant '{same[0].label}'"
+            continue
+        ops = straight(candidate, strategy, prefix).ops.total
+        out[name] = (f"it is not cheaper than the general polynomial: degree {candidate.degree} "
+                     f"and {ops} operations against degree {general.degree} and "
+                     f"{general.ops.total} (a variant needs a lower degree, or 10% and 3 "
+                     f"operations fewer)")
+    return out

@@ -1,25 +1,22 @@
-"""An independent oracle: Maxima evaluates the ORIGINAL equation at exact rational parameters.
-
-Nothing here uses max2code's coefficient extraction, printers or templates: the user's program
-is run as written, the parameters are substituted as exact rationals (every double is one), and
-Maxima expands the resulting polynomial in t exactly. Roots come from mpmath at 60 digits.
+"""The tests' side of the independent oracle (max2code/oracle.py, which `max2code vectors` and
+`max2code check` use too): Maxima evaluates the ORIGINAL equation at exact rational parameters,
+mpmath finds the roots at 60 digits. Nothing of max2code's coefficient extraction, printers or
+templates is involved. Here: samples as `Exact` values, and the bounds generated code is held to.
 """
 
 from __future__ import annotations
 
 import math
-import random
 import zlib
-import re
-import subprocess
-import tempfile
 from dataclasses import dataclass
 from fractions import Fraction
 from pathlib import Path
 
 import mpmath
 
+from max2code import oracle
 from max2code.parse import parse_file
+from max2code.vectors import random_samples  # noqa: F401 - the tests' samples come from here
 
 
 @dataclass(frozen=True)
@@ -32,83 +29,24 @@ class Exact:
         return first_root_exact(self.coefficients, tmax)
 
 
-def _frac(x: float) -> str:
-    f = Fraction(x)
-    return f"({f.numerator}/{f.denominator})"
-
-
 def exact_coefficients(mxm: str | Path, names: tuple[str, ...],
                        samples: list[tuple[float, ...]]) -> list[Exact]:
+    """The oracle's exact coefficients (max2code/oracle.py) of each sample."""
     spec = parse_file(str(mxm))
-    t = spec.variable
-    lines = ["display2d:false$", "linel:1000000$"]
-    lines += [s.text for s in spec.program.statements]
-    lines += ["o__e: %$", "o__e: ev(o__e, nouns)$",
-              'o__e: if not atom(o__e) and op(o__e) = "=" then lhs(o__e) - rhs(o__e) else o__e$']
-    for i, sample in enumerate(samples):
-        subst = ", ".join(f"{n} = {_frac(v)}" for n, v in zip(names, sample))
-        lines.append(f"o__x: ratexpand(subst([{subst}], o__e))$")
-        lines.append(f'printf(true, "~%ORACLE {i} ~a~%", string(makelist(ratcoef(o__x, {t}, k), '
-                     f"k, 0, hipow(o__x, {t}))))$")
-    with tempfile.TemporaryDirectory() as tmp:
-        script = Path(tmp) / "oracle.mac"
-        script.write_text("\n".join(lines) + "\n")
-        out = subprocess.run(["maxima", "--very-quiet", "-b", str(script)], capture_output=True,
-                             text=True, stdin=subprocess.DEVNULL, timeout=600, cwd=tmp).stdout
-    found = dict(re.findall(r"^ORACLE (\d+) \[(.*)\]$", out, re.M))
-    assert len(found) == len(samples), out[-2000:]
-    result = []
-    for i, sample in enumerate(samples):
-        coefs = tuple(Fraction(c.strip()) for c in found[str(i)].split(","))
-        result.append(Exact(sample, coefs))
-    return result
+    found = oracle.exact_coefficients(spec, names, samples, timeout=600)
+    assert all(cs is not None for cs in found), "the oracle could not evaluate a sample"
+    return [Exact(tuple(s), cs) for s, cs in zip(samples, found)]  # type: ignore[arg-type]
 
 
 def first_root_exact(coefficients: tuple[Fraction, ...], tmax: float) -> tuple[float | None, float]:
     """(root or None, |p'(root)|) of the exact polynomial, roots at 60 significant digits."""
-    mpmath.mp.dps = 60
+    root, _ = oracle.first_root(coefficients, tmax)
+    if root is None:
+        return None, 0.0
     cs = list(coefficients)
-    while cs and cs[-1] == 0:
-        cs.pop()
-    while cs and cs[0] == 0:  # a root at exactly 0 is not in (0, tmax]
-        cs.pop(0)
-    if len(cs) < 2:
-        return None, 0.0
-    poly = [mpmath.mpf(c.numerator) / c.denominator for c in reversed(cs)]
-    roots = mpmath.polyroots(poly, maxsteps=400, extraprec=400)
-    best = None
-    for r in roots:
-        re_, im = mpmath.re(r), mpmath.im(r)
-        if abs(im) <= mpmath.mpf(10) ** -30 * max(1, abs(re_)) and 0 < re_ <= tmax:
-            best = re_ if best is None or re_ < best else best
-    if best is None:
-        return None, 0.0
-    n = len(poly) - 1
-    deriv = mpmath.polyval([poly[i] * (n - i) for i in range(n)], best)
-    return float(best), float(abs(deriv))
-
-
-def random_samples(names: tuple[str, ...], count: int, seed: int) -> list[tuple[float, ...]]:
-    """Parameters on a game-like scale: positions within 5, speeds 3, accelerations 1, radii
-    0.1..1, angular velocities 0.5 (so |w t| stays within the Taylor series' comfort)."""
-    rng = random.Random(seed)
-    out = []
-    for i in range(count):
-        spread = 5.0 if i % 2 else 1.5  # every other sample starts close: collisions happen
-        values = []
-        for n in names:
-            if n.startswith("r"):
-                values.append(rng.uniform(0.1, 1.0))
-            elif n.startswith("w"):
-                values.append(rng.uniform(-0.5, 0.5))
-            elif n.startswith(("v", "pv", "lv")):
-                values.append(rng.uniform(-3, 3))
-            elif n.startswith(("a", "pa", "la")):
-                values.append(rng.uniform(-1, 1))
-            else:
-                values.append(rng.uniform(-spread, spread))
-        out.append(tuple(values))
-    return out
+    deriv = sum(k * mpmath.mpf(c.numerator) / c.denominator * root ** (k - 1)
+                for k, c in enumerate(cs) if k)
+    return float(root), float(abs(deriv))
 
 
 # Bounds for generated code against the oracle, shared by every language's test.

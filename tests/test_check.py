@@ -13,9 +13,11 @@ Tools: maxima, gcc, gm2, cargo. Under CI (CI set) a missing tool fails; elsewher
 from __future__ import annotations
 
 import json
+import os
 import shutil
 import subprocess
 import sys
+from fractions import Fraction
 from pathlib import Path
 
 import pytest
@@ -166,3 +168,122 @@ def test_vectors_are_up_to_date() -> None:
 
     mxm = ROOT / "equations" / "point-line.mxm"
     assert make_vectors.text(mxm) == chk.default_vectors(mxm).read_text()
+
+
+# ---------------------------------------------------------------------------------------------
+# A user's own equations: `max2code vectors`, and check making its vectors
+# ---------------------------------------------------------------------------------------------
+
+QUADRATIC = "// a user's equation\nfunction quad\nbegin\na*t^2 - b*t + c;\nend\n"
+PGE = next((p for p in (ROOT.parent / "shared" / "corpus" / "pge",
+                        ROOT.parent.parent / "shared" / "corpus" / "pge") if p.is_dir()), None)
+
+
+def max2code(*args: str, cwd: Path = ROOT, env: dict | None = None) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "max2code", *args], cwd=cwd, capture_output=True,
+                          text=True, timeout=1200, env=env)
+
+
+def test_vectors_command(tmp_path: Path, maxima_exe: str) -> None:
+    """The vectors of a*t^2 - b*t + c, checked here without the oracle: the coefficients are the
+    parameters themselves, and the first root is the quadratic's (mpmath, 50 digits)."""
+    import mpmath
+
+    mxm = tmp_path / "quad.mxm"
+    mxm.write_text(QUADRATIC)
+    out = tmp_path / "quad.jsonl"
+    proc = max2code("vectors", str(mxm), "-o", str(out))
+    assert proc.returncode == 0, proc.stderr
+    first = out.read_text()
+    assert max2code("vectors", str(mxm)).stdout == first  # deterministic; stdout by default
+    head, *lines = [json.loads(x) for x in first.splitlines()]
+    assert head["max2code_vectors"] == 1 and head["parameters"] == ["a", "b", "c"]
+    assert {x["family"] for x in lines} == {"generic", "no_root"}
+    assert sum(x["family"] == "generic" for x in lines) == 16
+    mpmath.mp.dps = 50
+    for x in lines:
+        a, b, c = (Fraction(chk.parse_double(x["params"][n])) for n in "abc")
+        assert [Fraction(v) for v in x["coefficients"]] == [c, -b, a]
+        exact = [mpmath.mpf(v.numerator) / v.denominator for v in (a, -b, c)]
+        roots = [r for r in mpmath.polyroots(exact, extraprec=100)
+                 if abs(mpmath.im(r)) < 1e-40 and 0 < mpmath.re(r) <= x["tmax"]]
+        want = min(mpmath.re(r) for r in roots) if roots else None
+        if want is None:
+            assert x["first_root"] is None
+        else:
+            assert abs(mpmath.mpf(x["first_root"]) - want) <= mpmath.mpf(10) ** -28 * want
+    assert any(x["first_root"] for x in lines) and any(x["first_root"] is None for x in lines)
+
+
+def test_check_makes_vectors_for_a_users_equation(tmp_path: Path) -> None:
+    """The issue's reproducer: check FILE.mxm on an equation of one's own, all four languages;
+    the vectors are made once and then served from the cache, keyed by the .mxm's content."""
+    require_tools()
+    mxm = tmp_path / "quad.mxm"
+    mxm.write_text(QUADRATIC)
+    env = {**os.environ, "MAX2CODE_CACHE": str(tmp_path / "cache")}
+    args = ("check", str(mxm), "--build-dir", str(BUILD_DIR))
+    first = max2code(*args, cwd=tmp_path, env=env)
+    assert first.returncode == 0, first.stdout + first.stderr
+    assert "(made by the oracle)" in first.stdout
+    assert first.stdout.rstrip().endswith("check: every language met the tolerances")
+    for lang in LANGS:
+        assert f"quad               {lang:<7} generic       16" in first.stdout
+    again = max2code(*args, cwd=tmp_path, env=env)
+    assert again.returncode == 0 and "(the oracle's, cached)" in again.stdout
+    mxm.write_text(QUADRATIC.replace("a*t^2", "2*a*t^2"))
+    changed = max2code(*args, cwd=tmp_path, env=env)
+    assert changed.returncode == 0 and "(made by the oracle)" in changed.stdout
+    assert len(list((tmp_path / "cache" / "vectors").glob("*.jsonl"))) == 2
+
+
+def test_no_harness_for_an_empty_vector_set(tmp_path: Path, maxima_exe: str) -> None:
+    mxm = tmp_path / "quad.mxm"
+    mxm.write_text(QUADRATIC)
+    empty = tmp_path / "empty.jsonl"
+    empty.write_text(json.dumps({"max2code_vectors": 1, "parameters": ["a", "b", "c"]}) + "\n")
+    result = chk.check([mxm], {mxm: empty}, LANGS, tmp_path / "build")
+    assert not result.ok and result.rows == []
+    assert result.errors == [f"{mxm}: {empty}: no vectors (nothing to check; no module built)"]
+    assert not (tmp_path / "build" / "cargo-target").exists()  # nothing was built
+
+
+def test_the_oracle_needs_mpmath_and_says_so(tmp_path: Path, maxima_exe: str) -> None:
+    fake = tmp_path / "fake"
+    fake.mkdir()
+    (fake / "mpmath.py").write_text("raise ImportError('no mpmath here')\n")
+    mxm = tmp_path / "quad.mxm"
+    mxm.write_text(QUADRATIC)
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(fake), str(ROOT)])}
+    proc = max2code("vectors", str(mxm), env=env)
+    assert proc.returncode == 1
+    assert proc.stderr == ("max2code:1:1: error: the oracle needs mpmath: pip install "
+                           "'max2code[oracle]' (or pip install mpmath)\n")
+
+
+@pytest.mark.skipif(PGE is None, reason="the original PGE corpus (../shared/corpus/pge) is not here")
+def test_the_original_pge_files_pass_check(tmp_path: Path) -> None:
+    """Every .mxm of the original project, nobody here wrote them: generated as modules in all
+    four languages, built, and held to the oracle's vectors."""
+    require_tools()
+    assert PGE is not None
+    files = sorted(PGE.glob("*.mxm"))
+    assert len(files) == 6
+    result = chk.check(files, langs=LANGS, build_dir=BUILD_DIR)
+    assert result.ok, result.text()
+    assert {(r.equation, r.lang) for r in result.rows} == {
+        (f.stem, lang) for f in files for lang in LANGS}
+
+
+def test_no_parameters_and_a_variant_that_reads_none(tmp_path: Path) -> None:
+    """Edge cases of a user's equation: no parameters at all (C and Modula-2 have no empty
+    arrays), and a variant whose coefficients read no parameter (gm2 -Wall: unused `p`)."""
+    require_tools()
+    nop = tmp_path / "nop.mxm"
+    nop.write_text("function nop\nbegin\nt^2 - 2*t - 3;\nend\n")
+    novar = tmp_path / "novar.mxm"
+    novar.write_text("function novar\nparameters a\nrole still = a\nbegin\nt^2 - 1 + a*t^3;\nend\n")
+    result = chk.check([nop, novar], langs=LANGS, build_dir=BUILD_DIR)
+    assert result.ok, result.text()
+    assert {(r.equation, r.family) for r in result.rows if r.lang == "m2"} >= {
+        ("nop", "generic"), ("novar", "variant")}

@@ -1,5 +1,7 @@
-"""The examples build and run in temporary copies, print the right time, and rebuild only what
-depends on an edited .mxm (or on the .mac file it loads).
+"""The examples build and run in copies outside the checkout (a temporary folder holding only
+examples/), print the right time, and rebuild only what depends on an edited .mxm (or on the .mac
+file it loads). CMake finds max2code as a package (`max2code runtime --cmake-dir`), Cargo is
+pointed at the runtime with the documented `cargo add`, Modula-2 builds with one `make`.
 
 The scene (examples/README.md) closes a gap of 10 - 2t - t^2/4 to r1 + r2 = 1.5, so the first
 contact is t = 2 (sqrt(12.5) - 2): computed here with mpmath, independently of Maxima and of
@@ -26,10 +28,11 @@ EXPECTED = float(2 * (mpmath.sqrt(mpmath.mpf("12.5")) - 2))
 
 @pytest.fixture
 def tree(tmp_path: Path, maxima_exe: str) -> Path:
-    """A copy of examples/ beside a link to runtime/, as in the repository."""
+    """A copy of examples/ alone, away from the checkout: nothing of the repository's layout."""
     shutil.copytree(ROOT / "examples", tmp_path / "examples",
-                    ignore=shutil.ignore_patterns("build", "target", "generated", "__pycache__"))
-    (tmp_path / "runtime").symlink_to(ROOT / "runtime")
+                    ignore=shutil.ignore_patterns("build", "target", "generated", "__pycache__",
+                                                  "*.o"))
+    assert not (tmp_path / "runtime").exists()
     return tmp_path / "examples"
 
 
@@ -92,13 +95,18 @@ def test_make(tree: Path, env: dict[str, str]) -> None:
 
 
 def test_cmake(tree: Path, env: dict[str, str]) -> None:
+    """find_package(max2code) through `max2code runtime --cmake-dir`: max2code_generate() and
+    the max2code::runtime target, with nothing else of max2code's configured by hand."""
     cmake = require("cmake")
     require("ninja")
     folder = tree / "cmake"
     build = folder / "build"
-    command = ";".join(env["MAX2CODE"].split())
-    run([cmake, "-S", str(folder), "-B", str(build), "-G", "Ninja", f"-DMAX2CODE={command}"],
-        folder, env)
+    package = run([sys.executable, "-m", "max2code", "runtime", "--cmake-dir"], folder, env).strip()
+    assert (Path(package) / "max2codeConfig.cmake").is_file()
+    assert (Path(package) / "max2codeConfigVersion.cmake").is_file()
+    out = run([cmake, "-S", str(folder), "-B", str(build), "-G", "Ninja",
+               f"-Dmax2code_DIR={package}"], folder, env)
+    assert "max2code" in (build / "CMakeCache.txt").read_text()
     out = run([cmake, "--build", str(build)], folder, env)
     assert "max2code circles.h" in out
     check_time(run([str(build / "collide")], folder, env))
@@ -122,6 +130,10 @@ def test_cargo(tree: Path, env: dict[str, str]) -> None:
     cargo = cargo_exe()
     folder = tree / "cargo"
     env = {**env, "CARGO_TARGET_DIR": str(folder / "target")}
+    # Copied out of the repository: point Cargo at the runtime once, as the README says.
+    crate = run([sys.executable, "-m", "max2code", "runtime", "--lang", "rust", "--dir"], folder,
+                env).strip()
+    run([cargo, "add", "--offline", "max2code-runtime", "--path", crate], folder, env)
     check_time(run([cargo, "run", "--quiet", "--offline"], folder, env))
     out = run([cargo, "build", "-v", "--offline"], folder, env)
     assert "Fresh max2code-example" in out, out
@@ -131,6 +143,21 @@ def test_cargo(tree: Path, env: dict[str, str]) -> None:
         assert "Dirty max2code-example" in out and f"{touched}` has changed" in out, out
         assert "Fresh max2code-runtime" in out, out
     check_time(run([cargo, "run", "--quiet", "--offline"], folder, env))
+
+
+def test_m2(tree: Path, env: dict[str, str]) -> None:
+    """One command: `make run` generates circles.mod/.def, compiles the C runtime and links."""
+    make = require("make")
+    require("gm2")
+    folder = tree / "m2"
+    margs = [make, f"MAX2CODE={env['MAX2CODE']}"]
+    out = run([*margs, "run"], folder, env)
+    assert collision_time(out) == pytest.approx(EXPECTED, rel=1e-15, abs=0)
+    assert "Nothing to be done" in run([*margs, "all"], folder, env)
+    shift_lines(tree / "equations" / "circles.mxm")
+    out = run([*margs, "run"], folder, env)
+    assert "--lang=m2" in out and "max2code_roots.c" not in out, out
+    assert collision_time(out) == pytest.approx(EXPECTED, rel=1e-15, abs=0)
 
 
 def test_python(tree: Path, env: dict[str, str]) -> None:

@@ -34,9 +34,11 @@ import pytest
 from conftest import corrected_paper_point_line, ROOT, require
 from oracle import TMAX, Exact, check_sample, exact_coefficients, random_samples, sampled_equation
 
+from max2code.diagnostics import Pos
 from max2code.emit import module_name
 from max2code.generate import generate, load
 from max2code.languages import LANGUAGES
+from max2code.names import choose
 from max2code.variants import family
 
 EQUATIONS = sorted((ROOT / "equations").glob("*.mxm"))
@@ -517,7 +519,8 @@ def test_keywords_m2(keywords_mxm: Path, tmp_path: Path, c_runtime_object: Path)
     lines = build_m2(keywords_mxm, tmp_path, [KEYWORD_PARAMS], c_runtime_object)
     assert lines[0].split()[2:] == ["type", "match", "self", "VAR", "TYPE", "int", "char", "BEGIN"]
     text = (tmp_path / "keywords.mod").read_text()
-    for mangled in ("VAR_ := p[3]", "TYPE_ := p[4]", "BEGIN_ := p[7]", "type := p[0]"):
+    for mangled in ("VAR_ := m2c_p[3]", "TYPE_ := m2c_p[4]", "BEGIN_ := m2c_p[7]",
+                    "type := m2c_p[0]"):
         assert mangled in text
     _, coefs, _ = parse_m2(lines[-1])
     assert_close(coefs, keyword_coefficients(KEYWORD_PARAMS), "Modula-2")
@@ -526,7 +529,7 @@ def test_keywords_m2(keywords_mxm: Path, tmp_path: Path, c_runtime_object: Path)
 def test_keywords_rust(rust_crate: tuple[Path, Path]) -> None:
     crate, binary = rust_crate
     text = (crate / "src" / "keywords.rs").read_text()
-    assert "let [type_, match_, self_, VAR, TYPE, int, char_, BEGIN] = *p;" in text
+    assert "let [r#type, r#match, self_, VAR, TYPE, int, char_, BEGIN] = *m2c_p;" in text
     out = run_rust(binary, ["meta keywords", rust_line("keywords", TMAX, KEYWORD_PARAMS)])
     assert out[0].split()[3:-1] == ["type", "match", "self", "VAR", "TYPE", "int", "char", "BEGIN"]
     _, coefs, _ = parse_rust(out[1])
@@ -610,14 +613,21 @@ def test_printer_signs_literals_and_constants() -> None:
 
 
 def test_identifiers() -> None:
+    """(max2code/names.py decides; tests/test_names.py tests it on every name.)"""
     m2, rust = LANGUAGES["m2"], LANGUAGES["rust"]
-    names = ["type", "match", "self", "VAR", "TYPE", "int", "char", "BEGIN", "MOD", "DIV", "REAL"]
-    assert [m2.identifier(n) for n in names] == [
+    names = ("type", "match", "self", "VAR", "TYPE", "int", "char", "BEGIN", "MOD", "DIV", "REAL")
+    where = Pos("k.mxm", 1, 1)
+    def idents(names: tuple[str, ...], lang) -> list[str]:
+        naming = choose(names, lang, "k", where)
+        return [naming.idents[n] for n in names]
+
+    assert idents(names, m2) == [
         "type", "match", "self", "VAR_", "TYPE_", "int", "char", "BEGIN_", "MOD_", "DIV_", "REAL_"]
-    assert [rust.identifier(n) for n in names] == [
-        "type_", "match_", "self_", "VAR", "TYPE", "int", "char_", "BEGIN", "MOD", "DIV", "REAL"]
-    assert [rust.identifier(n) for n in ["fn", "in", "loop", "mod", "ref", "move", "Self"]] == [
-        "fn_", "in_", "loop_", "mod_", "ref_", "move_", "Self_"]
+    assert idents(names, rust) == [
+        "r#type", "r#match", "self_", "VAR", "TYPE", "int", "char_", "BEGIN", "MOD", "DIV", "REAL"]
+    names = ("fn", "in", "loop", "mod", "ref", "move", "Self")
+    assert idents(names, rust) == [
+        "r#fn", "r#in", "r#loop", "r#mod", "r#ref", "r#move", "Self_"]
     assert rust.lint_allows(["x1", "vx_1"]) == ""
     assert "non_snake_case" in rust.lint_allows(["x1", "TYPE"])
 

@@ -1,13 +1,19 @@
-"""`max2code report` and `max2code roles`: the numbers they print come from the real pipeline."""
+"""`max2code report` and `max2code roles`: the numbers they print come from the real pipeline,
+and the HTML page renders in a real browser (headless Chromium from Debian's packages) without
+console errors, with its heading, tables and charts."""
 
 from __future__ import annotations
 
 import json
+import shutil
 import subprocess
 import sys
+from html.parser import HTMLParser
 from pathlib import Path
 
-from conftest import ROOT
+import pytest
+
+from conftest import ROOT, require
 
 from max2code.roles import suggest
 
@@ -33,10 +39,173 @@ def test_report_files_and_figure6(tmp_path: Path, maxima_exe: str) -> None:
     assert "## The paper's figure 6, reproduced" in (tmp_path / "report.md").read_text()
 
 
+class Page(HTMLParser):
+    """What a rendered page holds: headings, tables (their header cells and row counts), charts
+    (their bars), and any reference to another file."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.headings: list[tuple[str, str]] = []
+        self.tables: list[dict] = []
+        self.charts: list[int] = []
+        self.external: list[str] = []
+        self._heading: str | None = None
+        self._cell: str | None = None
+
+    def handle_starttag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
+        values = dict(attrs)
+        if tag in ("h1", "h2", "h3"):
+            self._heading, self.text = tag, ""
+        elif tag == "table":
+            self.tables.append({"th": [], "rows": 0})
+        elif tag == "th":
+            self._cell, self.text = "th", ""
+        elif tag == "tr" and self.tables:
+            self.tables[-1]["rows"] += 1
+        elif tag == "svg":
+            self.charts.append(0)
+        elif tag == "rect" and self.charts:
+            self.charts[-1] += 1
+        for name in ("src", "href"):
+            if values.get(name):
+                self.external.append(str(values[name]))
+
+    def handle_data(self, data: str) -> None:
+        if self._heading or self._cell:
+            self.text += data
+
+    def handle_endtag(self, tag: str) -> None:
+        if tag == self._heading:
+            self.headings.append((tag, self.text.strip()))
+            self._heading = None
+        elif tag == "th" and self._cell:
+            self.tables[-1]["th"].append(self.text.strip())
+            self._cell = None
+
+
+def chromium(page: Path, tmp_path: Path, *args: str) -> tuple[str, list[str]]:
+    """Run headless Chromium on a page: (its standard output, the console messages logged)."""
+    exe = shutil.which("chromium") or require("chromium")
+    profile = tmp_path / f"profile-{len(list(tmp_path.glob('profile-*')))}"
+    proc = subprocess.run(
+        [exe, "--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
+         "--disable-component-update", "--disable-sync", "--no-first-run",
+         f"--user-data-dir={profile}", "--enable-logging=stderr", "--v=0", *args,
+         page.resolve().as_uri()], capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stderr[-2000:]
+    console = [line for line in proc.stderr.splitlines() if ":CONSOLE" in line]
+    return proc.stdout, console
+
+
+def test_the_console_check_can_fail(tmp_path: Path) -> None:
+    page = tmp_path / "bad.html"
+    page.write_text('<!doctype html><html lang="en"><title>x</title><p>x</p>'
+                    '<script>console.error("boom"); undefinedFunction();</script></html>')
+    _, console = chromium(page, tmp_path, "--dump-dom")
+    assert any('"boom"' in line for line in console)
+    assert any("undefinedFunction is not defined" in line for line in console)
+
+
+@pytest.fixture(scope="module")
+def shipped_report(tmp_path_factory: pytest.TempPathFactory, maxima_exe: str) -> Path:
+    out = tmp_path_factory.mktemp("report")
+    proc = subprocess.run([sys.executable, "-m", "max2code", "report", "-o", str(out),
+                           *map(str, sorted((ROOT / "equations").glob("*.mxm")))], cwd=ROOT,
+                          capture_output=True, text=True, timeout=900)
+    assert proc.returncode == 0, proc.stderr
+    return out
+
+
+def test_the_html_report_renders(shipped_report: Path, tmp_path: Path) -> None:
+    page = shipped_report / "report.html"
+    dom, console = chromium(page, tmp_path, "--dump-dom")
+    assert console == []
+    parsed = Page()
+    parsed.feed(dom)
+    equations = json.loads((shipped_report / "report.json").read_text())["equations"]
+    assert parsed.headings[0] == ("h1", "max2code variant report")
+    assert ("h2", "The paper's figure 6, reproduced") in parsed.headings
+    assert [h for h in parsed.headings if h[0] == "h2"][1:] == [
+        ("h2", e["source"]) for e in equations]
+    # Per equation: the optimised and expanded variant tables and the lines table; plus fig. 6.
+    assert len(parsed.tables) == 1 + 3 * len(equations)
+    assert parsed.tables[0]["th"][0] == "expression" and parsed.tables[0]["rows"] == 1 + 4
+    for k, e in enumerate(equations):
+        opt, exp, lines = parsed.tables[1 + 3 * k: 4 + 3 * k]
+        assert opt["th"] == ["#", "variant", "zero parameters", "degree", "add", "mul", "div",
+                             "total"]
+        assert opt["rows"] == 1 + len(e["variants"]["optimised"])
+        assert exp["rows"] == 1 + len(e["variants"]["expanded"])
+        assert lines["th"] == ["strategy", "c", "m2", "python", "rust"]
+    # One chart per equation, a bar per variant and strategy.
+    assert parsed.charts == [len(e["variants"]["optimised"]) + len(e["variants"]["expanded"])
+                             for e in equations]
+    assert parsed.external == []  # self-contained: nothing to fail to load
+    shot = tmp_path / "report.png"
+    chromium(page, tmp_path, "--window-size=1200,3000", f"--screenshot={shot}")
+    data = shot.read_bytes()
+    assert data.startswith(b"\x89PNG") and len(data) > 50_000  # a blank page is a few KB
+
+
+def test_figure6_only_for_shipped_equations_or_on_request(tmp_path: Path,
+                                                          maxima_exe: str) -> None:
+    mine = tmp_path / "mine.mxm"
+    mine.write_text("function mine\nbegin\n(x + v*t)^2 - r^2;\nend\n")
+
+    def report(*args: str) -> dict:
+        out = tmp_path / f"out{len(list(tmp_path.glob('out*')))}"
+        proc = subprocess.run([sys.executable, "-m", "max2code", "report", "-o", str(out), *args],
+                              cwd=tmp_path, capture_output=True, text=True, timeout=600)
+        assert proc.returncode == 0, proc.stderr
+        html = (out / "report.html").read_text()
+        assert ("figure 6" in html) == bool(json.loads((out / "report.json").read_text())["figure6"])
+        return json.loads((out / "report.json").read_text())
+
+    assert report()["figure6"] == []  # the folder's own .mxm, no paper figure
+    assert report(str(mine))["figure6"] == []
+    assert len(report(str(mine), "--figure6")["figure6"]) == 4
+    shipped = str(ROOT / "equations" / "point-line.mxm")
+    assert len(report(shipped)["figure6"]) == 4
+    assert report(shipped, "--no-figure6")["figure6"] == []
+
+
 def test_roles_suggests_what_lowers_the_degree(maxima_exe: str) -> None:
-    rows = suggest("equations/circles-orbit.mxm", 120.0)
-    (_, degree, ops), rest = rows[0], rows[1:]
+    degree, ops, candidates = suggest("equations/circles-orbit.mxm", 120.0)
     assert degree == 8
-    by_zeros = {z: (d, o) for z, d, o in rest}
-    assert by_zeros[("w1", "w2")][0] == 4  # no rotation at all: the quartic
-    assert all(d < degree or o <= 0.9 * ops for d, o in by_zeros.values())
+    by_zeros = {c.zeros: c for c in candidates}
+    assert by_zeros[("w1", "w2")].degree == 4  # no rotation at all: the quartic
+    assert by_zeros[("w1", "w2")].kind == "effect" and by_zeros[("ox1", "oy1")].kind == "vector"
+    for c in candidates:
+        if c.useful:
+            assert c.degree < degree or (c.ops <= 0.9 * ops and c.ops <= ops - 3)
+    assert ("vx1",) in by_zeros and not by_zeros[("vx1",)].useful
+
+
+SPHERES = """\
+// two accelerating spheres in 3D
+function spheres
+begin
+X: x1 + vx1*t + ax1*t^2/2 - (x2 + vx2*t + ax2*t^2/2);
+Y: y1 + vy1*t + ay1*t^2/2 - (y2 + vy2*t + ay2*t^2/2);
+Z: z1 + vz1*t + az1*t^2/2 - (z2 + vz2*t + az2*t^2/2);
+X^2 + Y^2 + Z^2 - (r1 + r2)^2;
+end
+"""
+
+
+def test_roles_finds_vectors_by_name_and_effect(tmp_path: Path, maxima_exe: str) -> None:
+    """3D: a vector's three components by name, both bodies' accelerations by their equal effect
+    (together they lower the degree); the command prints only what is worth a role."""
+    mxm = tmp_path / "spheres.mxm"
+    mxm.write_text(SPHERES)
+    proc = subprocess.run([sys.executable, "-m", "max2code", "roles", str(mxm)], cwd=ROOT,
+                          capture_output=True, text=True, timeout=600)
+    assert proc.returncode == 0, proc.stderr
+    lines = proc.stdout.splitlines()
+    assert lines[0] == f"{mxm}: general polynomial of degree 4, 58 operations (optimised)"
+    suggested = [line.split("=")[1].split(" degree")[0].strip() for line in lines[1:]]
+    assert suggested == ["ax1, ay1, az1, ax2, ay2, az2", "ax1, ay1, az1", "ax2, ay2, az2"]
+    assert "degree 2, 27 operations (-31; effect)" in lines[1]
+    everything = subprocess.run([sys.executable, "-m", "max2code", "roles", "--all", str(mxm)],
+                                cwd=ROOT, capture_output=True, text=True, timeout=600).stdout
+    assert "role vx1 = vx1" in everything and "not worth a role" in everything

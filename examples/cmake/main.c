@@ -5,10 +5,11 @@
 
 int main(void)
 {
-    /* x1, y1, vx1, vy1, ax1, ay1, r1, x2, y2, vx2, vy2, ax2, ay2, r2 */
-    const double p[circles_NPARAMS] = {0, 0, 1, 0, 0.5, 0, 1, 10, 0, -1, 0, 0, 0, 0.5};
+    /* The parameters by name (circles_params); circles_first_root takes them as an array. */
+    const circles_params q = {.x1 = 0, .y1 = 0, .vx1 = 1, .vy1 = 0, .ax1 = 0.5, .ay1 = 0, .r1 = 1,
+                              .x2 = 10, .y2 = 0, .vx2 = -1, .vy2 = 0, .ax2 = 0, .ay2 = 0, .r2 = 0.5};
     double t;
-    if (circles_first_root(p, 100.0, &t) != 1) {
+    if (circles_first_root_named(&q, 100.0, &t) != 1) {
         printf("no collision\n");
         return 1;
     }

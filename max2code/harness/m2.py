@@ -1,7 +1,10 @@
 """Modula-2: the generated NAME.def + NAME.mod compiled with gm2 -fiso -fcpp (the #line
-directives), a driver with the cases embedded as IEEE bit patterns (two 32-bit halves each,
-since the ISO library reads no hex), linked with the C runtime through Max2codeRoots.def:
--L<m2iso> -lm2iso -lpthread and GSL. The driver prints each double as "lo:hi"."""
+directives), and a driver linked with the C runtime through Max2codeRoots.def (-L<m2iso>
+-lm2iso -lpthread and GSL). Numbers travel as IEEE bit patterns, two 32-bit halves each in
+decimal (the ISO library reads no hex): the driver reads the cases on standard input (cases
+embedded in its source made gm2 take minutes on large modules), each line ending in a space
+(gm2's ReadCard reports a number that ends a line as `endOfLine`, not `allRight`), and prints
+each double as "lo:hi"."""
 
 from __future__ import annotations
 
@@ -36,13 +39,13 @@ class M2Harness(Harness):
         for unit in units:
             folder, module = self.write_module(unit, workdir, ".mod")
             shutil.copy(runtime_dir("m2") / "Max2codeRoots.def", folder)
-            cases = [{"tmax": halves(case.tmax), "params": [halves(x) for x in case.params]}
-                     for case in unit.cases]
-            (folder / "Driver.mod").write_text(self.render(name=unit.name, cases=cases))
+            (folder / "Driver.mod").write_text(self.render(name=unit.name))
             run([gm2, "-fiso", "-fcpp", "-Wall", "-Werror", "-c", module.name,
                  "-o", f"{unit.name}.o"], cwd=folder)
             run([gm2, "-fiso", "Driver.mod", f"{unit.name}.o", str(obj), "-o", "driver",
                  f"-L{iso}", "-lm2iso", "-lpthread", *LIBS], cwd=folder)
-            out = run([str(folder / "driver")], cwd=folder)
+            stdin = "".join(" ".join(f"{lo} {hi}" for x in (case.tmax, *case.params)
+                                     for lo, hi in [halves(x)]) + " \n" for case in unit.cases)
+            out = run([str(folder / "driver")], input=stdin, cwd=folder)
             results[unit.name] = parse_lines(out, len(unit.cases), from_halves)
         return results

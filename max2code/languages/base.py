@@ -7,8 +7,10 @@ line directives, terminators); the templates hold the layout. Nothing here names
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass
 from fractions import Fraction
+from functools import cached_property
 
 from ..diagnostics import Pos
 from ..expr import Add, Call, Div, Expr, Float, Mul, Neg, Num, Pow, Ref, Sym
@@ -24,8 +26,23 @@ class Language:
     """A target language's printing rules. Subclasses override the hooks below."""
 
     name: str = ""
+    # The language's name in messages ("Modula-2").
+    title: str = ""
     extension: str = ""
+    # Words the language itself reserves: never an identifier, in any scope. A fragment (pasted
+    # into the user's code) renames only these; see names.py.
     keywords: frozenset[str] = frozenset()
+    # Names a generated module's code can see where it binds the user's names: library
+    # modules and macros, builtins, preludes, pervasive identifiers, functions the printer calls.
+    predeclared: frozenset[str] = frozenset()
+    # A regular expression (matched at the start) for families of reserved names: our own
+    # `m2c_` prefix, the C library's macro families. `{module}` stands for the module's name.
+    reserved_pattern: str = ""
+    # What an identifier of the language looks like.
+    ident_pattern: str = r"[A-Za-z_][A-Za-z0-9_]*"
+    # Whether a module shows the parameters' identifiers to its users (as the fields of a
+    # struct or record), so that renaming one deserves a warning.
+    shows_names: bool = True
     # Largest integer exponent written as repeated multiplication.
     max_inline_power: int = 8
     functions: tuple[tuple[str, str], ...] = ()
@@ -88,15 +105,57 @@ class Language:
     def condition(self, idents: list[str]) -> str:
         return self.and_op.join(self.zero_test.format(i) for i in idents)
 
+    # Parameter name -> identifier, for printing (names.py decides; empty: names as they are).
+    names: tuple[tuple[str, str], ...] = ()
+
+    def generated(self, module: str) -> frozenset[str]:
+        """The identifiers a module named `module` defines beyond `reserved_pattern`: its
+        templates' constants, functions and types. A user's name must not be one of them."""
+        return frozenset()
+
+    def module_name_problem(self, module: str) -> str | None:
+        """Why `module` cannot name a module in this language (None when it can)."""
+        if module in self.keywords:
+            return f"a {self.title} keyword"
+        return None
+
+    def reserved(self, ident: str, module: str | None) -> str | None:
+        """Why `ident` cannot stand for a user's name: 'keyword', 'invalid', or (in a module,
+        when `module` is given) 'predeclared', 'generated', 'pattern'. None when it can."""
+        if not re.fullmatch(self.ident_pattern, ident):
+            return "invalid"
+        if ident in self.keywords:
+            return "keyword"
+        if module is None:
+            return None
+        if ident in self.predeclared:
+            return "predeclared"
+        if ident in self.generated(module):
+            return "generated"
+        if self.reserved_pattern and re.match(self.reserved_pattern.format(
+                module=re.escape(module)), ident):
+            return "pattern"
+        return None
+
+    def escape(self, ident: str, why: str) -> str:
+        """A first try at another identifier for a reserved one (names.py makes it unique)."""
+        if why in ("pattern", "invalid"):
+            return "p" + ("" if ident.startswith("_") else "_") + ident
+        return ident + "_"
+
+    def with_names(self, names: dict[str, str]) -> "Language":
+        """This language printing parameter `name` as `names[name]`."""
+        from dataclasses import replace
+        return replace(self, names=tuple(sorted(names.items())))
+
+    @cached_property
+    def _names(self) -> dict[str, str]:
+        return dict(self.names)
+
     # ---- shared rules ---------------------------------------------------------------------
     def identifier(self, name: str) -> str:
-        """A parameter name made safe: keywords and our own reserved names get a trailing '_'."""
-        out = name.replace("%", "_")
-        if out.startswith("m2c_"):  # our own temporaries and arguments
-            out = "p_" + out
-        while out in self.keywords:
-            out += "_"
-        return out
+        """How a parameter is written: as names.py decided, else its name (a `%` made `_`)."""
+        return self._names.get(name) or name.replace("%", "_")
 
     def number(self, value: Fraction) -> str:
         if value.denominator == 1 or Fraction(float(value)) == value:  # exact as a double

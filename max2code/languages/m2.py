@@ -17,6 +17,7 @@ C's long double, so REAL is the type that matches the C runtime and the other th
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 from typing import Any
 
@@ -25,21 +26,37 @@ from ..expr import Add, Expr, Neg, Num
 from .base import P_ADD, P_MUL, P_NEG, Language
 from .c import c_string
 
-# Reserved words and pervasive identifiers of ISO Modula-2 and GNU Modula-2 (case-sensitive:
-# `TYPE` is a keyword, `type` is an ordinary name), the library modules the generated code
-# names, and the procedures and constants of the generated module itself.
+# Reserved words of ISO Modula-2 and GNU Modula-2 (case-sensitive: `TYPE` is a keyword, `type`
+# is an ordinary name).
 M2_KEYWORDS = frozenset("""
 AND ARRAY BEGIN BY CASE CONST DEFINITION DIV DO ELSE ELSIF END EXCEPT EXIT EXPORT FINALLY FOR
 FORWARD FROM IF IMPLEMENTATION IMPORT IN LOOP MOD MODULE NOT OF OR PACKEDSET POINTER PROCEDURE
 QUALIFIED RECORD REM REPEAT RETRY RETURN SET THEN TO TYPE UNTIL VAR WHILE WITH UNQUALIFIED ASM
 VOLATILE
+""".split())
+
+# Pervasive identifiers (ISO and GNU), the library modules and procedures the generated module
+# imports (a local of that name would hide what the module's code uses), and the macros the C
+# preprocessor of `gm2 -fcpp` predefines (`linux` would become 1).
+M2_PREDECLARED = frozenset("""
 ABS BITSET BOOLEAN CAP CARDINAL CHAR CHR CMPLX COMPLEX DEC DISPOSE EXCL FALSE FLOAT HALT HIGH
 IM INC INCL INT INTEGER INTERRUPTIBLE LENGTH LFLOAT LONGCOMPLEX LONGREAL MAX MIN NEW NIL ODD ORD
 PROC PROTECTION RE REAL SIZE TRUE TRUNC UNINTERRUPTIBLE VAL LONGINT LONGCARD SHORTINT SHORTCARD
-SHORTREAL SHORTCOMPLEX LOC BYTE WORD ADDRESS ADR TSIZE SYSTEM CAST
-RealMath Strings Max2codeRoots NParams Degree NVariants Coefficients FirstRoot ParamName Variant
-VariantName
+SHORTREAL SHORTCOMPLEX LOC BYTE WORD ADDRESS ADR TSIZE SYSTEM CAST THROW M2RTS
+RealMath Strings Max2codeRoots STextIO SWholeIO SRealIO
+linux unix i386 i686 sparc mips vax
 """.split())
+
+# The module's own names (module.j2, definition.j2), beyond the `m2c_` prefix.
+M2_GENERATED = frozenset("""
+NParams Degree NVariants Coefficients FirstRoot Variant VariantName ParamName Params
+ParamsArray CoefficientsNamed FirstRootNamed VariantNamed
+""".split())
+
+# The formal parameters and locals of the exported procedures, which bind no parameter (the
+# ones that do are CoefficientsVk and m2c_variant, with `m2c_` formals): a parameter may keep
+# such a name, and Params may have a field `c`.
+M2_FORMALS = frozenset("p c t tmax name i q degree".split())
 
 
 class SignedOperands(Language):
@@ -83,8 +100,13 @@ class SignedOperands(Language):
 @dataclass(frozen=True)
 class Modula2(SignedOperands):
     name: str = "m2"
+    title: str = "Modula-2"
     extension: str = ".mod"
     keywords: frozenset[str] = M2_KEYWORDS
+    predeclared: frozenset[str] = M2_PREDECLARED
+    reserved_pattern: str = r"(?i:m2c)_|CoefficientsV[0-9]+$"
+    # An identifier starts with a letter (gm2 accepts `_` after it).
+    ident_pattern: str = r"[A-Za-z][A-Za-z0-9_]*"
     terminator: str = " ;"
     functions: tuple[tuple[str, str], ...] = (
         ("sin", "RealMath.sin"), ("cos", "RealMath.cos"), ("tan", "RealMath.tan"),
@@ -109,6 +131,19 @@ class Modula2(SignedOperands):
 
     def power_call(self, base: str, exponent: str) -> str:
         return f"RealMath.power({base}, {exponent})"
+
+    def generated(self, module: str) -> frozenset[str]:
+        return M2_GENERATED | {module}
+
+    def module_name_problem(self, module: str) -> str | None:
+        if module in self.keywords:
+            return "a Modula-2 reserved word"
+        if module in self.predeclared or module in M2_GENERATED:
+            return "a name the module already uses (a pervasive identifier, a library module, " \
+                   "or one of its own procedures and constants)"
+        if not re.fullmatch(self.ident_pattern, module):
+            return "not a Modula-2 identifier (it must begin with a letter)"
+        return None
 
     def line_directive(self, pos: Pos) -> str:
         return f"#line {pos.line + self.line_offset} {c_string(pos.file)}"

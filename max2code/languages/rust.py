@@ -16,17 +16,31 @@ from dataclasses import dataclass
 from ..diagnostics import Pos
 from .m2 import SignedOperands
 
-# Strict, reserved and weak keywords (all editions), names that cannot even be raw identifiers
-# (self, Self, super, crate), and the names the generated module itself defines or uses.
+# Strict and reserved keywords (all editions; weak ones such as `union` are ordinary names).
 RUST_KEYWORDS = frozenset("""
 as break const continue crate else enum extern false fn for if impl in let loop match mod move
 mut pub ref return self Self static struct super trait true type unsafe use where while async
-await dyn abstract become box do final macro override priv typeof unsized virtual yield try
-union gen macro_rules raw safe
+await dyn abstract become box do final macro override priv typeof unsized virtual yield try gen _
+""".split())
+# Keywords that cannot be raw identifiers either (`r#self` is an error).
+NOT_RAW = frozenset({"self", "Self", "super", "crate", "_"})
+
+# What a `let` pattern would read as something other than a new binding (the prelude's enum
+# variants), the primitive types, the crates a module names in paths, and the prelude's traits
+# and types the module's code names.
+RUST_PREDECLARED = frozenset("""
+None Some Ok Err Option From Into Clone Copy Debug Default PartialEq
 f32 f64 i8 i16 i32 i64 i128 isize u8 u16 u32 u64 u128 usize bool char str std core alloc
-p NAME PARAMS DEGREE STRATEGY VARIANTS coefficients coefficients_degree first_root variant
 max2code_runtime
 """.split())
+
+# The module's own constants and types (module.j2); its private names begin `m2c_`.
+RUST_GENERATED = frozenset("NAME PARAMS DEGREE STRATEGY VARIANTS Params".split())
+# Its public functions and methods (and their formals): a parameter may keep such a name (a
+# `Params` field `variant`), since a `let` binding shadows a function and the functions that
+# bind parameters call none of these.
+RUST_FUNCTIONS = frozenset("coefficients coefficients_degree first_root variant from p "
+                           "tmax".split())
 
 # Values clippy's `approx_constant` knows, by the name Rust gives them.
 F64_CONSTS = (
@@ -47,15 +61,18 @@ assert set(_CONST_VALUES) == set(F64_CONSTS)
 
 def is_snake_case(ident: str) -> bool:
     """rustc's test for the `non_snake_case` lint: no upper case, no `__` inside."""
-    core = ident.strip("_")
+    core = ident.removeprefix("r#").strip("_")
     return not any(ch.isupper() for ch in core) and "__" not in core
 
 
 @dataclass(frozen=True)
 class Rust(SignedOperands):
     name: str = "rust"
+    title: str = "Rust"
     extension: str = ".rs"
     keywords: frozenset[str] = RUST_KEYWORDS
+    predeclared: frozenset[str] = RUST_PREDECLARED
+    reserved_pattern: str = r"(?i:m2c)_|coefficients_v[0-9]+$"
     # Rust's maths are f64 methods, written as paths (`f64::sin(x)`) so any argument text works.
     functions: tuple[tuple[str, str], ...] = tuple((m, f"f64::{r}") for m, r in (
         ("sin", "sin"), ("cos", "cos"), ("tan", "tan"), ("sqrt", "sqrt"), ("exp", "exp"),
@@ -70,6 +87,28 @@ class Rust(SignedOperands):
 
     def power_call(self, base: str, exponent: str) -> str:
         return f"f64::powf({base}, {exponent})"
+
+    def generated(self, module: str) -> frozenset[str]:
+        return RUST_GENERATED
+
+    def reserved(self, ident: str, module: str | None) -> str | None:
+        """A raw identifier (`r#type`) is how Rust writes a keyword as a name."""
+        if ident.startswith("r#"):
+            base = ident[2:]
+            return None if base in self.keywords and base not in NOT_RAW else "invalid"
+        return super().reserved(ident, module)
+
+    def escape(self, ident: str, why: str) -> str:
+        if why == "keyword" and ident not in NOT_RAW:
+            return "r#" + ident
+        return super().escape(ident, why)
+
+    def module_name_problem(self, module: str) -> str | None:
+        if module in self.keywords:
+            return "a Rust keyword"
+        if module in ("std", "core", "alloc", "max2code_runtime"):
+            return "the name of a crate the module uses"
+        return None
 
     def line_directive(self, pos: Pos) -> str:
         return f"// {pos.file}:{pos.line}"

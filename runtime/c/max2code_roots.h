@@ -1,17 +1,21 @@
 /*
  * max2code_roots.h -- time of next collision: the smallest root in (0, tmax]
- * of a real polynomial  c[0] + c[1] t + ... + c[degree] t^degree,  degree <= 8.
+ * of a real polynomial  c[0] + c[1] t + ... + c[degree] t^degree,  degree <= 16.
  *
  * Plain C11 functions with int/double/pointer arguments only, so that the
  * header works from generated `static` C code and from Modula-2 through a
  * DEFINITION MODULE FOR "C".  A program compiles runtime/c/max2code_roots.c and
- * links -lgsl -lgslcblas -lm (GSL is used only by M2C_METHOD_GSL).
+ * links -lgsl -lgslcblas -lm (GSL is used only by M2C_METHOD_GSL; compiled with
+ * -DM2C_NO_GSL it needs only -lm, and M2C_METHOD_GSL is then invalid input, -1).
  *
  * Contract (all functions)
- *   return  1  a root was found: 0 < *t <= tmax, *t set;
- *           0  no root in (0, tmax];
- *          -1  invalid input: a NaN/Inf coefficient, degree outside 0..8,
- *              tmax NaN or <= 0, or a NULL pointer.
+ *   return  1  a root was found: 0 < *t <= tmax, *t finite, *t set;
+ *           0  no root in (0, tmax] -- also when the first root is not
+ *              representable: it underflows to 0 (say 1e-400) or overflows
+ *              (beyond DBL_MAX, only with tmax = +INFINITY);
+ *          -1  invalid input: a NaN/Inf coefficient, degree outside 0..16,
+ *              tmax NaN or <= 0, a contact skin eps NaN, < 0 or infinite,
+ *              or a NULL pointer.
  *   *t (and *graze) are written only when 1 is returned.
  *   tmax may be +INFINITY: no upper limit.
  *   An identically zero polynomial (bodies touching forever) gives 0.
@@ -31,6 +35,19 @@
  *      threshold anywhere.
  *   Steps 1-3 repeat until nothing changes; then the coefficients are scaled
  *   by a power of two (exact) so that the largest has magnitude in [1/2, 1).
+ *   4. Extremes only: when the nonzero coefficients span more than 2^1021
+ *      (some would fall below DBL_MIN after that scaling), the variable is
+ *      changed first, t = 2^k u (exact), with the k that makes the exponents
+ *      of the coefficients least spread; terms still below DBL_MIN after the
+ *      scaling are dropped (the documented tolerance: a term below 2^-1022
+ *      of the largest), steps 1-3 run again, the solver works in u over
+ *      (0, tmax / 2^k], and the root is 2^k u.  Roots that depend on a
+ *      dropped term can be missed or misplaced: measured on the fuzz vectors
+ *      of tests/runtime/fuzz.py (coefficients of 1e+-100..1e+-308,
+ *      subnormals, ...), about 2 % of the roots reported are not the true
+ *      first root within its condition number, nearly all of them where the
+ *      coefficients span more than the double range.
+ *   All four runtimes (C, Rust, Python, Modula-2) do exactly this.
  *
  * Methods
  *   M2C_METHOD_INTERVAL (default)  interval solver with a graze check.
@@ -77,6 +94,16 @@
  *     is always reported as a graze.
  *   M2C_METHOD_INTERVAL_NOGRAZE  the same without the graze check (q = p;
  *     benchmark baseline: misses double roots, as plain interval solvers do).
+ *   Contact skin (m2c_first_root_skin, m2c_first_roots): an optional eps >= 0
+ *     in the units of c (distance squared for the shipped equations, whose
+ *     polynomial is |d(t)|^2 - R^2: a pass at gap g has a minimum of about
+ *     2 R g) makes a critical point where |p| <= eps + the rounding bound,
+ *     without a sign change, a touch: a near-miss within the skin is
+ *     reported as contact at the time of closest approach.  Crossings are
+ *     reported exactly as without it.  eps = 0 is the default behaviour.
+ *     It applies to the interval method (the quadratic's vertex included) and
+ *     to the polynomial left after exact factors of t are divided out (step
+ *     2: then in the units of c / t^j).
  *   M2C_METHOD_GSL  what the original tool did: gsl_poly_complex_solve
  *     (companion matrix) with GSL's error handler switched off for the call
  *     (and restored), smallest root in (0, tmax] whose imaginary part is at
@@ -96,7 +123,7 @@
 extern "C" {
 #endif
 
-#define M2C_MAX_DEGREE 8
+#define M2C_MAX_DEGREE 16
 
 #define M2C_METHOD_INTERVAL 0
 #define M2C_METHOD_INTERVAL_NOGRAZE 1
@@ -115,6 +142,21 @@ int m2c_first_root_method(const double c[], int degree, double tmax, double *t,
  * graze may be NULL. */
 int m2c_first_root_ex(const double c[], int degree, double tmax, double *t,
                       int method, int *graze);
+
+/* The default method with a contact skin eps >= 0 (see "Contact skin"):
+ * eps = 0 gives exactly m2c_first_root_ex(..., M2C_METHOD_INTERVAL, graze).
+ * graze may be NULL. */
+int m2c_first_root_skin(const double c[], int degree, double tmax, double eps,
+                        double *t, int *graze);
+
+/* Batch: m polynomials of one degree, row i at c + i (degree + 1), each
+ * solved as m2c_first_root_skin(row, degree, tmax, eps, ...) would.  t[i] is
+ * the root, or NaN when there is none or row i is invalid; status[i] (status
+ * may be NULL) is that call's 1, 0 or -1.  Returns the number of roots found,
+ * or -1 (nothing written) when c or t is NULL, m < 0 or degree is outside
+ * 0..16. */
+int m2c_first_roots(const double c[], int m, int degree, double tmax,
+                    double eps, double t[], int status[]);
 
 #ifdef __cplusplus
 }

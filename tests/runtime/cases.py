@@ -575,7 +575,7 @@ def named_cases() -> list[Case]:
         ("zero-tmax", ok, 0.0),
         ("neg-tmax", ok, -1.0),
         ("neg-inf-tmax", ok, -math.inf),
-        ("degree-9", (1.0,) * 10, math.inf),
+        ("degree-17", (1.0,) * 18, math.inf),
     ):
         cases.append(Case(name, "invalid", c, tmax, expect="invalid"))
     return cases

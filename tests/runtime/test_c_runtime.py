@@ -111,7 +111,7 @@ def test_graze_flag_and_nograze(driver: Path) -> None:
 def test_invalid_degree_and_method(driver: Path) -> None:
     lines = [
         "0 inf -1 1",
-        "0 inf 9 1 1 1 1 1 1 1 1 1 1",
+        "0 inf 17 " + " ".join(["1"] * 18),
         "7 inf 2 " + " ".join(x.hex() for x in (1.0, -3.0, 2.0)),
         "-1 inf 2 " + " ".join(x.hex() for x in (1.0, -3.0, 2.0)),
     ]

@@ -37,6 +37,26 @@ SENTINEL = 0x7FF8DEADBEEF0001  # t before each call (a NaN); graze starts as 7
 
 Result = tuple[int, float, bool]
 
+# The real's IEEE bit pattern as 16 hex digits (both Modula-2 programs below print with it).
+PUT_REAL = """\
+PROCEDURE PutReal (x: REAL) ;
+VAR
+   b: Bits ;
+   k: INTEGER ;
+   d: CARDINAL ;
+   s: ARRAY [0..16] OF CHAR ;
+BEGIN
+   b := CAST(Bits, x) ;
+   FOR k := 15 TO 0 BY -1 DO
+      d := VAL(CARDINAL, b MOD 16) ;
+      IF d < 10 THEN s[k] := CHR(ORD('0') + d) ELSE s[k] := CHR(ORD('a') + d - 10) END ;
+      b := b DIV 16
+   END ;
+   s[16] := 0C ;
+   WriteString(s)
+END PutReal ;
+"""
+
 M2_DRIVER = """\
 MODULE RootsDriver ;
 (* Line driver for the stability tests: each input line
@@ -121,23 +141,7 @@ BEGIN
    RETURN CAST(REAL, b)
 END Real ;
 
-PROCEDURE PutReal (x: REAL) ;
-VAR
-   b: Bits ;
-   k: INTEGER ;
-   d: CARDINAL ;
-   s: ARRAY [0..16] OF CHAR ;
-BEGIN
-   b := CAST(Bits, x) ;
-   FOR k := 15 TO 0 BY -1 DO
-      d := VAL(CARDINAL, b MOD 16) ;
-      IF d < 10 THEN s[k] := CHR(ORD('0') + d) ELSE s[k] := CHR(ORD('a') + d - 10) END ;
-      b := b DIV 16
-   END ;
-   s[16] := 0C ;
-   WriteString(s)
-END PutReal ;
-
+{put_real}
 PROCEDURE Query ;  (* the line's first token, METHOD, is in tok *)
 BEGIN
    method := ToInt() ;
@@ -200,7 +204,7 @@ def drivers(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, Path]:
     _run([gcc, *c_test.STRICT, "-I", str(C_DIR), str(C_DIR / "max2code_roots_driver.c"),
           str(obj), "-o", "c_driver", *libs], work)
     shutil.copy(M2_DIR / "Max2codeRoots.def", work)
-    (work / "RootsDriver.mod").write_text(M2_DRIVER.format(sentinel=SENTINEL))
+    (work / "RootsDriver.mod").write_text(M2_DRIVER.format(sentinel=SENTINEL, put_real=PUT_REAL))
     iso = subprocess.run([gm2, "-print-file-name=m2/m2iso"], capture_output=True, text=True,
                          check=True).stdout.strip()
     _run([gm2, "-fiso", "-fcpp", "-g", "-Wall", "-Werror", "RootsDriver.mod", str(obj),
@@ -319,7 +323,7 @@ def test_invalid_degree_and_method(drivers: tuple[Path, Path]) -> None:
     c = (1.0, -3.0, 2.0)
     lines = [
         m2_line(0, (1.0,), math.inf, degree=-1),
-        m2_line(0, (1.0,) * 10, math.inf, degree=9),
+        m2_line(0, (1.0,) * 18, math.inf, degree=17),
         m2_line(7, c, math.inf),
         m2_line(-1, c, math.inf),
         m2_line(0, c, math.inf),  # the same polynomial, valid: root 0.5
@@ -346,3 +350,62 @@ def test_report_worst_errors(case_results: dict[tuple[str, str], Result],
     table = cases.format_worst(cases.worst_errors(case_results), "Modula-2 runtime: worst relative error")
     with capsys.disabled():
         print("\n" + table)
+
+
+SKIN_AND_BATCH = """\
+MODULE SkinBatch ;
+(* The contact skin and the batch entry point through the binding: prints
+   status, t (bits), graze for ((t-1)^2 + 1e-9)(3 - t) without and with a skin of 1e-8,
+   then the batch count and its two roots (bits). *)
+FROM SYSTEM IMPORT CAST ;
+FROM STextIO IMPORT WriteString, WriteLn ;
+FROM SWholeIO IMPORT WriteInt ;
+FROM Max2codeRoots IMPORT m2c_first_root_skin, m2c_first_roots ;
+
+TYPE
+   Bits = LONGCARD ;
+
+VAR
+   c: ARRAY [0..3] OF REAL ;
+   rows: ARRAY [0..5] OF REAL ;
+   ts: ARRAY [0..1] OF REAL ;
+   st: ARRAY [0..1] OF INTEGER ;
+   t: REAL ;
+   g, r: INTEGER ;
+
+{put_real}
+BEGIN
+   c[0] := 3.0 * (1.0 + 1.0E-9) ; c[1] := -(7.0 + 1.0E-9) ; c[2] := 5.0 ; c[3] := -1.0 ;
+   r := m2c_first_root_skin(c, 3, 1.0E300, 0.0, t, g) ;
+   WriteInt(r, 0) ; WriteString(" ") ; PutReal(t) ; WriteString(" ") ; WriteInt(g, 0) ; WriteLn ;
+   r := m2c_first_root_skin(c, 3, 1.0E300, 1.0E-8, t, g) ;
+   WriteInt(r, 0) ; WriteString(" ") ; PutReal(t) ; WriteString(" ") ; WriteInt(g, 0) ; WriteLn ;
+   rows[0] := 2.0 ; rows[1] := -3.0 ; rows[2] := 1.0 ;
+   rows[3] := 1.0 ; rows[4] := 1.0 ; rows[5] := 1.0 ;
+   r := m2c_first_roots(rows, 2, 2, 1.0E300, 0.0, ts, st) ;
+   WriteInt(r, 0) ; WriteString(" ") ; PutReal(ts[0]) ; WriteString(" ") ; WriteInt(st[1], 0) ; WriteLn
+END SkinBatch.
+"""
+
+
+def test_skin_and_batch_through_the_binding(tmp_path: Path) -> None:
+    """m2c_first_root_skin and m2c_first_roots called from Modula-2: the crossing at 3 without
+    a skin, the touch at 1 (graze) with it; the batch finds one root (1) of two rows."""
+    gcc, gm2 = require("gcc"), require("gm2")
+    obj = tmp_path / "max2code_roots.o"
+    _run([gcc, *c_test.STRICT, "-I", str(C_DIR), "-c", str(C_DIR / "max2code_roots.c"), "-o", str(obj)],
+         tmp_path)
+    shutil.copy(M2_DIR / "Max2codeRoots.def", tmp_path)
+    (tmp_path / "SkinBatch.mod").write_text(SKIN_AND_BATCH.format(put_real=PUT_REAL))
+    iso = subprocess.run([gm2, "-print-file-name=m2/m2iso"], capture_output=True, text=True,
+                         check=True).stdout.strip()
+    _run([gm2, "-fiso", "-g", "-Wall", "SkinBatch.mod", str(obj), "-o", "skin_batch", f"-L{iso}",
+          "-lm2iso", "-lpthread", "-lgsl", "-lgslcblas", "-lm"], tmp_path)
+    out = subprocess.run([str(tmp_path / "skin_batch")], capture_output=True, text=True, timeout=60)
+    assert out.returncode == 0, out.stderr
+    lines = [ln.split() for ln in out.stdout.splitlines()]
+    st, t, g = int(lines[0][0]), _float(lines[0][1]), int(lines[0][2])
+    assert st == 1 and abs(t - 3.0) < 1e-14 and g == 0
+    st, t, g = int(lines[1][0]), _float(lines[1][1]), int(lines[1][2])
+    assert st == 1 and abs(t - 1.0) < 1e-6 and g == 1
+    assert int(lines[2][0]) == 1 and _float(lines[2][1]) == 1.0 and int(lines[2][2]) == 0

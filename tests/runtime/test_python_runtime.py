@@ -1,6 +1,8 @@
-"""The pure-Python runtime (runtime/python/max2code_runtime) against the
-shared hard cases and random polynomials -- the same judge and the same
-bounds as the C runtime, except that Python has no GSL method."""
+"""The Python runtime (runtime/python/max2code_runtime) against the shared hard cases and
+random polynomials -- the same judge and the same bounds as the C runtime, except that Python
+has no GSL method -- on both backends: the C runtime through cffi ("c", built by
+`python -m max2code_runtime.build`; required under CI) and the pure-Python port ("python").
+"""
 from __future__ import annotations
 
 import math
@@ -18,31 +20,58 @@ import max2code_runtime as rt  # noqa: E402
 RANDOM_COUNT = int(os.environ.get("M2C_RANDOM_CASES", "3000"))
 ALL = cases.all_cases()
 PY_METHODS = list(rt.METHODS)
+C_BACKEND = rt._load_c()
 
 Result = tuple[int, float, bool]
 
 
+@pytest.fixture(params=["c", "python"])
+def backend(request: pytest.FixtureRequest, monkeypatch: pytest.MonkeyPatch) -> str:
+    if request.param == "c":
+        if C_BACKEND is None:
+            why = "the cffi backend is not built (python -m max2code_runtime.build; needs cffi)"
+            if os.environ.get("CI"):
+                pytest.fail(why + " -- required in CI")
+            pytest.skip(why)
+        monkeypatch.setattr(rt, "_C", C_BACKEND)
+    else:
+        monkeypatch.setattr(rt, "_C", None)
+    return request.param
+
+
+def test_backend_in_use() -> None:
+    """Importing picks the C backend when it is built, unless MAX2CODE_PURE_PYTHON is set."""
+    assert rt.BACKEND == ("c" if C_BACKEND is not None and not os.environ.get("MAX2CODE_PURE_PYTHON")
+                          else "python")
+    if os.environ.get("CI"):
+        assert C_BACKEND is not None, "scripts/setup builds the cffi backend"
+
+
 @pytest.mark.parametrize("method", PY_METHODS)
 @pytest.mark.parametrize("case", ALL, ids=[c.name for c in ALL])
-def test_case(case: cases.Case, method: str) -> None:
+def test_case(case: cases.Case, method: str, backend: str) -> None:
     st, t, g = rt.first_root_status(case.coeffs, case.tmax, method)
     why = cases.judge(case, method, st, t, g)
-    assert why is None, f"{case.name} [{method}]: {why}"
+    assert why is None, f"{case.name} [{method}, {backend}]: {why}"
 
 
-def test_first_root_contract() -> None:
+def test_first_root_contract(backend: str) -> None:
     assert rt.first_root(cases.KAHAN) == 1.0
-    assert rt.first_root([1.0, math.nan]) is None  # invalid -> None
     assert rt.first_root([1.0, 1.0]) is None  # root -1: none
     assert rt.first_root([-1.0, 1.0], tmax=0.5) is None
     assert rt.first_root([-1.0, 1.0], tmax=1.0) == 1.0
-    assert rt.first_root_status([1.0] * 10) == (-1, pytest.approx(math.nan, nan_ok=True), False)
-    assert rt.first_root_status([], 1.0)[0] == -1
+    # invalid input is not "no root" (issue 11): ValueError, and status -1
+    for c, tmax, eps in (([1.0, math.nan], 1.0, 0.0), ([1.0, math.inf], 1.0, 0.0), ([1.0] * 18, 1.0, 0.0),
+                         ([], 1.0, 0.0), (["x"], 1.0, 0.0), ([-1.0, 1.0], 0.0, 0.0),
+                         ([-1.0, 1.0], math.nan, 0.0), ([-1.0, 1.0], 1.0, -1e-9), ([-1.0, 1.0], 1.0, math.nan)):
+        with pytest.raises(ValueError, match="invalid input"):
+            rt.first_root(c, tmax, eps)
+        assert rt.first_root_status(c, tmax, eps=eps)[0] == -1
+    assert rt.first_root_status([1.0] * 17, 1.0)[0] in (0, 1)  # degree 16 is valid
     assert rt.first_root_status([-1.0, 1.0], 1.0, method="gsl")[0] == -1  # no GSL in Python
-    assert rt.first_root_status(["x"], 1.0)[0] == -1
 
 
-def test_graze_flag_and_nograze() -> None:
+def test_graze_flag_and_nograze(backend: str) -> None:
     """A touch is reported flagged; without the check it is skipped."""
     c = cases.poly_from_roots(["1", "1", "5"], [("0", "1")])
     c = (c[0] * (1 + 2.0**-52),) + c[1:]  # no exact zero at the touch
@@ -52,21 +81,84 @@ def test_graze_flag_and_nograze() -> None:
     assert st == 1 and abs(t - 5) < 1e-12 and not g
 
 
+def test_contact_skin(backend: str) -> None:
+    """((t-1)^2 + d)(3 - t): a pass at d above zero at t = 1, then a crossing at 3.  Without a
+    skin the crossing is the answer; a skin above d makes the pass a touch at t = 1 (the time of
+    closest approach); a skin below d changes nothing."""
+    d = 1e-9
+    c = [3.0 * (1.0 + d), -(7.0 + d), 5.0, -1.0]
+    assert rt.first_root(c) == pytest.approx(3.0, rel=1e-15)
+    st, t, g = rt.first_root_status(c, eps=1e-8)
+    assert st == 1 and g and abs(t - 1) < 1e-6
+    assert rt.first_root(c, eps=1e-10) == rt.first_root(c)
+    # scaled coefficients: the skin is in the units of c
+    big = [x * 1e6 for x in c]
+    assert rt.first_root(big, eps=1e-8) == pytest.approx(3.0, rel=1e-15)
+    assert rt.first_root(big, eps=1e-2) == pytest.approx(1.0, rel=1e-6)
+    # the quadratic's vertex
+    assert rt.first_root([1.0 + d, -2.0, 1.0]) is None
+    assert rt.first_root([1.0 + d, -2.0, 1.0], eps=2e-9) == 1.0
+
+
 def test_python_matches_c_algorithm_on_kahan_discriminant() -> None:
-    """Dekker's two-product gives the exact error fma would: the corrected
-    discriminant of Kahan's quadratic is exactly h^2 - a c = 1 (scaled)."""
-    from max2code_runtime.roots import quad_roots
+    """The corrected discriminant of Kahan's quadratic is exactly h^2 - a c = 1 (scaled)."""
+    from max2code_runtime.solver import quad_roots
 
     roots, disc = quad_roots(94906266.375, -2 * 94906267.375, 94906268.375)
-    assert roots[0] == 1.0
+    assert roots is not None and roots[0] == 1.0
     assert roots[1] == pytest.approx(1.0000000210734243, rel=4e-16)
     assert disc > 0
 
 
+def test_fma_emulation_is_correctly_rounded() -> None:
+    """The pure-Python fma (exact rationals, one rounding) against cases where a*b + c
+    rounded twice is wrong."""
+    from max2code_runtime.solver import _fma_exact
+
+    a = 1.0 + 2.0**-30
+    assert _fma_exact(a, a, -1.0) == 2.0**-29 + 2.0**-60  # a*a rounds the 2^-60 away
+    assert _fma_exact(2.0**1023, 2.0, -(2.0**1023)) == 2.0**1023  # a*b alone overflows
+    assert _fma_exact(1e308, 10.0, -1e308) == math.inf
+    assert _fma_exact(1e308, 10.0, 0.0) == math.inf
+    assert _fma_exact(2.0**-1074, 0.5, 0.0) == 0.0  # ties to even
+    assert _fma_exact(2.0**-1074, 1.5, 0.0) == 2.0**-1073
+
+
+def test_first_roots_batch(backend: str) -> None:
+    np = pytest.importorskip("numpy")
+    rows = [[-6.0, 11.0, -6.0, 1.0], [1.0, 1.0, 1.0, 1.0], [math.nan, 1.0, 0.0, 0.0], [2.0, -3.0, 1.0, 0.0]]
+    got = rt.first_roots(np.array(rows), math.inf)
+    assert isinstance(got, np.ndarray) and got.shape == (4,)
+    assert got[0] == 1.0 and math.isnan(got[1]) and math.isnan(got[2]) and got[3] == 1.0
+    rc = cases.random_cases(200)
+    by_degree: dict[int, list] = {}
+    for r in rc:
+        by_degree.setdefault(len(r.coeffs), []).append(r.coeffs)
+    for width, group in by_degree.items():
+        batch = rt.first_roots(np.array(group), 10.0)
+        single = [rt.first_root(c, 10.0) for c in group]
+        assert [None if math.isnan(x) else x for x in batch] == single
+    assert rt.first_roots(np.zeros((0, 3))).shape == (0,)
+    with pytest.raises(ValueError):
+        rt.first_roots(np.zeros((2, 18)))
+    with pytest.raises(ValueError):
+        rt.first_roots(np.zeros(5))
+
+
+def test_first_roots_without_numpy(backend: str, monkeypatch: pytest.MonkeyPatch) -> None:
+    """numpy is optional for the runtime: a list of lists gives a list."""
+    monkeypatch.setitem(sys.modules, "numpy", None)  # import numpy -> ImportError
+    got = rt.first_roots([[-6.0, 11.0, -6.0, 1.0], [1.0, 1.0, 1.0, 1.0]], 5.0)
+    assert isinstance(got, list) and got[0] == 1.0 and math.isnan(got[1])
+    with pytest.raises(ValueError):
+        rt.first_roots([[1.0, 2.0], [1.0]])
+
+
 # Same kappa-relative bounds as for C (see test_c_runtime.random_bound).
-def test_random() -> None:
+def test_random(backend: str) -> None:
+    count = RANDOM_COUNT if backend == "c" else RANDOM_COUNT // 3
     results = [(case, method, rt.first_root_status(case.coeffs, case.tmax, method))
-               for case in cases.random_cases(RANDOM_COUNT) for method in PY_METHODS]
+               for case in cases.random_cases(count) for method in PY_METHODS]
     bad = list(cases.random_failures(results))
     assert not bad, f"{len(bad)} failures, first: " + "\n".join(bad[:10])
 

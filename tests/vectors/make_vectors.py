@@ -1,52 +1,39 @@
-"""Regenerate tests/vectors/<equation stem>.jsonl for every shipped equation (equations/*.mxm).
+"""Regenerate tests/vectors/<equation stem>.jsonl for every shipped equation (equations/*.mxm)
+and for the higher-order orbit models (bench/models/orbit-taylor6/8.mxm: degrees 12 and 16,
+the circles-orbit cases).
 
-    python tests/vectors/make_vectors.py            # all shipped equations
+    python tests/vectors/make_vectors.py            # all of them
     python tests/vectors/make_vectors.py circles-accel
 
-The answers come from the independent oracle of tests/oracle.py: Maxima runs the ORIGINAL .mxm
+The answers come from the independent oracle (max2code/oracle.py): Maxima runs the ORIGINAL .mxm
 program with the parameters substituted as exact rationals (every double is one) and expands
 the polynomial in t exactly; the first root in (0, tmax] comes from mpmath at 60 digits, and
 whether it is a multiple root (a graze) from an exact gcd of p and p'. Nothing of max2code's
 coefficient extraction, printers or templates is used. The output is deterministic.
 
-File format (one JSON object per line; the first line is a header):
-  {"max2code_vectors": 1, "equation": "equations/NAME.mxm", "parameters": [...], ...}
-  {"family": F, "params": {name: value}, "tmax": T, "coefficients": [...], "first_root": R,
-   "graze": G, "note": "..."}
-* params: exact doubles, as a decimal string when that string is the double exactly ("0.75"),
-  else a hex float ("0x1.0000000112e0be8p+0");
-* tmax: a JSON number (an exact double);
-* coefficients: the exact coefficients, c[k] multiplying t^k, as rational strings ("-3/8");
-  trailing zero coefficients are kept up to the equation's general degree;
-* first_root: the smallest real root in (0, tmax] as a decimal string of 30 significant
-  digits, or null;
-* graze: true when that root is a multiple root (the bodies touch without crossing).
-The families and what each case is meant to exercise are listed in FAMILIES below.
+The file format is max2code/vectors.py's (the one `max2code vectors` writes for any equation);
+these hand-made cases add what only knowing the motion can build. The families and what each
+case is meant to exercise are listed in FAMILIES below.
 """
 
 from __future__ import annotations
 
-import json
 import sys
 import zlib
 from fractions import Fraction
 from pathlib import Path
 
-import mpmath
-
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent.parent
-sys.path.insert(0, str(ROOT / "tests"))
 sys.path.insert(0, str(ROOT))
 
-from oracle import exact_coefficients, random_samples  # noqa: E402
-
+from max2code import oracle, vectors  # noqa: E402
 from max2code.generate import load  # noqa: E402
+from max2code.vectors import random_samples  # noqa: E402
 
-TMAX = 10.0
-DIGITS = 60
+TMAX = vectors.TMAX
 FAMILIES = {
-    "generic": "random game-like parameters (tests/oracle.py's random_samples), general variant",
+    "generic": "random game-like parameters (max2code/vectors.py's random_samples), general variant",
     "no_root": "separating, passing wide, or colliding only after tmax",
     "graze": "closest approach exactly at contact, exact binary values: a double root",
     "cluster": "two (or four) roots close together: a shallow clip",
@@ -57,6 +44,8 @@ FAMILIES = {
     "far": "one colliding case translated to about 1e8 from the origin",
 }
 SCALES = (1e-8, 1e-4, 1e4, 1e8)
+# The orbit models of order 6 and 8 (degree 12 and 16): circles-orbit's parameters and cases.
+HIGH_ORDER = ("orbit-taylor6", "orbit-taylor8")
 FAR = 1e8
 
 
@@ -224,8 +213,8 @@ def point_line(orbit: bool, radius: bool = False):
 
 def equation_cases(stem: str, names: tuple[str, ...]) -> list[tuple[str, str, dict, float]]:
     """All cases of one equation, in a fixed order: (family, note, params, tmax)."""
-    if stem.startswith("circles"):
-        cases, scaled_case, positions = circles(stem == "circles-orbit")
+    if stem.startswith("circles") or stem in HIGH_ORDER:
+        cases, scaled_case, positions = circles(stem == "circles-orbit" or stem in HIGH_ORDER)
     else:
         cases, scaled_case, positions = point_line(stem in ("point-orbit-line", "circle-orbit-line"),
                                                    radius=stem == "circle-orbit-line")
@@ -256,109 +245,18 @@ def equation_cases(stem: str, names: tuple[str, ...]) -> list[tuple[str, str, di
 # Exact answers
 # ---------------------------------------------------------------------------------------------
 
-def exact_value(x: float) -> str:
-    """The double x exactly: a short decimal string when that is exact, else a hex float."""
-    text = repr(float(x))
-    return text if Fraction(text) == Fraction(x) else float.hex(x)
-
-
-def _trim(cs: list[Fraction]) -> list[Fraction]:
-    cs = list(cs)
-    while cs and cs[-1] == 0:
-        cs.pop()
-    return cs
-
-
-def _rem(a: list[Fraction], b: list[Fraction]) -> list[Fraction]:
-    a = _trim(a)
-    while len(a) >= len(b):
-        q = a[-1] / b[-1]
-        shift = len(a) - len(b)
-        for i, bc in enumerate(b):
-            a[shift + i] -= q * bc
-        a = _trim(a[:-1])
-    return a
-
-
-def gcd_poly(a: list[Fraction], b: list[Fraction]) -> list[Fraction]:
-    a, b = _trim(a), _trim(b)
-    while b:
-        a, b = b, _rem(a, b)
-    return a
-
-
-def _div(a: list[Fraction], b: list[Fraction]) -> list[Fraction]:
-    """The exact quotient a / b (b divides a)."""
-    a, q = _trim(a), [Fraction(0)] * (len(_trim(a)) - len(b) + 1)
-    while len(a) >= len(b):
-        shift = len(a) - len(b)
-        q[shift] = a[-1] / b[-1]
-        for i, bc in enumerate(b):
-            a[shift + i] -= q[shift] * bc
-        a = _trim(a[:-1])
-    assert not a, "not a divisor"
-    return q
-
-
-def real_roots(cs: list[Fraction], tmax: float) -> list[mpmath.mpf]:
-    """The distinct real roots in (0, tmax] of the exact polynomial, ascending, at DIGITS: the
-    roots of its square-free part p / gcd(p, p'), which are all simple (so converge fully)."""
-    mpmath.mp.dps = DIGITS
-    cs = _trim(cs)
-    g = gcd_poly(cs, [k * c for k, c in enumerate(cs)][1:])
-    if len(g) >= 2:
-        cs = _div(cs, g)
-    while cs and cs[0] == 0:
-        cs.pop(0)
-    if len(cs) < 2:
-        return []
-    poly = [mpmath.mpf(c.numerator) / c.denominator for c in reversed(cs)]
-    roots = mpmath.polyroots(poly, maxsteps=800, extraprec=800)
-    found = []
-    for r in roots:
-        re_, im = mpmath.re(r), mpmath.im(r)
-        if abs(im) <= mpmath.mpf(10) ** -40 * max(1, abs(re_)) and 0 < re_ <= tmax:
-            if not any(abs(re_ - f) <= mpmath.mpf(10) ** -35 * max(1, abs(re_)) for f in found):
-                found.append(re_)
-    return sorted(found)
-
-
-def is_multiple(cs: list[Fraction], root: mpmath.mpf) -> bool:
-    """Whether `root` is a multiple root: a root of gcd(p, p') (exact arithmetic)."""
-    deriv = [k * c for k, c in enumerate(cs)][1:]
-    g = gcd_poly(list(cs), deriv)
-    if len(g) < 2:
-        return False
-    value = mpmath.polyval([mpmath.mpf(c.numerator) / c.denominator for c in reversed(g)], root)
-    size = sum(abs(mpmath.mpf(c.numerator) / c.denominator) * abs(root) ** k
-               for k, c in enumerate(g))
-    return abs(value) <= mpmath.mpf(10) ** -30 * size
-
-
 def vectors_for(mxm: Path) -> list[dict]:
-    _, poly = load(str(mxm))
+    spec, poly = load(str(mxm))
     names = poly.parameters
-    cases = equation_cases(mxm.stem, names)
-    samples = [tuple(float(params[n]) for n in names) for _, _, params, _ in cases]
-    exact = exact_coefficients(mxm, names, samples)
+    cases = [vectors.Case(family, note, params, tmax)
+             for family, note, params, tmax in equation_cases(mxm.stem, names)]
     lines = []
-    for (family, note, params, tmax), ex in zip(cases, exact):
-        cs = list(ex.coefficients)
-        assert len(cs) <= poly.degree + 1
-        roots = real_roots(cs, tmax)
-        first = roots[0] if roots else None
-        graze = first is not None and is_multiple(cs, first)
-        check_intent(mxm.stem, family, note, cs, roots, graze, poly.degree)
-        padded = cs + [Fraction(0)] * (poly.degree + 1 - len(cs))
-        lines.append({
-            "family": family,
-            "params": {n: exact_value(params[n]) for n in names},
-            "tmax": tmax,
-            "coefficients": [str(c) for c in padded],
-            "first_root": None if first is None else mpmath.nstr(first, 30),
-            "graze": graze,
-            "note": note,
-        })
+    for case, line in vectors.answer(spec, names, poly.degree, cases, timeout=600):
+        assert line is not None, case
+        cs = [Fraction(c) for c in line["coefficients"]]
+        roots = oracle.real_roots(cs, case.tmax)
+        check_intent(mxm.stem, case.family, case.note, cs, roots, line["graze"], poly.degree)
+        lines.append(line)
     return lines
 
 
@@ -379,28 +277,16 @@ def check_intent(stem: str, family: str, note: str, cs: list[Fraction], roots: l
     if family in ("scale", "far"):
         assert roots, where
     if family == "degree_drop" and "variant" not in note:
-        assert len(_trim(cs)) - 1 < degree, (where, len(_trim(cs)) - 1)
-
-
-def header(mxm: Path, names: tuple[str, ...]) -> dict:
-    return {
-        "max2code_vectors": 1,
-        "equation": mxm.relative_to(ROOT).as_posix(),
-        "parameters": list(names),
-        "oracle": "tests/oracle.py: Maxima expands the original equation at exact rational "
-                  f"parameters; first root by mpmath at {DIGITS} digits; graze by exact "
-                  "gcd(p, p')",
-        "generator": "tests/vectors/make_vectors.py",
-        "families": FAMILIES,
-        "tolerances": "max2code/check.py (TOLERANCES)",
-    }
+        top = max(k for k, c in enumerate(cs) if c != 0)
+        assert top < degree, (where, top)
 
 
 def text(mxm: Path) -> str:
     """The whole vector file of one equation."""
     _, poly = load(str(mxm))
-    lines = [header(mxm, poly.parameters), *vectors_for(mxm)]
-    return "".join(json.dumps(line) + "\n" for line in lines)
+    head = vectors.header(mxm.relative_to(ROOT).as_posix(), poly.parameters, FAMILIES,
+                          "tests/vectors/make_vectors.py")
+    return vectors.text(head, vectors_for(mxm))
 
 
 def write(mxm: Path) -> Path:
@@ -411,6 +297,7 @@ def write(mxm: Path) -> Path:
 
 def main(argv: list[str]) -> int:
     equations = sorted((ROOT / "equations").glob("*.mxm"))
+    equations += [ROOT / "bench" / "models" / f"{stem}.mxm" for stem in HIGH_ORDER]
     if argv:
         equations = [e for e in equations if e.stem in argv]
     for mxm in equations:

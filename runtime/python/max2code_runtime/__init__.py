@@ -1,46 +1,62 @@
 """max2code runtime for generated Python: time of next collision.
 
 ``first_root(c, tmax)`` is the smallest root in (0, tmax] of
-``c[0] + c[1] t + ... + c[n] t^n`` (n <= 8), or None.  Pure Python 3.11, the
-same algorithm and contract as the C runtime (runtime/c/max2code_roots.h
-documents both): validation, the shared preparation (drop exact-zero and
-negligible leading terms, divide out t when c[0] == 0, power-of-two
-normalisation), then
+``c[0] + c[1] t + ... + c[n] t^n`` (n <= 16), or None when there is none; invalid input (a NaN
+or infinite coefficient, no or more than 17 coefficients, tmax NaN or <= 0) raises ValueError.
+``first_root_status`` never raises: it returns (status, t, graze) with status -1 for invalid
+input, as the C runtime does.  ``first_roots`` solves a batch (an (M, N+1) array) at once.
 
-* "interval" (default): critical points of the derivatives split the window
-  into monotone pieces; the first sign change is polished by safeguarded
-  Newton to full relative accuracy; a critical point where |p| is within
-  Horner's rounding bound and p does not change sign is a touch (graze);
-* "interval-nograze": the same without the touch check;
-* "closed": closed forms -- the quadratic for degree <= 2, the TOMS 1010
-  quartic for degree 3-4 (a cubic as t * p(t)), interval above 4.
+Two backends, one algorithm (runtime/c/max2code_roots.h documents it):
 
-There is no GSL method in Python.
+* ``"c"``: the C runtime itself through cffi (``max2code_runtime._roots_c``, built by
+  ``python -m max2code_runtime.build`` -- scripts/setup does it), used whenever it imports;
+* ``"python"``: ``solver.py``, a line-by-line port of the C solver in pure Python, the fallback
+  (or forced with MAX2CODE_PURE_PYTHON=1).
+
+Both give bit-identical answers for the interval methods (the tests compare them).  Methods:
+"interval" (default; critical points within Horner's rounding bound -- plus the optional
+contact skin ``eps`` -- that do not change sign are touches, flagged graze), "interval-nograze"
+(sign changes only) and "closed" (the quadratic for degree <= 2, the TOMS 1010 quartic for
+degree 3-4, interval above 4; the Python backend runs quartic.py, a port of the C one).
 """
 from __future__ import annotations
 
 import math
-from typing import Sequence
+import os
+from typing import Any, Sequence
 
-from . import quartic
-from .roots import (
-    REAL_TOL,
-    first_root_interval,
-    first_root_quadratic,
-    is_valid,
-    normalise,
-    reduce,
-    root_bound,
-)
+from . import quartic, solver
 
-__all__ = ["first_root", "first_root_status", "METHODS"]
+__all__ = ["first_root", "first_root_status", "first_roots", "METHODS", "BACKEND", "MAX_DEGREE"]
 
 METHODS = ("interval", "interval-nograze", "closed")
+MAX_DEGREE = solver.MAXN
+_C_METHOD = {"interval": 0, "interval-nograze": 1, "closed": 3}
+REAL_TOL = math.sqrt(2.0**-52)  # |imag| <= REAL_TOL |z| counts as real (closed method)
+
+
+def _load_c() -> Any:
+    if os.environ.get("MAX2CODE_PURE_PYTHON"):
+        return None
+    try:
+        from . import _cbackend
+    except ImportError:
+        return None
+    return _cbackend
+
+
+_C = _load_c()
+BACKEND = "c" if _C is not None else "python"
+
+
+# ---------------------------------------------------------------------------
+# The pure-Python path
+# ---------------------------------------------------------------------------
 
 
 def _pick_first_real(roots: Sequence[complex], tmax: float) -> tuple[float, bool] | None:
-    """Smallest real root in (0, tmax]; |imag| <= sqrt(eps) |z| counts as
-    real (a rounding-split double root), reported as a graze."""
+    """Smallest real root in (0, tmax]; |imag| <= sqrt(eps) |z| counts as real (a
+    rounding-split double root), reported as a graze."""
     best: tuple[float, bool] | None = None
     for z in roots:
         x, y = z.real, z.imag
@@ -62,42 +78,126 @@ def _first_root_closed(c: list[float], n: int, tmax: float) -> tuple[float, bool
     return _pick_first_real(roots, tmax)
 
 
-def first_root_status(c: Sequence[float], tmax: float = math.inf, method: str = "interval") -> tuple[int, float, bool]:
-    """(status, t, graze): status 1 = root t in (0, tmax], 0 = none there,
-    -1 = invalid input (NaN/Inf coefficient, more than 9 or no coefficients,
-    tmax NaN or <= 0, unknown method); t is nan unless status is 1; graze
-    says the root is a touch (double root without sign change)."""
-    try:
-        cc = [float(x) for x in c]
-        tmax = float(tmax)
-    except (TypeError, ValueError):
-        return -1, math.nan, False
-    if method not in METHODS or not is_valid(cc, tmax):
-        return -1, math.nan, False
-    n = reduce(cc, tmax)
+def _valid(cc: list[float], tmax: float, eps: float) -> bool:
+    return (1 <= len(cc) <= MAX_DEGREE + 1 and not math.isnan(tmax) and tmax > 0
+            and all(math.isfinite(x) for x in cc) and 0 <= eps < math.inf)
+
+
+def _solve_python(cc: list[float], tmax: float, method: str, eps: float) -> tuple[int, float, bool]:
+    """The C runtime's solve(), on validated input."""
+    c = cc + [0.0] * (MAX_DEGREE + 1 - len(cc))
+    n = solver.reduce(c, len(cc) - 1, tmax)
     if n <= 0:
         return 0, math.nan, False
-    normalise(cc, n)
-    graze_check = method != "interval-nograze"
+    tu = tmax
+    flushed, k, E = solver.normalise(c, n)
+    if flushed:
+        tu = solver._ldexp(tmax, -k)
+        n = solver.reduce(c, n, tu)
+        if n <= 0 or not tu > 0:
+            return 0, math.nan, False
+        E += solver.normalise(c, n)[2]
+    if method == "interval-nograze":
+        skin = -1.0
+    else:
+        skin = 0.0 if eps == 0 else solver._ldexp(eps, -E)
     found: tuple[float, bool] | None
     if n == 1:
-        r = -cc[0] / cc[1]
-        found = (r, False) if 0 < r <= tmax else None
+        r = -c[0] / c[1]
+        found = (r, False) if 0 < r <= tu else None
     elif n == 2:
-        found = first_root_quadratic(cc, tmax, graze_check)
+        found = solver.first_root_quadratic(c, tu, skin)
     elif method == "closed" and n <= 4:
-        found = _first_root_closed(cc, n, tmax)
+        found = _first_root_closed(c, n, tu)
     else:
-        T = min(tmax, root_bound(cc, n))  # all roots lie below the bound
-        found = first_root_interval(cc, n, T, graze_check) if T > 0 else None
+        B = solver.root_bound(c, n)
+        T = tu if tu < B else B
+        found = solver.first_root_interval(c, n, T, skin) if T > 0 else None
     if found is None:
         return 0, math.nan, False
-    return 1, found[0], found[1]
+    t, graze = found
+    if k != 0:
+        t = solver._ldexp(t, k)
+    if not (0 < t <= tmax and t < math.inf):
+        return 0, math.nan, False
+    return 1, t, graze
 
 
-def first_root(c: Sequence[float], tmax: float = math.inf) -> float | None:
-    """Smallest root in (0, tmax] (tmax may be inf), or None -- for no root
-    and for invalid input alike, which is what generated code wants: no
-    collision to schedule."""
-    status, t, _ = first_root_status(c, tmax)
+# ---------------------------------------------------------------------------
+# The API
+# ---------------------------------------------------------------------------
+
+
+def _floats(c: Sequence[float], tmax: float, eps: float) -> tuple[list[float], float, float] | None:
+    """Numbers as floats, None for anything else (strings too: C's cffi call refuses them)."""
+    try:
+        if any(isinstance(x, (str, bytes)) for x in (*c, tmax, eps)):
+            return None
+        return [float(x) for x in c], float(tmax), float(eps)
+    except (TypeError, ValueError):
+        return None
+
+
+def first_root_status(c: Sequence[float], tmax: float = math.inf, method: str = "interval",
+                      eps: float = 0.0) -> tuple[int, float, bool]:
+    """(status, t, graze): status 1 = root t in (0, tmax], 0 = none there (or the first root
+    is not representable: it underflows to 0 or overflows), -1 = invalid input (NaN/Inf
+    coefficient, no or more than 17 coefficients, tmax NaN or <= 0, eps NaN, negative or
+    infinite, unknown method); t is nan unless status is 1; graze says the root is a touch
+    (double root without sign change, or a near-miss within the contact skin eps)."""
+    if _C is not None and method == "interval" and eps == 0.0:
+        return _C.solve_default(c, tmax)  # the common call, validated by C
+    got = _floats(c, tmax, eps)
+    if got is None or method not in METHODS:
+        return -1, math.nan, False
+    cc, tm, ep = got
+    if not _valid(cc, tm, ep):
+        return -1, math.nan, False
+    if _C is not None and not (ep != 0 and method != "interval"):
+        return _C.solve(cc, tm, _C_METHOD[method], ep)
+    return _solve_python(cc, tm, method, ep)
+
+
+def first_root(c: Sequence[float], tmax: float = math.inf, eps: float = 0.0) -> float | None:
+    """Smallest root in (0, tmax] (tmax may be inf), or None when there is none.  eps >= 0 is
+    the contact skin, in the units of c (distance squared for the shipped equations): a
+    near-miss whose minimum is within eps counts as contact at the time of closest approach.
+    Raises ValueError for invalid input (NaN/Inf coefficient, no or more than 17
+    coefficients, tmax NaN or <= 0, eps NaN, negative or infinite)."""
+    status, t, _ = first_root_status(c, tmax, "interval", eps)
+    if status == -1:
+        raise ValueError(f"max2code_runtime.first_root: invalid input (coefficients {list(c)!r}, "
+                         f"tmax {tmax!r}, eps {eps!r}): coefficients must be 1 to "
+                         f"{MAX_DEGREE + 1} finite numbers, tmax > 0 (inf allowed), 0 <= eps < inf")
     return t if status == 1 else None
+
+
+def first_roots(C: Any, tmax: float = math.inf, eps: float = 0.0) -> Any:
+    """The first root of every row of C (an (M, N+1) array or a sequence of M sequences of one
+    length N+1 <= 17, c[i] multiplying t^i), NaN where a row has none or is invalid: a numpy
+    array when numpy is installed, else a list.  One call into C for the whole batch with the
+    C backend (m2c_first_roots); raises ValueError for a ragged or over-long C."""
+    try:
+        import numpy as np
+    except ImportError:
+        np = None
+    if np is not None:
+        arr = np.ascontiguousarray(C, dtype=np.float64)
+        if arr.ndim != 2 or arr.shape[1] < 1 or arr.shape[1] > MAX_DEGREE + 1:
+            raise ValueError(f"first_roots: C must be (M, N+1) with 1 <= N+1 <= {MAX_DEGREE + 1}, "
+                             f"not {arr.shape}")
+        if _C is not None:
+            return _C.solve_batch_numpy(arr, float(tmax), float(eps), np)
+        return np.array([_row(r, tmax, eps) for r in arr.tolist()], dtype=np.float64)
+    rows = [list(r) for r in C]
+    if rows and (len({len(r) for r in rows}) != 1 or not 1 <= len(rows[0]) <= MAX_DEGREE + 1):
+        raise ValueError("first_roots: C must be M rows of one length, 1 to "
+                         f"{MAX_DEGREE + 1} coefficients")
+    if _C is not None and rows:
+        return _C.solve_batch(rows, float(tmax), float(eps))
+    return [_row(r, tmax, eps) for r in rows]
+
+
+def _row(r: Sequence[float], tmax: float, eps: float) -> float:
+    st, t, _ = first_root_status(r, tmax, "interval", eps)
+    return t if st == 1 else math.nan

@@ -174,21 +174,7 @@ pub(crate) fn graze_bound(c: &[f64], n: usize, x: f64) -> f64 {
     GRAZE_SAFETY * gamma(2 * n) * eval_abs(c, n, x)
 }
 
-/// Derivative coefficients: `d[i] = (i+1) c[i+1]`, degree n-1.
-#[inline]
-pub(crate) fn derivative(c: &[f64; 9], n: usize) -> [f64; 9] {
-    let mut d = [0.0; 9];
-    for i in 0..n {
-        d[i] = (i + 1) as f64 * c[i + 1];
-    }
-    d
-}
 
-/// Sign test that cannot underflow: true when a and b are both non-zero and of opposite sign.
-#[inline]
-pub(crate) fn opposite(a: f64, b: f64) -> bool {
-    (a < 0.0 && b > 0.0) || (a > 0.0 && b < 0.0)
-}
 
 /// Robust real roots of `a x^2 + b x + c` (a != 0).
 ///

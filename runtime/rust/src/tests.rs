@@ -80,7 +80,7 @@ fn linear_and_trivial() {
     assert_eq!(first_root(&[], INF), None);
     assert_eq!(first_root(&[0.0; 9], INF), None);
     assert_eq!(first_root(&[-6.0, 11.0, -6.0, 1.0], INF), Some(1.0));
-    assert_eq!(first_root_status(&[], INF, Method::Interval), Status::NoRoot);
+    assert_eq!(first_root_status(&[], INF, Method::Interval), Status::Invalid);
 }
 
 #[test]
@@ -93,9 +93,60 @@ fn invalid_input() {
         assert_eq!(first_root_status(&[-1.0, 1.0], 0.0, m), Status::Invalid);
         assert_eq!(first_root_status(&[-1.0, 1.0], -1.0, m), Status::Invalid);
         assert_eq!(first_root_status(&[-1.0, 1.0], f64::NEG_INFINITY, m), Status::Invalid);
-        assert_eq!(first_root_status(&[1.0; 10], 1.0, m), Status::Invalid);
+        assert_eq!(first_root_status(&[1.0; 18], 1.0, m), Status::Invalid);
+        assert_ne!(first_root_status(&[1.0; 17], 1.0, m), Status::Invalid);
     }
     assert_eq!(first_root(&[f64::NAN, 1.0], 1.0), None);
+    assert_eq!(try_first_root(&[f64::NAN, 1.0], 1.0), Err(InvalidInput));
+    assert_eq!(try_first_root(&[1.0, 1.0], 1.0), Ok(None));
+    assert_eq!(try_first_root(&[-1.0, 1.0], 1.0), Ok(Some(1.0)));
+    for eps in [f64::NAN, -1e-9, f64::INFINITY] {
+        assert_eq!(first_root_skin(&[-1.0, 1.0], 1.0, eps), Status::Invalid);
+    }
+}
+
+#[test]
+fn contact_skin() {
+    // (t - 1)^2 + d: a pass at distance d above zero at t = 1, then a crossing at 3 (times 
+    // (t - 3)): p = ((t-1)^2 + d)(3 - t) > 0 on (0, 3)
+    let d = 1e-9;
+    let c = [3.0 * (1.0 + d), -(7.0 + d), 5.0, -1.0];
+    let no_skin = first_root_status(&c, INF, Method::Interval);
+    assert!(matches!(no_skin, Status::Root { t, graze: false } if (t - 3.0).abs() < 1e-12), "{no_skin:?}");
+    let with = first_root_skin(&c, INF, 1e-8);
+    assert!(matches!(with, Status::Root { t, graze: true } if (t - 1.0).abs() < 1e-6), "{with:?}");
+    // a skin below the gap changes nothing
+    assert_eq!(first_root_skin(&c, INF, 1e-10), no_skin);
+    assert_eq!(first_root_skin(&c, INF, 0.0), no_skin);
+    // the quadratic's vertex
+    let q = [1.0 + d, -2.0, 1.0];
+    assert_eq!(first_root_status(&q, INF, Method::Interval), Status::NoRoot);
+    assert!(matches!(first_root_skin(&q, INF, 2e-9), Status::Root { t, graze: true } if (t - 1.0).abs() < 1e-15));
+}
+
+#[test]
+fn batch_matches_single_calls() {
+    let rows = [[-6.0, 11.0, -6.0, 1.0], [1.0, 1.0, 1.0, 1.0], [f64::NAN, 1.0, 0.0, 0.0], [2.0, -3.0, 1.0, 0.0]];
+    let flat: Vec<f64> = rows.iter().flatten().copied().collect();
+    let mut out = [0.0; 4];
+    assert_eq!(first_roots(&flat, 3, INF, 0.0, &mut out), Ok(2));
+    assert_eq!(out[0], 1.0);
+    assert!(out[1].is_nan() && out[2].is_nan());
+    assert_eq!(out[3], 1.0);
+    assert_eq!(first_roots(&flat, 4, INF, 0.0, &mut out), Err(InvalidInput));
+    assert_eq!(first_roots(&flat, 17, INF, 0.0, &mut out), Err(InvalidInput));
+}
+
+#[test]
+fn degree_16() {
+    // (t - 0.5)(t - 2)^15: first root 0.5; (t + 1)^16 - 2^16 t^8 ... a generic one by roots
+    let roots = [0.5, 1.25, 2.0, 3.0, -1.0, -2.0, 4.5, 5.0, 6.0, -0.75, 7.0, 8.0, -3.0, 9.0, 10.0, 11.0];
+    let c = from_roots(&roots, &[]);
+    assert_eq!(c.len(), 17);
+    let (t, g) = root(&c, INF, Method::Interval);
+    assert!(rel(t, 0.5) < 1e-14 && !g, "{t}");
+    let (t, _) = root(&c, INF, Method::IntervalNoGraze);
+    assert!(rel(t, 0.5) < 1e-14, "{t}");
 }
 
 #[test]

@@ -1,0 +1,598 @@
+"""The C runtime's interval solver in pure Python, operation for operation.
+
+``runtime/c/max2code_roots.c`` holds the algorithm and the reasons for each step (its header
+documents the contract and tolerances); this is a line-by-line port, used when the C runtime
+cannot be loaded through cffi.  Every floating-point operation is the C one in the same order,
+so the answers are bit-identical to C's (the tests compare them on every hard case, random
+polynomial and fuzz vector).  Where Python differs from C it is emulated:
+
+* ``fma`` is correctly rounded: ``math.fma`` (Python 3.13+), else exact rational arithmetic
+  rounded once (``Fraction`` to ``float`` rounds correctly), so it is slow but exact;
+* division by zero gives C's +-inf/NaN instead of raising (``_div``), and ``ldexp`` gives
+  +-inf on overflow instead of raising (``_ldexp``).
+"""
+from __future__ import annotations
+
+import math
+from fractions import Fraction
+from typing import Sequence
+
+MAXN = 16
+U = 2.0**-53
+EPS = 2.0**-52
+DBL_MIN = 2.0**-1022
+DBL_MAX = 1.7976931348623157e308
+SAFE_LOW = 2.0**120
+SAFE_HIGH = 2.0**60
+FAST_LIMIT_LOW = 2.0**100
+FAST_LIMIT_HIGH = 2.0**56
+MAX_ITER = 200
+TOL_CRITICAL = 2.0**-36
+TOL_LEVEL = 2.0**-28
+PRECISE_FROM = 2.0**-26
+NOISE_STEP = 32 * U
+MAX_SPLITS = 40
+SPLIT_NEWTON = 2.0
+MIN_WIDTH = 2.0**-20
+MAX_SPREAD = 1021
+INF = math.inf
+
+Coeffs = list[float]
+
+
+def _fma_exact(a: float, b: float, c: float) -> float:
+    if not (math.isfinite(a) and math.isfinite(b) and math.isfinite(c)):
+        return a * b + c
+    try:
+        return float(Fraction(a) * Fraction(b) + Fraction(c))
+    except OverflowError:
+        return math.inf if Fraction(a) * Fraction(b) + Fraction(c) > 0 else -math.inf
+
+
+fma = getattr(math, "fma", _fma_exact)
+
+
+def _div(a: float, b: float) -> float:
+    """a / b with IEEE semantics (C's), never ZeroDivisionError."""
+    if b != 0:
+        return a / b
+    if a == 0 or math.isnan(a):
+        return math.nan
+    return math.copysign(math.inf, a) * math.copysign(1.0, b)
+
+
+def _ldexp(x: float, e: int) -> float:
+    try:
+        return math.ldexp(x, e)
+    except OverflowError:
+        return math.copysign(math.inf, x)
+
+
+def ilogb(x: float) -> int:
+    """2^e <= |x| < 2^(e+1), x finite and nonzero (subnormals included)."""
+    return math.frexp(x)[1] - 1
+
+
+def _ceil_div(num: int, den: int) -> int:
+    return -((-num) // den)
+
+
+# ---------------------------------------------------------------------------
+# Preparation
+# ---------------------------------------------------------------------------
+
+
+def root_bound(c: Sequence[float], n: int) -> float:
+    en = ilogb(c[n])
+    best = None
+    for i in range(n):
+        if c[i] != 0:
+            e = _ceil_div(ilogb(c[i]) + 1 - en, n - i)
+            best = e if best is None or e > best else best
+    if best is None:
+        return 0.0
+    if best + 1 >= 1024:
+        return DBL_MAX
+    return math.ldexp(1.0, best + 1)
+
+
+def _leading_negligible(c: Coeffs, n: int, tmax: float) -> bool:
+    T = tmax
+    if math.isinf(T):
+        m = n - 1
+        while m > 0 and c[m] == 0:
+            m -= 1
+        if m == 0:
+            return False
+        T = root_bound(c, m)
+    k = 4.0 * n * EPS
+    Tp = 1.0
+    for i in range(n - 1, -1, -1):
+        Tp *= T
+        if c[i] != 0 and abs(c[n]) * Tp <= k * abs(c[i]):
+            return True
+    return False
+
+
+def reduce(c: Coeffs, n: int, tmax: float) -> int:
+    """Drop zero/negligible leading terms and factors of t: the degree left, or -1."""
+    while True:
+        while n > 0 and c[n] == 0:
+            n -= 1
+        if n == 0:
+            return -1 if c[0] == 0 else 0
+        if c[0] == 0:
+            for i in range(n):
+                c[i] = c[i + 1]
+            c[n] = 0.0
+            n -= 1
+            continue
+        if _leading_negligible(c, n, tmax):
+            c[n] = 0.0
+            n -= 1
+            continue
+        return n
+
+
+def _spread(e: list[int], nz: list[bool], n: int, k: int) -> int:
+    vals = [e[i] + k * i for i in range(n + 1) if nz[i]]
+    return max(vals) - min(vals)
+
+
+def _balancing_shift(e: list[int], nz: list[bool], n: int) -> int:
+    best_k, best = 0, _spread(e, nz, n, 0)
+    for i in range(n + 1):
+        if not nz[i]:
+            continue
+        for j in range(i + 1, n + 1):
+            if not nz[j]:
+                continue
+            k0 = (e[i] - e[j]) // (j - i)
+            for k in (k0, k0 + 1):
+                s = _spread(e, nz, n, k)
+                if s < best or (s == best and (abs(k) < abs(best_k) or (abs(k) == abs(best_k) and k < best_k))):
+                    best, best_k = s, k
+    return best_k
+
+
+def normalise(c: Coeffs, n: int) -> tuple[bool, int, int]:
+    """(flushed, k, E): the C runtime's normalise (see its comment)."""
+    nz = [c[i] != 0 for i in range(n + 1)]
+    e = [ilogb(c[i]) if nz[i] else 0 for i in range(n + 1)]
+    if not any(nz):
+        return False, 0, 0
+    emax = max(e[i] for i in range(n + 1) if nz[i])
+    emin = min(e[i] for i in range(n + 1) if nz[i])
+    k, E = 0, emax + 1
+    spread = emax - emin > MAX_SPREAD
+    if spread:
+        k = _balancing_shift(e, nz, n)
+        E = max(e[i] + k * i for i in range(n + 1) if nz[i]) + 1
+    if k == 0 and -1021 <= E <= 1022:
+        f = math.ldexp(1.0, -E)
+        for i in range(n + 1):
+            c[i] *= f
+    else:
+        for i in range(n + 1):
+            c[i] = _ldexp(c[i], k * i - E)
+    if not spread:
+        return False, 0, E
+    for i in range(n + 1):
+        if abs(c[i]) < DBL_MIN:
+            c[i] = 0.0
+    return True, k, E
+
+
+# ---------------------------------------------------------------------------
+# Evaluation
+# ---------------------------------------------------------------------------
+
+
+def _scale_exponent(x: float, m: int) -> int:
+    return 0 if abs(x) <= (SAFE_LOW if m <= 8 else SAFE_HIGH) else ilogb(x) + 1
+
+
+def horner(c: Sequence[float], n: int, x: float, k: int, precise: bool) -> float:
+    acc = c[n]
+    if k == 0:
+        if precise:
+            for i in range(n - 1, -1, -1):
+                acc = fma(acc, x, c[i])
+        else:
+            for i in range(n - 1, -1, -1):
+                acc = acc * x + c[i]
+        return acc
+    xs, f, fi = _ldexp(x, -k), _ldexp(1.0, -k), 1.0
+    for i in range(n - 1, -1, -1):
+        fi *= f
+        acc = fma(acc, xs, c[i] * fi) if precise else acc * xs + c[i] * fi
+    return acc
+
+
+def _horner_abs(c: Sequence[float], n: int, x: float, k: int) -> float:
+    ax = abs(x)
+    acc = abs(c[n])
+    xs = _ldexp(ax, -k) if k else ax
+    f, fi = _ldexp(1.0, -k), 1.0
+    for i in range(n - 1, -1, -1):
+        fi *= f
+        acc = acc * xs + abs(c[i]) * fi
+    return acc
+
+
+def noise_factor(n: int) -> float:
+    return 2.0 * (2.0 * n * U / (1.0 - 2.0 * n * U))
+
+
+def _within_noise(c: Sequence[float], n: int, x: float, skin: float) -> bool:
+    k = _scale_exponent(x, n)
+    sk = skin if k == 0 else _ldexp(skin, -k * n)
+    return abs(horner(c, n, x, k, True)) <= noise_factor(n) * _horner_abs(c, n, x, k) + sk
+
+
+def _sign_at(c: Sequence[float], n: int, x: float, precise: bool) -> int:
+    v = horner(c, n, x, _scale_exponent(x, n), precise)
+    return (v > 0) - (v < 0)
+
+
+def quad_roots(a: float, b: float, c: float) -> tuple[tuple[float, float] | None, float]:
+    """Ascending real roots of a x^2 + b x + c (a != 0) and the discriminant's sign info."""
+    m = max(abs(a), max(abs(b), abs(c)))
+    e = ilogb(m)
+    a, b, c = _ldexp(a, -e), _ldexp(b, -e), _ldexp(c, -e)
+    h = -0.5 * b
+    p, q = h * h, a * c
+    dp, dq = fma(h, h, -p), fma(a, c, -q)
+    d = (p - q) + (dp - dq)
+    if d < 0:
+        return None, d
+    w = h + math.copysign(math.sqrt(d), h)
+    if w == 0:
+        r1 = r2 = 0.0
+    else:
+        r1, r2 = _div(w, a), _div(c, w)
+    return (min(r1, r2), max(r1, r2)), d
+
+
+def first_root_quadratic(c: Sequence[float], tmax: float, skin: float) -> tuple[float, bool] | None:
+    roots, disc = quad_roots(c[2], c[1], c[0])
+    if roots is not None:
+        for r in roots:
+            if 0 < r <= tmax:
+                return r, disc == 0
+        return None
+    if skin < 0:
+        return None
+    x = _div(-c[1], 2 * c[2])
+    if 0 < x <= tmax and _within_noise(c, 2, x, skin):
+        return x, True
+    return None
+
+
+def _split_point(lo: float, hi: float) -> float:
+    if lo == 0:
+        return hi * 2.0**-10
+    if hi > 8 * lo:
+        return math.sqrt(lo) * math.sqrt(hi)
+    return lo + 0.5 * (hi - lo)
+
+
+def _horner_compensated(P: Sequence[float], m: int, x: float) -> float:
+    split = 134217729.0
+    tx = split * x
+    xh = tx - (tx - x)
+    xl = x - xh
+    s, c = P[m], 0.0
+    for i in range(m - 1, -1, -1):
+        p = s * x
+        ts = split * s
+        sh = ts - (ts - s)
+        sl = s - sh
+        pe = ((sh * xh - p) + sh * xl + sl * xh) + sl * xl
+        sn = p + P[i]
+        bb = sn - p
+        se = (p - (sn - bb)) + (P[i] - bb)
+        c = c * x + (pe + se)
+        s = sn
+    return s + c
+
+
+def _value_and_slope(P: Sequence[float], D: Sequence[float], m: int, x: float, k: int,
+                     precise: bool) -> tuple[float, float, float]:
+    if k != 0:
+        return horner(P, m, x, k, precise), horner(D, m - 1, x, k, False), _horner_abs(P, m, x, k)
+    f, df, ax, sz = P[m], D[m - 1], abs(x), abs(P[m])
+    f = f * x + P[m - 1]
+    sz = sz * ax + abs(P[m - 1])
+    for i in range(m - 2, -1, -1):
+        df = df * x + D[i]
+        sz = sz * ax + abs(P[i])
+        f = f * x + P[i]
+    return (_horner_compensated(P, m, x) if precise else f), df, sz
+
+
+def _refine_root(P: Sequence[float], D: Sequence[float], m: int, lo: float, hi: float, slo: int,
+                 tol: float, x0: float) -> float:
+    x = x0
+    step = step_old = hi - lo
+    precise = False
+    stop = tol if tol > 0 else PRECISE_FROM
+    for _ in range(MAX_ITER):
+        k = _scale_exponent(x, m)
+        f, df, size = _value_and_slope(P, D, m, x, k, precise)
+        if tol == 0 and not precise and abs(f) <= noise_factor(m) * size:
+            precise = True
+            stop = 2 * U
+            continue
+        if f == 0:
+            return x
+        if (f > 0) == (slo > 0):
+            lo = x
+        else:
+            hi = x
+        if hi - lo <= 2 * EPS * hi or (tol > 0 and hi - lo <= tol * hi):
+            if precise or tol > 0:
+                return x
+            precise = True
+            stop = 2 * U
+            continue
+        if tol == 0 and hi - lo <= PRECISE_FROM * hi:
+            precise = True
+            stop = 2 * U
+        xn = x - (_ldexp(_div(f, df), k) if k else _div(f, df))
+        s = x - xn
+        if not (lo < xn < hi) or abs(s) > 0.5 * abs(step_old):
+            if precise and abs(s) <= NOISE_STEP * abs(x):
+                return x
+            xn = _split_point(lo, hi)
+            s = x - xn
+        step_old = step
+        step = s
+        if abs(s) <= stop * abs(xn) or (precise and abs(s) <= NOISE_STEP * abs(x)):
+            if precise or tol > 0:
+                return xn
+            precise = True
+            stop = 2 * U
+        x = xn
+    return x
+
+
+# ---------------------------------------------------------------------------
+# Budan-Fourier isolation
+# ---------------------------------------------------------------------------
+
+
+def _sign_changes(v: Sequence[float], n: int) -> int:
+    count = last = 0
+    for i in range(n + 1):
+        s = (v[i] > 0) - (v[i] < 0)
+        count += s * last < 0
+        last = s if s != 0 else last
+    return count
+
+
+BINOM = [[float(math.comb(j + k, k)) if j + k <= MAXN else 0.0 for j in range(MAXN + 1)]
+         for k in range(MAXN + 1)]
+
+
+class _Point:
+    __slots__ = ("x", "px", "dpx", "vp", "vq", "qt", "tol")
+
+    def __init__(self, x: float, px: float, dpx: float, vp: int, vq: int, qt: list[float],
+                 tol: list[float]):
+        self.x, self.px, self.dpx, self.vp, self.vq, self.qt, self.tol = x, px, dpx, vp, vq, qt, tol
+
+
+def _point_at_zero(p: Sequence[float], n: int, e: float, skin: float) -> _Point:
+    qt = [p[i] - e * abs(p[i]) for i in range(n + 1)]
+    tol = [EPS * abs(p[i]) for i in range(n + 1)]
+    vp = _sign_changes(p, n)
+    if skin > 0:
+        qt[0] -= skin
+        tol[0] += EPS * skin
+        vq = _sign_changes(qt, n)
+    else:
+        vq = vp
+    return _Point(0.0, p[0], p[1], vp, vq, qt, tol)
+
+
+def _point_at(tk: list[list[float]], ta: list[list[float]], e: float, skin: float, n: int,
+              x: float) -> _Point | None:
+    a = [0.0] * (n + 1)
+    s = [0.0] * (n + 1)
+    for d in range(n, -1, -1):
+        for k in range(n - d + 1):
+            a[k] = a[k] * x + tk[k][d]
+            s[k] = s[k] * x + ta[k][d]
+    rel = 8.0 * (n + 1) * U
+    qt = [0.0] * (n + 1)
+    tols = [0.0] * (n + 1)
+    for k in range(n + 1):
+        b = a[k] - e * s[k]
+        tol = rel * s[k] + DBL_MIN
+        if k == 0 and skin > 0:
+            b -= skin
+            tol += rel * skin
+        if not (abs(a[k]) > tol and abs(b) > tol):
+            return None
+        qt[k] = b
+        tols[k] = tol
+        s[k] = b
+    return _Point(x, a[0], a[1], _sign_changes(a, n), _sign_changes(s, n), qt, tols)
+
+
+def _clearly_positive(pt: _Point, n: int, w: float, direction: int) -> bool:
+    """The C runtime's first-order exclusion test, then its second-order one."""
+    rel = 4.0 * (n + 1) * U
+    qt, tol = pt.qt, pt.tol
+
+    def low(k: int) -> float:
+        return (-qt[k] if direction < 0 and k % 2 else qt[k]) - tol[k]
+
+    r3 = 0.0
+    for k in range(n, 2, -1):
+        lk = low(k)
+        r3 = r3 * w + (-lk if lk < 0 else 0.0)
+    lks = [low(k) for k in range(min(n, 2) + 1)]
+    neg = r3
+    for k in range(min(n, 2), 0, -1):
+        neg = neg * w + (-lks[k] if lks[k] < 0 else 0.0)
+    neg *= w
+    L0 = lks[0]
+    if L0 > neg + rel * neg:
+        return True
+    if n < 2:
+        return False
+    L1 = lks[1]
+    L2 = lks[2] - r3 * w * (1 + rel)
+    if not L2 > 0:
+        return False
+    h = _div(-L1, 2 * L2)
+    h = 0.0 if h < 0 else (w if h > w else h)
+    m = L0 + h * (L1 + h * L2)
+    size = abs(L0) + h * (abs(L1) + h * L2)
+    return m > 2 * rel * size
+
+
+def _isolation_split(a: float, b: float) -> float:
+    if a == 0:
+        return b * 0.0625
+    if b > 8 * a:
+        return math.sqrt(a) * math.sqrt(b)
+    return a + 0.5 * (b - a)
+
+
+_CLEARED = object()
+
+
+def _isolate_first_root(p: Sequence[float], n: int, skin: float, T: float):
+    """(t, graze), _CLEARED, or a float: the left end left to the derivative method."""
+    e = noise_factor(n) if skin >= 0 else 0.0
+    sk = skin if skin > 0 else 0.0
+    a = _point_at_zero(p, n, e, sk)
+    if not (a.qt[0] - a.tol[0] > 0):
+        return 0.0
+    if a.vq == 0 or _clearly_positive(a, n, T, 1):
+        return _CLEARED
+    tk = [[BINOM[k][j] * p[j + k] if j + k <= n else 0.0 for j in range(n + 1)] for k in range(n + 1)]
+    ta = [[abs(v) for v in row] for row in tk]
+    first = _point_at(tk, ta, e, sk, n, T)
+    if first is None:
+        return 0.0
+    stack = [first]
+    splits = 0
+    while True:
+        b = stack[-1]
+        w = b.x - a.x
+        odd = (a.vp - b.vp) % 2 != 0
+        if a.vq == b.vq or (not odd and (_clearly_positive(a, n, w, 1) or _clearly_positive(b, n, w, -1))):
+            a = stack.pop()
+            if not stack:
+                return _CLEARED
+            continue
+        if a.vp - b.vp == 1 and a.vq - b.vq == 1:
+            dp = [(i + 1) * p[i + 1] for i in range(n)]
+            x0 = a.x + w * _div(a.px, a.px - b.px)
+            if not (a.x < x0 < b.x):
+                x0 = _split_point(a.x, b.x)
+            return _refine_root(p, dp, n, a.x, b.x, 1, 0.0, x0), False
+        m = _isolation_split(a.x, b.x)
+        mt = a.x + SPLIT_NEWTON * _div(-a.px, a.dpx)
+        if a.dpx < 0 and a.x < mt < b.x and mt - a.x > MIN_WIDTH * b.x:
+            m = mt
+        if splits < MAX_SPLITS and w > MIN_WIDTH * b.x and a.x < m < b.x:
+            pt = _point_at(tk, ta, e, sk, n, m)
+            if pt is not None:
+                splits += 1
+                stack.append(pt)
+                continue
+        hit = _derivative_method(p, n, a.x, b.x, skin)
+        if hit is not None:
+            return hit
+        if not (b.qt[0] - b.tol[0] > 0):
+            return b.x
+        a = stack.pop()
+        if not stack:
+            return _CLEARED
+
+
+# ---------------------------------------------------------------------------
+# Derivative method
+# ---------------------------------------------------------------------------
+
+
+def _derivative_chain(c: Sequence[float], n: int) -> list[list[float]]:
+    d = [[0.0] * (MAXN + 1) for _ in range(n + 1)]
+    d[n][: n + 1] = c[: n + 1]
+    for m in range(n, 1, -1):
+        for i in range(m):
+            d[m - 1][i] = (i + 1) * d[m][i + 1]
+    return d
+
+
+def _roots_in_pieces(P, D, m: int, lo: float, crit: list[float], T: float, tol: float) -> list[float]:
+    out = []
+    a = lo
+    sa = _sign_at(P, m, lo, False)
+    for j in range(len(crit) + 1):
+        b = crit[j] if j < len(crit) else T
+        sb = _sign_at(P, m, b, False)
+        if sb == 0:
+            if j < len(crit):
+                out.append(b)
+        elif sa != 0 and sa != sb:
+            out.append(_refine_root(P, D, m, a, b, sa, tol, _split_point(a, b)))
+        a, sa = b, sb
+    return out
+
+
+def _critical_points(d: list[list[float]], n: int, lo: float, T: float) -> list[float]:
+    level: list[float] = []
+    roots, _ = quad_roots(d[2][2], d[2][1], d[2][0])
+    if roots is not None:
+        for r in roots:
+            if lo < r < T and (not level or r > level[-1]):
+                level.append(r)
+    for m in range(3, n):
+        tol = TOL_CRITICAL if m == n - 1 else TOL_LEVEL
+        level = _roots_in_pieces(d[m], d[m - 1], m, lo, level, T, tol)
+    return level
+
+
+def _derivative_method(c: Sequence[float], n: int, lo: float, T: float, skin: float):
+    d = _derivative_chain(c, n)
+    crit = _critical_points(d, n, lo, T)
+    nc = len(crit)
+    a, sa, sb, sb_known = lo, 1, 0, False
+    for j in range(nc + 1):
+        b = crit[j] if j < nc else T
+        if not sb_known:
+            sb = _sign_at(c, n, b, True)
+        sb_known = False
+        if sb == 0:
+            return b, j < nc
+        if sb != sa:
+            return _refine_root(c, d[n - 1], n, a, b, sa, 0.0, _split_point(a, b)), False
+        if skin >= 0 and j < nc and _within_noise(c, n, b, skin):
+            b2 = crit[j + 1] if j + 1 < nc else T
+            sb = _sign_at(c, n, b2, True)
+            sb_known = True
+            if sb == sa:
+                return b, True
+        a = b
+    return None
+
+
+def first_root_interval(c: Sequence[float], n: int, T: float, skin: float) -> tuple[float, bool] | None:
+    """First root in (0, T] of c (degree n >= 3, normalised, c[0] != 0)."""
+    s = 1.0 if c[0] > 0 else -1.0
+    p = [s * c[i] for i in range(n + 1)]
+    lo = 0.0
+    if T <= (FAST_LIMIT_LOW if n <= 8 else FAST_LIMIT_HIGH):
+        r = _isolate_first_root(p, n, skin, T)
+        if r is _CLEARED:
+            return None
+        if isinstance(r, tuple):
+            return r
+        lo = r
+    return _derivative_method(p, n, lo, T, skin)

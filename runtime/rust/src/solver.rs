@@ -1,0 +1,916 @@
+//! The interval solver of the C runtime (`runtime/c/max2code_roots.c`), ported operation for
+//! operation: the same preparation, Budan-Fourier isolation with certified signs, derivative
+//! (Yuksel) method for what the counts do not resolve, and safeguarded Newton polished with
+//! compensated Horner.  Every floating-point operation is the C one in the same order (`fma`
+//! is `mul_add`, both correctly rounded; the C runtime is compiled without contraction, as
+//! `-std=c11` does), so the results are bit-identical to the C runtime's; the cross-language
+//! tests check that on every hard case, random polynomial and fuzz vector.
+//!
+//! The comments of the C source explain the why of each step; they are not repeated here.
+
+// Indexed loops and negated comparisons mirror the C source line by line (a negated
+// comparison is also true for NaN, which the C code relies on).
+#![allow(clippy::needless_range_loop, clippy::neg_cmp_op_on_partial_ord)]
+
+use std::mem::MaybeUninit;
+
+use crate::fp::{ilogb, ldexp};
+
+pub(crate) const MAXN: usize = 16;
+const U: f64 = f64::EPSILON / 2.0;
+const SAFE_LOW: f64 = 1.329_227_995_784_916e36; // 2^120
+const SAFE_HIGH: f64 = 1.152_921_504_606_847e18; // 2^60
+const FAST_LIMIT_LOW: f64 = 1.267_650_600_228_229_4e30; // 2^100
+const FAST_LIMIT_HIGH: f64 = 7.205_759_403_792_794e16; // 2^56
+const MAX_ITER: usize = 200;
+const TOL_CRITICAL: f64 = 1.455_191_522_836_685_2e-11; // 2^-36
+const TOL_LEVEL: f64 = 3.725_290_298_461_914e-9; // 2^-28
+const PRECISE_FROM: f64 = 1.490_116_119_384_765_6e-8; // 2^-26
+const NOISE_STEP: f64 = 32.0 * U;
+const MAX_SPLITS: usize = 40;
+const SPLIT_NEWTON: f64 = 2.0;
+const MIN_WIDTH: f64 = 9.536_743_164_062_5e-7; // 2^-20
+const MAX_SPREAD: i32 = 1021;
+
+pub(crate) type Coeffs = [f64; MAXN + 1];
+
+/// Exponent of a finite nonzero double (as C's `exponent_of`/`ilogb`).
+#[inline]
+fn exponent_of(x: f64) -> i32 {
+    ilogb(x)
+}
+
+/// `2^e`, exact, for a normal result.
+#[inline]
+fn pow2(e: i32) -> f64 {
+    f64::from_bits(((e + 1023) as u64) << 52)
+}
+
+/// 1/den for the ceiling division below.
+static RECIP: [f64; MAXN + 1] = recip_table();
+
+const fn recip_table() -> [f64; MAXN + 1] {
+    let mut t = [0.0; MAXN + 1];
+    let mut d = 1;
+    while d <= MAXN {
+        t[d] = 1.0 / d as f64;
+        d += 1;
+    }
+    t
+}
+
+/// ceil(num / den) for 0 < den <= 16 and |num| < 2^12, as C computes it: the product with the
+/// rounded reciprocal is within 1 of it and the integer checks fix that (it runs 2n times per
+/// solve, and an integer division is slow).
+#[inline]
+fn ceil_div(num: i32, den: i32) -> i32 {
+    let mut q = (f64::from(num) * RECIP[den as usize]) as i32; // toward zero
+    q += i32::from(q * den < num);
+    q -= i32::from((q - 1) * den >= num);
+    q
+}
+
+/// Fujiwara bound (C `root_bound`).
+pub(crate) fn root_bound(c: &[f64], n: usize) -> f64 {
+    let en = exponent_of(c[n]);
+    let mut best = i32::MIN;
+    for i in 0..n {
+        if c[i] == 0.0 {
+            continue;
+        }
+        let e = ceil_div(exponent_of(c[i]) + 1 - en, (n - i) as i32);
+        best = best.max(e);
+    }
+    if best == i32::MIN {
+        return 0.0;
+    }
+    if best + 1 >= 1024 {
+        return f64::MAX;
+    }
+    if best + 1 >= -1022 {
+        pow2(best + 1)
+    } else {
+        ldexp(1.0, i64::from(best + 1))
+    }
+}
+
+fn leading_negligible(c: &[f64], n: usize, tmax: f64) -> bool {
+    let mut t = tmax;
+    if t.is_infinite() {
+        let mut m = n - 1;
+        while m > 0 && c[m] == 0.0 {
+            m -= 1;
+        }
+        if m == 0 {
+            return false;
+        }
+        t = root_bound(c, m);
+    }
+    let k = 4.0 * n as f64 * f64::EPSILON;
+    let mut tp = 1.0;
+    for i in (0..n).rev() {
+        tp *= t;
+        if c[i] != 0.0 && c[n].abs() * tp <= k * c[i].abs() {
+            return true;
+        }
+    }
+    false
+}
+
+/// Drop zero/negligible leading terms and factors of t; the degree left, or -1.
+pub(crate) fn reduce(c: &mut Coeffs, mut n: usize, tmax: f64) -> i32 {
+    loop {
+        while n > 0 && c[n] == 0.0 {
+            n -= 1;
+        }
+        if n == 0 {
+            return if c[0] == 0.0 { -1 } else { 0 };
+        }
+        if c[0] == 0.0 {
+            for i in 0..n {
+                c[i] = c[i + 1];
+            }
+            c[n] = 0.0;
+            n -= 1;
+            continue;
+        }
+        if leading_negligible(c, n, tmax) {
+            c[n] = 0.0;
+            n -= 1;
+            continue;
+        }
+        return n as i32;
+    }
+}
+
+fn spread_after_shift(e: &[i32], nz: &[bool], n: usize, k: i32) -> i32 {
+    let (mut hi, mut lo) = (i32::MIN, i32::MAX);
+    for i in 0..=n {
+        if nz[i] {
+            let v = e[i] + k * i as i32;
+            hi = hi.max(v);
+            lo = lo.min(v);
+        }
+    }
+    hi - lo
+}
+
+fn balancing_shift(e: &[i32], nz: &[bool], n: usize) -> i32 {
+    let (mut best_k, mut best): (i32, i32) = (0, spread_after_shift(e, nz, n, 0));
+    for i in 0..=n {
+        if !nz[i] {
+            continue;
+        }
+        for j in i + 1..=n {
+            if !nz[j] {
+                continue;
+            }
+            let k0 = (e[i] - e[j]).div_euclid((j - i) as i32);
+            for k in k0..=k0 + 1 {
+                let s = spread_after_shift(e, nz, n, k);
+                if s < best || (s == best && (k.abs() < best_k.abs() || (k.abs() == best_k.abs() && k < best_k))) {
+                    best = s;
+                    best_k = k;
+                }
+            }
+        }
+    }
+    best_k
+}
+
+/// C `normalise`: returns (flushed, k, E).
+pub(crate) fn normalise(c: &mut Coeffs, n: usize) -> (bool, i32, i32) {
+    let mut e = [0i32; MAXN + 1];
+    let mut nz = [false; MAXN + 1];
+    let (mut emax, mut emin) = (i32::MIN, i32::MAX);
+    for i in 0..=n {
+        nz[i] = c[i] != 0.0;
+        if nz[i] {
+            e[i] = exponent_of(c[i]);
+            emax = emax.max(e[i]);
+            emin = emin.min(e[i]);
+        }
+    }
+    if emax == i32::MIN {
+        return (false, 0, 0);
+    }
+    let (mut k, mut big_e) = (0, emax + 1);
+    let spread = emax - emin > MAX_SPREAD;
+    if spread {
+        k = balancing_shift(&e, &nz, n);
+        let mut top = i32::MIN;
+        for i in 0..=n {
+            if nz[i] {
+                top = top.max(e[i] + k * i as i32);
+            }
+        }
+        big_e = top + 1;
+    }
+    if k == 0 && (-1021..=1022).contains(&big_e) {
+        let f = pow2(-big_e);
+        for v in c.iter_mut().take(n + 1) {
+            *v *= f;
+        }
+    } else {
+        for (i, v) in c.iter_mut().enumerate().take(n + 1) {
+            *v = ldexp(*v, i64::from(k) * i as i64 - i64::from(big_e));
+        }
+    }
+    if !spread {
+        return (false, 0, big_e);
+    }
+    for v in c.iter_mut().take(n + 1) {
+        if v.abs() < f64::MIN_POSITIVE {
+            *v = 0.0;
+        }
+    }
+    (true, k, big_e)
+}
+
+#[inline]
+fn scale_exponent(x: f64, m: usize) -> i32 {
+    if x.abs() <= if m <= 8 { SAFE_LOW } else { SAFE_HIGH } {
+        0
+    } else {
+        ilogb(x) + 1
+    }
+}
+
+fn horner(c: &[f64], n: usize, x: f64, k: i32, precise: bool) -> f64 {
+    let c = &c[..=n];
+    let mut acc = c[n];
+    if k == 0 {
+        if precise {
+            for &ci in c[..n].iter().rev() {
+                acc = acc.mul_add(x, ci);
+            }
+        } else {
+            for &ci in c[..n].iter().rev() {
+                acc = acc * x + ci;
+            }
+        }
+        return acc;
+    }
+    let xs = ldexp(x, -i64::from(k));
+    let f = ldexp(1.0, -i64::from(k));
+    let mut fi = 1.0;
+    for i in (0..n).rev() {
+        fi *= f;
+        acc = if precise { acc.mul_add(xs, c[i] * fi) } else { acc * xs + c[i] * fi };
+    }
+    acc
+}
+
+fn horner_abs(c: &[f64], n: usize, x: f64, k: i32) -> f64 {
+    let ax = x.abs();
+    let mut acc = c[n].abs();
+    let xs = if k != 0 { ldexp(ax, -i64::from(k)) } else { ax };
+    let f = ldexp(1.0, -i64::from(k));
+    let mut fi = 1.0;
+    for i in (0..n).rev() {
+        fi *= f;
+        acc = acc * xs + c[i].abs() * fi;
+    }
+    acc
+}
+
+/// 2 gamma_{2n}, tabulated as in C (a division per call is not free).
+static NOISE: [f64; MAXN + 1] = noise_table();
+
+const fn noise_table() -> [f64; MAXN + 1] {
+    let mut t = [0.0; MAXN + 1];
+    let mut n = 0;
+    while n <= MAXN {
+        let k = n as f64;
+        t[n] = 2.0 * (2.0 * k * U / (1.0 - 2.0 * k * U));
+        n += 1;
+    }
+    t
+}
+
+#[inline]
+pub(crate) fn noise_factor(n: usize) -> f64 {
+    NOISE[n]
+}
+
+fn within_noise(c: &[f64], n: usize, x: f64, skin: f64) -> bool {
+    let k = scale_exponent(x, n);
+    let sk = if k == 0 { skin } else { ldexp(skin, -i64::from(k) * n as i64) };
+    horner(c, n, x, k, true).abs() <= noise_factor(n) * horner_abs(c, n, x, k) + sk
+}
+
+fn sign_at(c: &[f64], n: usize, x: f64, precise: bool) -> i32 {
+    let v = horner(c, n, x, scale_exponent(x, n), precise);
+    i32::from(v > 0.0) - i32::from(v < 0.0)
+}
+
+/// C `quad_roots`: ascending real roots and the discriminant, or None when it is negative.
+pub(crate) fn quad_roots(a: f64, b: f64, c: f64) -> (Option<[f64; 2]>, f64) {
+    let m = a.abs().max(b.abs().max(c.abs()));
+    let e = -i64::from(ilogb(m));
+    let (a, b, c) = (ldexp(a, e), ldexp(b, e), ldexp(c, e));
+    let h = -0.5 * b;
+    let (p, q) = (h * h, a * c);
+    let dp = h.mul_add(h, -p);
+    let dq = a.mul_add(c, -q);
+    let d = (p - q) + (dp - dq);
+    if d < 0.0 {
+        return (None, d);
+    }
+    let w = h + d.sqrt().copysign(h);
+    let (r1, r2) = if w == 0.0 { (0.0, 0.0) } else { (w / a, c / w) };
+    (Some([r1.min(r2), r1.max(r2)]), d)
+}
+
+fn first_root_quadratic(c: &[f64], tmax: f64, skin: f64) -> Option<(f64, bool)> {
+    let (roots, disc) = quad_roots(c[2], c[1], c[0]);
+    if let Some(r) = roots {
+        for x in r {
+            if x > 0.0 && x <= tmax {
+                return Some((x, disc == 0.0));
+            }
+        }
+        return None;
+    }
+    if skin < 0.0 {
+        return None;
+    }
+    let x = -c[1] / (2.0 * c[2]);
+    (x > 0.0 && x <= tmax && within_noise(c, 2, x, skin)).then_some((x, true))
+}
+
+fn split_point(lo: f64, hi: f64) -> f64 {
+    if lo == 0.0 {
+        return hi * 9.765_625e-4; // 2^-10
+    }
+    if hi > 8.0 * lo {
+        return lo.sqrt() * hi.sqrt();
+    }
+    lo + 0.5 * (hi - lo)
+}
+
+fn horner_compensated(p: &[f64], m: usize, x: f64) -> f64 {
+    const SPLIT: f64 = 134_217_729.0;
+    let p = &p[..=m];
+    let tx = SPLIT * x;
+    let xh = tx - (tx - x);
+    let xl = x - xh;
+    let mut s = p[m];
+    let mut c = 0.0;
+    for &pi in p[..m].iter().rev() {
+        let pr = s * x;
+        let ts = SPLIT * s;
+        let sh = ts - (ts - s);
+        let sl = s - sh;
+        let pe = ((sh * xh - pr) + sh * xl + sl * xh) + sl * xl;
+        let sn = pr + pi;
+        let bb = sn - pr;
+        let se = (pr - (sn - bb)) + (pi - bb);
+        c = c * x + (pe + se);
+        s = sn;
+    }
+    s + c
+}
+
+fn value_and_slope(p: &[f64], d: &[f64], m: usize, x: f64, k: i32, precise: bool) -> (f64, f64, f64) {
+    if k != 0 {
+        let slope = horner(d, m - 1, x, k, false);
+        let size = horner_abs(p, m, x, k);
+        return (horner(p, m, x, k, precise), slope, size);
+    }
+    let (p, d) = (&p[..=m], &d[..m]);
+    let mut f = p[m];
+    let mut df = d[m - 1];
+    let ax = x.abs();
+    let mut sz = p[m].abs();
+    f = f * x + p[m - 1];
+    sz = sz * ax + p[m - 1].abs();
+    for (&pi, &di) in p[..m - 1].iter().zip(&d[..m - 1]).rev() {
+        df = df * x + di;
+        sz = sz * ax + pi.abs();
+        f = f * x + pi;
+    }
+    (if precise { horner_compensated(p, m, x) } else { f }, df, sz)
+}
+
+#[allow(clippy::too_many_arguments)]
+fn refine_root(p: &[f64], d: &[f64], m: usize, mut lo: f64, mut hi: f64, slo: i32, tol: f64, x0: f64) -> f64 {
+    let mut x = x0;
+    let mut step = hi - lo;
+    let mut step_old = step;
+    let mut precise = false;
+    let mut stop = if tol > 0.0 { tol } else { PRECISE_FROM };
+    for _ in 0..MAX_ITER {
+        let k = scale_exponent(x, m);
+        let (f, df, size) = value_and_slope(p, d, m, x, k, precise);
+        if tol == 0.0 && !precise && f.abs() <= noise_factor(m) * size {
+            precise = true;
+            stop = 2.0 * U;
+            continue;
+        }
+        if f == 0.0 {
+            return x;
+        }
+        if (f > 0.0) == (slo > 0) {
+            lo = x;
+        } else {
+            hi = x;
+        }
+        if hi - lo <= 2.0 * f64::EPSILON * hi || (tol > 0.0 && hi - lo <= tol * hi) {
+            if precise || tol > 0.0 {
+                return x;
+            }
+            precise = true;
+            stop = 2.0 * U;
+            continue;
+        }
+        if tol == 0.0 && hi - lo <= PRECISE_FROM * hi {
+            precise = true;
+            stop = 2.0 * U;
+        }
+        let mut xn = x - if k != 0 { ldexp(f / df, i64::from(k)) } else { f / df };
+        let mut s = x - xn;
+        if !(xn > lo && xn < hi) || s.abs() > 0.5 * step_old.abs() {
+            if precise && s.abs() <= NOISE_STEP * x.abs() {
+                return x;
+            }
+            xn = split_point(lo, hi);
+            s = x - xn;
+        }
+        step_old = step;
+        step = s;
+        if s.abs() <= stop * xn.abs() || (precise && s.abs() <= NOISE_STEP * x.abs()) {
+            if precise || tol > 0.0 {
+                return xn;
+            }
+            precise = true;
+            stop = 2.0 * U;
+        }
+        x = xn;
+    }
+    x
+}
+
+// ---------------------------------------------------------------------------------------
+// Budan-Fourier isolation
+// ---------------------------------------------------------------------------------------
+
+fn sign_changes(v: &[f64], n: usize) -> i32 {
+    let (mut count, mut last) = (0, 0);
+    for &x in &v[..=n] {
+        let s = i32::from(x > 0.0) - i32::from(x < 0.0);
+        count += i32::from(s * last < 0);
+        last = if s != 0 { s } else { last };
+    }
+    count
+}
+
+/// The Taylor table of the C runtime.  Only the entries `[k][j]` with `j + k <= n` are written
+/// and only those are read (as in C, where the rest stays uninitialised): zeroing two 17 x 17
+/// tables on every solve would cost more than the solve of a window without a root.
+struct Taylor {
+    tk: Table,
+    ta: Table,
+    e: f64,
+    skin: f64,
+}
+
+type Table = [[MaybeUninit<f64>; MAXN + 1]; MAXN + 1];
+
+#[cfg(test)]
+fn binom(k: usize, j: usize) -> f64 {
+    // C(j + k, k), exact in doubles for j + k <= 16
+    let mut r = 1.0f64;
+    for i in 1..=k {
+        r = r * (j + i) as f64 / i as f64;
+    }
+    r
+}
+
+/// Fills `slot` in place and returns it (returning the 4.6 kB table by value would copy it,
+/// and building it as a struct literal makes the compiler zero it, on every solve).
+fn taylor_table<'a>(p: &[f64], n: usize, e: f64, skin: f64, slot: &'a mut MaybeUninit<Taylor>) -> &'a Taylor {
+    let tb = slot.as_mut_ptr();
+    // SAFETY: field writes through the slot's pointer (no drop glue, no reference to
+    // uninitialised memory); afterwards every field is initialised (the tables are arrays of
+    // MaybeUninit), so the reference returned is to a valid Taylor.
+    unsafe {
+        (*tb).e = e;
+        (*tb).skin = skin;
+        for k in 0..=n {
+            for j in 0..=n - k {
+                let v = BINOM[k][j] * p[j + k];
+                (*tb).tk[k][j] = MaybeUninit::new(v);
+                (*tb).ta[k][j] = MaybeUninit::new(v.abs());
+            }
+        }
+        slot.assume_init_ref()
+    }
+}
+
+/// What is known at a point of the window (C's Point).  `qt` and `tol` hold entries 0..=n
+/// only, as in C: writing all 17 of each for every point would cost more than the counts.
+#[derive(Clone, Copy)]
+struct Point {
+    x: f64,
+    px: f64,
+    dpx: f64,
+    vp: i32,
+    vq: i32,
+    qt: [MaybeUninit<f64>; MAXN + 1],
+    tol: [MaybeUninit<f64>; MAXN + 1],
+}
+
+impl Point {
+    const EMPTY: Point = Point {
+        x: 0.0,
+        px: 0.0,
+        dpx: 0.0,
+        vp: 0,
+        vq: 0,
+        qt: [MaybeUninit::uninit(); MAXN + 1],
+        tol: [MaybeUninit::uninit(); MAXN + 1],
+    };
+
+    /// q's Taylor coefficient k (k <= n: written by point_at / point_at_zero).
+    #[inline]
+    fn qt(&self, k: usize) -> f64 {
+        // SAFETY: every Point in use had entries 0..=n written, and k <= n here.
+        unsafe { self.qt[k].assume_init() }
+    }
+
+    #[inline]
+    fn tol(&self, k: usize) -> f64 {
+        // SAFETY: as for qt.
+        unsafe { self.tol[k].assume_init() }
+    }
+}
+
+#[inline]
+fn point_at_zero(p: &[f64], n: usize, e: f64, skin: f64) -> Point {
+    let mut pt = Point::EMPTY;
+    let mut qt = [0.0f64; MAXN + 1];
+    pt.px = p[0];
+    pt.dpx = p[1];
+    for i in 0..=n {
+        qt[i] = p[i] - e * p[i].abs();
+        pt.tol[i].write(f64::EPSILON * p[i].abs());
+    }
+    pt.vp = sign_changes(p, n);
+    if skin > 0.0 {
+        qt[0] -= skin;
+        pt.tol[0].write(pt.tol(0) + f64::EPSILON * skin);
+        pt.vq = sign_changes(&qt, n);
+    } else {
+        pt.vq = pt.vp;
+    }
+    for i in 0..=n {
+        pt.qt[i].write(qt[i]);
+    }
+    pt
+}
+
+/// Writes the point x into `slot` (all of x, px, vp, vq and entries 0..=n of qt and tol) and
+/// returns true, or returns false (slot not to be used) when a sign is not certain.
+fn point_at(tb: &Taylor, n: usize, x: f64, slot: &mut MaybeUninit<Point>) -> bool {
+    let pt = slot.as_mut_ptr();
+    let mut a = [0.0f64; MAXN + 1];
+    let mut s = [0.0f64; MAXN + 1];
+    assert!(n <= MAXN);
+    for d in (0..=n).rev() {
+        for k in 0..=n - d {
+            // SAFETY: k + d <= n <= MAXN (asserted), so every index is in bounds, and
+            // [k][d] is an entry taylor_table wrote.  (Unchecked: this double loop is the
+            // solver's hottest code, and the bounds checks cost 30 % of it.)
+            unsafe {
+                let t = tb.tk.get_unchecked(k).get_unchecked(d).assume_init();
+                let u = tb.ta.get_unchecked(k).get_unchecked(d).assume_init();
+                let ak = a.get_unchecked_mut(k);
+                *ak = *ak * x + t;
+                let sk = s.get_unchecked_mut(k);
+                *sk = *sk * x + u;
+            }
+        }
+    }
+    let rel = 8.0 * (n + 1) as f64 * U;
+    let tiny = f64::MIN_POSITIVE;
+    for k in 0..=n {
+        let mut b = a[k] - tb.e * s[k];
+        let mut tol = rel * s[k] + tiny;
+        if k == 0 && tb.skin > 0.0 {
+            b -= tb.skin;
+            tol += rel * tb.skin;
+        }
+        if !(a[k].abs() > tol && b.abs() > tol) {
+            return false;
+        }
+        // SAFETY: field writes through the slot's pointer (no reference to uninitialised
+        // memory is made; the fields have no drop glue).
+        unsafe {
+            (*pt).qt[k] = MaybeUninit::new(b);
+            (*pt).tol[k] = MaybeUninit::new(tol);
+        }
+        s[k] = b;
+    }
+    // SAFETY: as above.
+    unsafe {
+        (*pt).x = x;
+        (*pt).px = a[0];
+        (*pt).dpx = a[1];
+        (*pt).vp = sign_changes(&a, n);
+        (*pt).vq = sign_changes(&s, n);
+    }
+    true
+}
+
+/// C's clearly_positive: the first-order exclusion test, then the second-order one (see the
+/// C source).
+fn clearly_positive(pt: &Point, n: usize, w: f64, dir: i32) -> bool {
+    let rel = 4.0 * (n + 1) as f64 * U;
+    let l = |k: usize| (if dir < 0 && k % 2 == 1 { -pt.qt(k) } else { pt.qt(k) }) - pt.tol(k);
+    let mut r3 = 0.0;
+    for k in (3..=n).rev() {
+        let lk = l(k);
+        r3 = r3 * w + if lk < 0.0 { -lk } else { 0.0 };
+    }
+    let mut lk = [0.0f64; 3];
+    for (k, v) in lk.iter_mut().enumerate().take(n.min(2) + 1) {
+        *v = l(k);
+    }
+    let mut neg = r3;
+    for k in (1..=n.min(2)).rev() {
+        neg = neg * w + if lk[k] < 0.0 { -lk[k] } else { 0.0 };
+    }
+    neg *= w;
+    let l0 = lk[0];
+    if l0 > neg + rel * neg {
+        return true;
+    }
+    if n < 2 {
+        return false;
+    }
+    let l1 = lk[1];
+    let l2 = lk[2] - r3 * w * (1.0 + rel);
+    if !(l2 > 0.0) {
+        return false;
+    }
+    let mut h = -l1 / (2.0 * l2);
+    h = if h < 0.0 { 0.0 } else if h > w { w } else { h };
+    let m = l0 + h * (l1 + h * l2);
+    let size = l0.abs() + h * (l1.abs() + h * l2);
+    m > 2.0 * rel * size
+}
+
+fn isolation_split(a: f64, b: f64) -> f64 {
+    if a == 0.0 {
+        return b * 0.0625;
+    }
+    if b > 8.0 * a {
+        return a.sqrt() * b.sqrt();
+    }
+    a + 0.5 * (b - a)
+}
+
+enum Isolation {
+    Isolated(f64, bool),
+    Cleared,
+    Unresolved(f64),
+}
+
+fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64) -> Isolation {
+    let e = if skin >= 0.0 { noise_factor(n) } else { 0.0 };
+    let sk = if skin > 0.0 { skin } else { 0.0 };
+    let mut a = point_at_zero(p, n, e, sk);
+    if !(a.qt(0) - a.tol(0) > 0.0) {
+        return Isolation::Unresolved(0.0);
+    }
+    if a.vq == 0 || clearly_positive(&a, n, t_end, 1) {
+        return Isolation::Cleared;
+    }
+    let mut slot = MaybeUninit::<Taylor>::uninit();
+    let tb = taylor_table(p, n, e, sk, &mut slot);
+    // The right ends, as in C an uninitialised array of which stack[..top] is in use (zeroing
+    // 41 points would cost more than most solves); point_at writes a slot in place.
+    let mut stack: [MaybeUninit<Point>; MAX_SPLITS + 1] = [const { MaybeUninit::uninit() }; MAX_SPLITS + 1];
+    let mut top = 0usize;
+    let mut splits = 0usize;
+    if !point_at(tb, n, t_end, &mut stack[top]) {
+        return Isolation::Unresolved(0.0);
+    }
+    top += 1;
+    loop {
+        // SAFETY: stack[..top] was written by point_at (every field: x, px, vp, vq; the arrays
+        // are MaybeUninit, their entries 0..=n written).
+        let b = unsafe { stack[top - 1].assume_init_ref() };
+        let w = b.x - a.x;
+        let odd = (a.vp - b.vp) % 2 != 0;
+        if a.vq == b.vq || (!odd && (clearly_positive(&a, n, w, 1) || clearly_positive(b, n, w, -1))) {
+            a = *b;
+            top -= 1;
+            if top == 0 {
+                return Isolation::Cleared;
+            }
+            continue;
+        }
+        if a.vp - b.vp == 1 && a.vq - b.vq == 1 {
+            let mut dp = [0.0f64; MAXN];
+            for i in 0..n {
+                dp[i] = (i + 1) as f64 * p[i + 1];
+            }
+            let mut x0 = a.x + w * (a.px / (a.px - b.px));
+            if !(x0 > a.x && x0 < b.x) {
+                x0 = split_point(a.x, b.x);
+            }
+            return Isolation::Isolated(refine_root(p, &dp, n, a.x, b.x, 1, 0.0, x0), false);
+        }
+        let bx = b.x;
+        let mut m = isolation_split(a.x, bx);
+        let mt = a.x + SPLIT_NEWTON * (-a.px / a.dpx);
+        if a.dpx < 0.0 && mt > a.x && mt < bx && mt - a.x > MIN_WIDTH * bx {
+            m = mt;
+        }
+        if splits < MAX_SPLITS && w > MIN_WIDTH * bx && m > a.x && m < bx && point_at(tb, n, m, &mut stack[top]) {
+            splits += 1;
+            top += 1;
+            continue;
+        }
+        // SAFETY: as above.
+        let b = unsafe { stack[top - 1].assume_init_ref() };
+        if let Some(hit) = derivative_method(p, n, a.x, b.x, skin) {
+            return Isolation::Isolated(hit.0, hit.1);
+        }
+        if !(b.qt(0) - b.tol(0) > 0.0) {
+            return Isolation::Unresolved(b.x);
+        }
+        a = *b;
+        top -= 1;
+        if top == 0 {
+            return Isolation::Cleared;
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// Derivative method
+// ---------------------------------------------------------------------------------------
+
+type Chain = [[f64; MAXN + 1]; MAXN + 1];
+
+fn derivative_chain(c: &[f64], n: usize) -> Chain {
+    let mut d = [[0.0; MAXN + 1]; MAXN + 1];
+    d[n][..=n].copy_from_slice(&c[..=n]);
+    for m in (2..=n).rev() {
+        for i in 0..m {
+            d[m - 1][i] = (i + 1) as f64 * d[m][i + 1];
+        }
+    }
+    d
+}
+
+#[allow(clippy::too_many_arguments)]
+fn roots_in_pieces(p: &[f64], d: &[f64], m: usize, lo: f64, crit: &[f64], t_end: f64, tol: f64, out: &mut [f64]) -> usize {
+    let mut count = 0;
+    let mut a = lo;
+    let mut sa = sign_at(p, m, lo, false);
+    for j in 0..=crit.len() {
+        let b = if j < crit.len() { crit[j] } else { t_end };
+        let sb = sign_at(p, m, b, false);
+        if sb == 0 {
+            if j < crit.len() {
+                out[count] = b;
+                count += 1;
+            }
+        } else if sa != 0 && sa != sb {
+            out[count] = refine_root(p, d, m, a, b, sa, tol, split_point(a, b));
+            count += 1;
+        }
+        a = b;
+        sa = sb;
+    }
+    count
+}
+
+fn critical_points(d: &Chain, n: usize, lo: f64, t_end: f64, crit: &mut [f64; MAXN]) -> usize {
+    let mut level = [0.0f64; MAXN];
+    let mut nl = 0usize;
+    if let (Some(r), _) = quad_roots(d[2][2], d[2][1], d[2][0]) {
+        for x in r {
+            if x > lo && x < t_end && (nl == 0 || x > level[nl - 1]) {
+                level[nl] = x;
+                nl += 1;
+            }
+        }
+    }
+    for m in 3..n {
+        let mut next = [0.0f64; MAXN];
+        let tol = if m == n - 1 { TOL_CRITICAL } else { TOL_LEVEL };
+        nl = roots_in_pieces(&d[m], &d[m - 1], m, lo, &level[..nl], t_end, tol, &mut next);
+        level[..nl].copy_from_slice(&next[..nl]);
+    }
+    crit[..nl].copy_from_slice(&level[..nl]);
+    nl
+}
+
+fn derivative_method(c: &[f64], n: usize, lo: f64, t_end: f64, skin: f64) -> Option<(f64, bool)> {
+    let d = derivative_chain(c, n);
+    let mut crit = [0.0f64; MAXN];
+    let nc = critical_points(&d, n, lo, t_end, &mut crit);
+    let mut a = lo;
+    let sa = 1;
+    let mut sb = 0;
+    let mut sb_known = false;
+    for j in 0..=nc {
+        let b = if j < nc { crit[j] } else { t_end };
+        if !sb_known {
+            sb = sign_at(c, n, b, true);
+        }
+        sb_known = false;
+        if sb == 0 {
+            return Some((b, j < nc));
+        }
+        if sb != sa {
+            return Some((refine_root(c, &d[n - 1], n, a, b, sa, 0.0, split_point(a, b)), false));
+        }
+        if skin >= 0.0 && j < nc && within_noise(c, n, b, skin) {
+            let b2 = if j + 1 < nc { crit[j + 1] } else { t_end };
+            sb = sign_at(c, n, b2, true);
+            sb_known = true;
+            if sb == sa {
+                return Some((b, true));
+            }
+        }
+        a = b;
+    }
+    None
+}
+
+/// First root in (0, T] of c (degree n >= 3, normalised, c[0] != 0).
+pub(crate) fn first_root_interval(c: &[f64], n: usize, t_end: f64, skin: f64) -> Option<(f64, bool)> {
+    let mut p = [0.0f64; MAXN + 1];
+    let s = if c[0] > 0.0 { 1.0 } else { -1.0 };
+    for i in 0..=n {
+        p[i] = s * c[i];
+    }
+    let mut lo = 0.0;
+    if t_end <= if n <= 8 { FAST_LIMIT_LOW } else { FAST_LIMIT_HIGH } {
+        match isolate_first_root(&p, n, skin, t_end) {
+            Isolation::Isolated(t, g) => return Some((t, g)),
+            Isolation::Cleared => return None,
+            Isolation::Unresolved(a) => lo = a,
+        }
+    }
+    derivative_method(&p, n, lo, t_end, skin)
+}
+
+/// The quadratic, for the entry point.
+pub(crate) fn quadratic(c: &[f64], tmax: f64, skin: f64) -> Option<(f64, bool)> {
+    first_root_quadratic(c, tmax, skin)
+}
+
+static BINOM: [[f64; MAXN + 1]; MAXN + 1] = binom_table();
+
+const fn binom_table() -> [[f64; MAXN + 1]; MAXN + 1] {
+    let mut t = [[0.0; MAXN + 1]; MAXN + 1];
+    let mut k = 0;
+    while k <= MAXN {
+        let mut j = 0;
+        while j + k <= MAXN {
+            // C(j + k, k) by the integer recurrence (exact)
+            let mut r: u64 = 1;
+            let mut i = 1;
+            while i <= k {
+                r = r * (j + i) as u64 / i as u64;
+                i += 1;
+            }
+            t[k][j] = r as f64;
+            j += 1;
+        }
+        k += 1;
+    }
+    t
+}
+
+#[cfg(test)]
+mod check {
+    #[test]
+    fn binomials() {
+        for k in 0..=super::MAXN {
+            for j in 0..=super::MAXN - k {
+                assert_eq!(super::BINOM[k][j], super::binom(k, j));
+            }
+        }
+        assert_eq!(super::BINOM[8][8], 12870.0);
+    }
+}
+
+#[cfg(test)]
+mod ceil {
+    #[test]
+    fn ceil_div_is_the_ceiling() {
+        for den in 1..=16 {
+            for num in -4100..4100 {
+                assert_eq!(super::ceil_div(num, den), num.div_euclid(den) + i32::from(num.rem_euclid(den) != 0));
+            }
+        }
+    }
+}
