@@ -21,6 +21,7 @@ SUBCOMMANDS = {
     "roles": "roles",
     "runtime": "runtime_info",
     "scene": "scene",
+    "sim": "sim",
     "vectors": "vectors",
 }
 # What each subcommand does, for the top-level --help (tests/test_cli.py: one per subcommand).
@@ -31,7 +32,8 @@ SUMMARIES = {
     "report": "the variant report: Markdown, JSON and HTML with a chart",
     "roles": "which parameters (alone, in pairs, as vectors) are worth a role",
     "runtime": "where the runtimes are, and the flags and CMake package to build with them",
-    "scene": "predict the collisions of an example scene",
+    "scene": "every pair's first contact in a frozen scene, predicted by the engine",
+    "sim": "run a scene in the predictive engine: event log, pictures (GIF, MP4, PNG, SVG)",
     "vectors": "test vectors for any .mxm from the independent oracle (Maxima + mpmath)",
 }
 

@@ -1,10 +1,9 @@
-"""`max2code scene`: the cheapest variant and the lowest expansion order per pair, verified.
+"""`max2code scene`: every pair's first contact in a frozen scene, predicted by the engine.
 
-On the three example scenes: every predicted first collision is within the scene's tolerance of
-the exact one (mpmath on the true trigonometric motion), and so is "no collision"; the solves
-ran at the degrees the scene needs (no octic where nothing rotates). The time saved against
-always solving the general octic is measured by the benchmark (`python bench/roots.py`, table in
-bench/results/), never asserted here: a timed assertion fails on a loaded machine.
+On the three example scenes every predicted first collision agrees with the exact one (mpmath
+on the true trigonometric motion) far inside the scene's tolerance, and so does "no collision";
+the solves run at the degrees the scene needs (nothing above degree 4 where nothing rotates,
+the Taylor models where something does). Speed is measured by the benchmarks, never here.
 """
 from __future__ import annotations
 
@@ -12,7 +11,6 @@ import json
 import math
 import subprocess
 import sys
-from pathlib import Path
 
 import pytest
 
@@ -31,52 +29,45 @@ def scene_mod(maxima_exe: str):
 
 @pytest.fixture(scope="module")
 def reports(scene_mod) -> dict:
-    out = {}
-    for name in ("billiards-break", "paddles", "mixed"):
-        sc = scene_mod.load_scene(SCENES / f"{name}.json")
-        out[name] = scene_mod.run(sc, check=True)
-    return out
+    return {name: scene_mod.run(scene_mod.load_scene(SCENES / f"{name}.json"), check=True)
+            for name in ("billiards-break", "paddles", "mixed")}
 
 
 @pytest.mark.parametrize("name", ["billiards-break", "paddles", "mixed"])
-def test_within_tolerance_of_exact(name: str, reports) -> None:
+def test_agrees_with_exact(name: str, reports) -> None:
     r = reports[name]
-    tol = r.scene.tolerance
-    assert all(p.resolved for p in r.predictions)
-    bad = [(p.a, p.b, p.time, e) for p, e in zip(r.predictions, r.exact) if not
-           (p.time is None and e is None or p.time is not None and e is not None and abs(p.time - e) <= tol)]
+    bad = [(p.a, p.b, p.time, e) for p, e in zip(r.predictions, r.exact)
+           if not (p.time is None and e is None
+                   or p.time is not None and e is not None and abs(p.time - e) <= 1e-8 * max(1, e))]
     assert not bad, bad
-    # the proved bound holds too, and says no more than the tolerance
-    assert all(p.bound <= tol / 2 for p in r.predictions)
     assert any(p.time is not None for p in r.predictions), "a scene without collisions tests little"
 
 
 def test_degrees_follow_the_scene(reports) -> None:
     billiards = reports["billiards-break"].solves()
-    assert set(billiards) <= {2, 4} and billiards[4] == 15  # only the decelerating cue ball's pairs
+    assert set(billiards) <= {2, 4}  # nothing rotates: exact polynomials, no Taylor model
     paddles = reports["paddles"]
-    assert paddles.solves()[8] > 0 and paddles.solves()[2] == 6  # ball-ball pairs: no rotation
-    assert all(p.windows > 1 for p in paddles.predictions if p.rotating), "6 rad over the horizon"
-    assert sum(p.skipped for p in paddles.predictions) > 0
+    assert max(paddles.solves()) >= 6 and paddles.solves()[2] > 0
+    rotating = [p for p in paddles.predictions if p.rotating and p.time is not None]
+    assert rotating and all(p.windows >= 1 for p in rotating)
+    assert all(p.windows == 0 for p in paddles.predictions if not p.rotating)
     mixed = reports["mixed"]
-    assert set(mixed.solves()) >= {2, 4, 8}
-    axle = [p for p in mixed.predictions if p.a == "axle" and p.b in ("dart", "wall")
-            or p.b == "axle" and p.a in ("dart", "wall")]
-    assert len(axle) == 2 and not any(p.rotating for p in axle), "a zero offset makes the spin irrelevant"
-    # the general octic over the whole horizon is not accurate where rotation is fast
-    assert sum(e > paddles.scene.tolerance for e in paddles.baseline_errors()) > 0
+    axle = [p for p in mixed.predictions if {p.a, p.b} in ({"axle", "dart"}, {"axle", "wall"})]
+    assert len(axle) == 2 and not any(p.rotating or p.windows for p in axle), \
+        "a zero offset makes the spin irrelevant"
 
 
-def test_lowest_order_meeting_the_tolerance(scene_mod) -> None:
-    """A slow orbit over a short horizon needs only order 2 (degree 4), and the answer is still
-    within the tolerance."""
+def test_slow_orbit_uses_a_low_order(scene_mod) -> None:
+    """A slow orbit over a short horizon: the lowest Taylor order meeting the budget is below
+    4 (degree below 8), and the answer is still exact to rounding."""
     Body = scene_mod.Body
     a = Body("slow", (0.0, 0.0), 0.1, offset=(0.5, 0.0), omega=0.1)
     b = Body("ball", (1.0, 0.05), 0.1, velocity=(-1.0, 0.0))
-    p = scene_mod.predict_pair(a, b, 1.0, 1e-3)
-    assert set(p.orders) == {2} and set(p.solves) == {4}
-    exact = scene_mod.exact_first_contact(a, b, 1.0)
-    assert p.time is not None and abs(p.time - exact) <= 1e-3
+    sc = scene_mod.Scene((a, b), 1.0, 1e-3, "slow")
+    r = scene_mod.run(sc, check=True)
+    (p,) = r.predictions
+    assert p.rotating and max(p.solves) < 8
+    assert p.time is not None and abs(p.time - r.exact[0]) <= 1e-12
 
 
 def test_cli(maxima_exe: str) -> None:
@@ -84,7 +75,7 @@ def test_cli(maxima_exe: str) -> None:
                        capture_output=True, text=True, cwd=ROOT, timeout=600)
     assert r.returncode == 0, r.stderr
     d = json.loads(r.stdout)
-    assert d["pairs"] == 52 and d["collisions"] and d["unresolved"] == 0
+    assert d["pairs"] == 52 and d["collisions"]
     assert all(math.isfinite(c["time"]) for c in d["collisions"])
     bad = subprocess.run([sys.executable, "-m", "max2code", "scene", "/nonexistent.json"],
                          capture_output=True, text=True, cwd=ROOT, timeout=60)

@@ -130,8 +130,9 @@ def circles(orbit: bool):
     return cases, case("", "", *scaled)[2], positions
 
 
-def point_line(orbit: bool):
-    """Cases for a point crossing a line (point-line, or point-orbit-line with orbit=True)."""
+def point_line(orbit: bool, radius: bool = False):
+    """Cases for a point crossing a line (point-line, or point-orbit-line with orbit=True), or a
+    circle of radius r reaching a rotating line (circle-orbit-line: radius=True)."""
     if orbit:
         p_names = {"x": "cpx", "y": "cpy", "vx": "vpx", "vy": "vpy", "ax": "apx", "ay": "apy",
                    "ox": "opx", "oy": "opy", "w": "wp"}
@@ -141,6 +142,9 @@ def point_line(orbit: bool):
         p_names = {"x": "px", "y": "py", "vx": "pvx", "vy": "pvy", "ax": "pax", "ay": "pay"}
         l_names = {"x": "lx", "y": "ly", "vx": "lvx", "vy": "lvy", "ax": "lax", "ay": "lay",
                    "dx": "dx", "dy": "dy"}
+
+    if radius:
+        p_names["r"] = "r"
 
     def case(family: str, note: str, p: dict, line: dict, tmax: float = TMAX):
         params = {n: 0.0 for n in [*p_names.values(), *l_names.values()]}
@@ -189,6 +193,18 @@ def point_line(orbit: bool):
                  {"x": 2.0, "vx": -0.5, "ax": 0.25, "ox": 0.5},
                  {"dx": 0.6, "dy": 0.8, "oy": 0.5}),
         ]
+    if radius:
+        cases += [
+            case("generic", "a circle of radius 0.25 against a rotating slanted line",
+                 {"x": 2.0, "vx": -0.5, "ox": 0.5, "oy": 0.25, "w": 0.375, "r": 0.25},
+                 {"dx": 0.6, "dy": 0.8, "ox": -0.25, "w": -0.25, "ay": 0.125}),
+            case("graze", "a circle of radius 0.25 whose centre's path is 0.25 from the line at t = 2",
+                 {"x": 4.25, "vx": -4.0, "ax": 2.0, "r": 0.25}, vertical),
+            case("near_zero", "a circle of radius 0.5 1e-9 from the line, closing at speed 1",
+                 {"x": 3.5 + 1e-9, "vx": -1.0, "r": 0.5, **spin_p}, {"x": 3.0, **vertical, **spin_l}),
+            case("degree_drop", "a circle, no orbit, no acceleration (roles): the linear variant",
+                 {"x": 3.0, "y": 1.0, "vx": -1.0, "r": 0.5}, {"dx": 0.6, "dy": 0.8, "vy": 0.5}),
+        ]
     scaled = case("", "", {"x": 1.0, "y": 0.5, "vx": -1.5, "vy": 0.25, "ax": 0.125, **spin_p},
                   {"dx": 0.6, "dy": 0.8, "x": -0.5, "vy": 0.5, "ax": -0.0625, **spin_l})[2]
     positions = [p_names["x"], p_names["y"], l_names["x"], l_names["y"]]
@@ -200,7 +216,8 @@ def equation_cases(stem: str, names: tuple[str, ...]) -> list[tuple[str, str, di
     if stem.startswith("circles") or stem in HIGH_ORDER:
         cases, scaled_case, positions = circles(stem == "circles-orbit" or stem in HIGH_ORDER)
     else:
-        cases, scaled_case, positions = point_line(stem == "point-orbit-line")
+        cases, scaled_case, positions = point_line(stem in ("point-orbit-line", "circle-orbit-line"),
+                                                   radius=stem == "circle-orbit-line")
     assert set(scaled_case) == set(names), sorted(set(scaled_case) ^ set(names))
     out = []
     seed = zlib.crc32(stem.encode())

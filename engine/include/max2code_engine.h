@@ -1,0 +1,135 @@
+/*
+ * max2code_engine.h -- the predictive (event-driven) 2D engine: public C API.
+ *
+ * A world holds rigid bodies whose every point moves as
+ *     c + v t + a t^2/2 + R(angle + omega t) offset
+ * between events. Time jumps from one predicted event to the next: contacts happen at their
+ * exact (predicted) times, nothing is integrated between events, and a body's state is kept
+ * at its own last event time (poses at any later time are evaluated exactly on request).
+ *
+ * Shapes: every body has a list of vertices in its own frame (offsets from its reference
+ * point, which for a dynamic body is its centre of mass) and a rounding radius:
+ *     1 vertex            a circle (radius > 0)
+ *     2 vertices          a segment (radius 0: a thin two-sided wall) or a capsule (radius > 0)
+ *     3 or more vertices  a convex polygon, anticlockwise (radius > 0 rounds its corners)
+ * Static bodies never move; kinematic bodies follow their prescribed motion forever (the
+ * paper's orbiting paddles); both have infinite mass. Dynamic bodies respond to impulses.
+ *
+ * Everything between the cdef markers is read by the Python binding (cffi, ABI mode):
+ * plain declarations only there.
+ */
+#ifndef MAX2CODE_ENGINE_H
+#define MAX2CODE_ENGINE_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* cdef-begin */
+typedef struct m2c_world m2c_world;
+
+enum {
+    M2C_STATIC = 0,
+    M2C_KINEMATIC = 1,
+    M2C_DYNAMIC = 2
+};
+
+/* Event kinds reported by m2c_world_step. */
+enum {
+    M2C_EVENT_COLLISION = 1,   /* an impulse between a and b */
+    M2C_EVENT_REST = 2,        /* a came to rest on b (the rest rule; time = the analytic limit) */
+    M2C_EVENT_WAKE = 3,        /* a, asleep, was woken (hit by b) */
+    M2C_EVENT_TIMER = 4        /* a timer set with m2c_world_add_timer fired (a = its id) */
+};
+
+typedef struct {
+    int kind;                  /* M2C_STATIC, M2C_KINEMATIC or M2C_DYNAMIC */
+    double x, y, angle;        /* reference point and angle at the world's current time */
+    double vx, vy, omega;      /* velocity and angular velocity */
+    double ax, ay;             /* constant acceleration (gravity) */
+    double mass, inertia;      /* dynamic bodies: both > 0 */
+    double restitution;        /* 0..1; a contact uses the product of the two */
+    double radius;             /* rounding radius (the circle's radius) */
+    int nvertices;             /* 1: circle, 2: segment/capsule, >= 3: convex polygon */
+    const double *vertices;    /* 2 * nvertices numbers: offsets in the body frame */
+    int group;                 /* >= 0: bodies of one group never collide with each other */
+} m2c_body_def;
+
+typedef struct {
+    double tolerance;          /* lengths: contact slack, Taylor remainder budget (> 0) */
+    double cell_size;          /* broad-phase cell width; 0: chosen from the bodies; < 0: one cell */
+    double rest_speed;         /* v_r of the rest rule (README): 0 automatic, < 0 off */
+    double collapse_time;      /* t_c of the collapse rules: 0 automatic (1e-3 s), < 0 off */
+    long long max_events;      /* a step processing more events than this fails (0: no limit) */
+} m2c_config;
+
+typedef struct {
+    double time;
+    int kind;                  /* M2C_EVENT_* */
+    int a, b;                  /* bodies (b = -1 when none) */
+    double nx, ny;             /* contact normal, from a towards b */
+    double px, py;             /* contact point */
+    double speed;              /* closing speed along the normal before the response */
+    double impulse;            /* normal impulse applied (to b; -impulse to a) */
+} m2c_event;
+
+typedef struct {
+    long long events;          /* popped from the queue (all kinds) */
+    long long collisions;      /* impulses applied */
+    long long cell_crossings;
+    long long windows;         /* window-end events (a rotating search resumed) */
+    long long windows_solved;  /* rotating-model windows solved (Taylor models) */
+    long long stale;           /* events found stale when popped (partner changed) */
+    long long predictions;     /* bodies predicted */
+    long long pair_tests;      /* pairs examined */
+    long long solves;          /* polynomial root solves */
+    long long solves_by_degree[17];
+    long long rests, wakes;
+    int ncells_x, ncells_y;
+    double cell_size;
+} m2c_stats;
+
+m2c_world *m2c_world_new(const m2c_config *config);
+void m2c_world_free(m2c_world *w);
+
+/* The id of the new body (0, 1, ...), or -1 (m2c_world_error says why). */
+int m2c_world_add_body(m2c_world *w, const m2c_body_def *def);
+int m2c_world_body_count(const m2c_world *w);
+
+/* Process every event up to time `until` (inclusive), writing reported events to
+ * events[0..capacity). Returns 0 when the world reached `until`; 1 when the buffer filled up
+ * first (the world's time is that of the last event written: call again); -1 on error. */
+int m2c_world_step(m2c_world *w, double until, m2c_event *events, int capacity, int *count);
+double m2c_world_time(const m2c_world *w);
+
+/* Pose (x, y, angle) and velocity (vx, vy, omega) of a body at time t >= the body's last
+ * event (usually the world's time): exact evaluation, the state is not changed. 0 or -1. */
+int m2c_world_pose(const m2c_world *w, int body, double t, double out[3]);
+int m2c_world_velocity(const m2c_world *w, int body, double t, double out[3]);
+/* All bodies at once: out[3 i .. 3 i + 2] = pose of body i at time t. */
+int m2c_world_poses(const m2c_world *w, double t, double *out);
+
+/* Change a body's velocity at the world's current time (an input event); 0 or -1. */
+int m2c_world_set_velocity(m2c_world *w, int body, double vx, double vy, double omega);
+/* A timer: an M2C_EVENT_TIMER event (a = the returned id) at time t. */
+int m2c_world_add_timer(m2c_world *w, double t);
+
+/* The first contact of bodies i and j alone, as if nothing else existed and nothing changed,
+ * in (now, now + tmax] (any kinds of body): 1 and *t (absolute), 0 when none. The prediction
+ * the event loop uses (`max2code scene` shows it per pair). */
+int m2c_world_first_contact(m2c_world *w, int i, int j, double tmax, double *t);
+
+/* Energy: kinetic + potential (-m a.x) of the dynamic bodies at time t. */
+double m2c_world_energy(const m2c_world *w, double t);
+/* 1 when the body is asleep (the rest rule), else 0. */
+int m2c_world_asleep(const m2c_world *w, int body);
+
+void m2c_world_stats(const m2c_world *w, m2c_stats *out);
+const char *m2c_world_error(const m2c_world *w);
+/* cdef-end */
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* MAX2CODE_ENGINE_H */

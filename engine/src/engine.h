@@ -1,0 +1,185 @@
+/*
+ * engine.h -- the engine's internal data: flat arrays, no allocation per event.
+ *
+ * Each dynamic body holds exactly one pending event (its earliest: a contact, a cell
+ * crossing, the end of a prediction window, ...) in an indexed binary heap keyed by
+ * (time, body id). An event with a partner remembers the partner's motion counter; the
+ * counter changes whenever the partner's motion does, so a stale event is recognised when it
+ * is popped and the body is predicted again (Rapaport 1980; Lubachevsky 1991). Static and
+ * kinematic bodies never change motion and hold no event: the dynamic body of each pair
+ * predicts the pair.
+ */
+#ifndef M2C_ENGINE_INTERNAL_H
+#define M2C_ENGINE_INTERNAL_H
+
+#include <stdint.h>
+
+#include "max2code_engine.h"
+
+/* A body's motion from its own reference time t: every point of the body is at
+ * (x, y) + (vx, vy) s + (ax, ay) s^2/2 + R(th + w s) offset, s = time - t. */
+typedef struct {
+    double t;
+    double x, y, vx, vy, ax, ay;
+    double th, w;
+    double c, s;                /* cos th, sin th (kept: most bodies never turn) */
+} motion;
+
+/* The same motion evaluated at one time (a snapshot, never stored as the reference). */
+typedef struct {
+    double x, y, vx, vy, ax, ay;
+    double th, w, c, s;     /* angle, angular velocity, cos and sin of the angle */
+} snap;
+
+enum { EV_NONE = 0, EV_CONTACT, EV_CELL, EV_WINDOW, EV_REST, EV_LEAVE };
+/* EV_REST: a resting body's bounce series ends (reported; asleep from then on if it sleeps);
+ * EV_LEAVE: a body sliding on an edge reaches its end. */
+/* Contact features: a point (vertex + rounding radius) of each body (PP), a point of the
+ * body against an edge of the partner (PL), an edge of the body against a point of the
+ * partner (LP). */
+enum { F_PP = 0, F_PL = 1, F_LP = 2 };
+
+typedef struct {
+    double t;
+    int kind;
+    int partner;
+    uint32_t partner_counter;
+    int feature, fa, fb, side;  /* contact: feature kind, vertex/edge indices, side of the edge */
+    int dx, dy;                 /* cell crossing: the step to the next cell */
+} event;
+
+enum { AWAKE = 0, RESTING = 1, ASLEEP = 2 };
+
+typedef struct {
+    motion m;
+    int kind;                   /* M2C_STATIC / M2C_KINEMATIC / M2C_DYNAMIC */
+    double inv_mass, inv_inertia, mass, inertia;
+    double restitution, radius;
+    double bound;               /* max |offset| + radius: a circle about the reference point */
+    double rho;                 /* max |offset| (what rotation moves) */
+    int nvert, vert;            /* vertices: w->verts[2 (vert + k)], k < nvert */
+    int group;
+    uint32_t counter;           /* bumped whenever the motion changes */
+    int cx, cy;                 /* cell (dynamic bodies) */
+    int next, prev;             /* the cell's list of dynamic bodies */
+    double gx, gy;              /* its own gravity (m.ax, m.ay differ while it rests) */
+    int state;                  /* AWAKE, RESTING, ASLEEP (the rest rule, rest.c) */
+    int support, support_edge;  /* RESTING: the body and edge it slides on */
+    int sleep_at_rest;          /* RESTING: fall asleep at rest_time */
+    double support_n[2];        /* RESTING: the edge's normal towards the body */
+    double rest_time;           /* RESTING: when the bounce series ends (reported then) */
+    double last_contact;        /* time of its last collision (the collapse rule) */
+    int burst;                  /* collisions in a row, each within t_c of the last */
+    int elastic;                /* its burst's cluster rests on nothing: rule 2 applies */
+    int instant;                /* collisions in a row at one identical time (rule 5) */
+    event ev;
+} body;
+
+typedef struct {
+    double x0, y0, size;
+    int nx, ny;
+    int *head;                  /* per cell: first dynamic body in it, or -1 */
+    int *fixed_start;           /* per cell: static bodies within reach (CSR into fixed) */
+    int *fixed;
+} grid;
+
+typedef struct {
+    double t;
+    int id;
+} timer;
+
+struct m2c_world {
+    m2c_config cfg;
+    double now;
+    body *b;
+    int n, cap;
+    double *verts;              /* body-frame vertices, 2 per vertex */
+    double *edges;              /* per vertex k: unit direction and length of edge k -> k+1 */
+    int nverts, capverts;
+    int *heap, *heap_pos;       /* indexed heap of dynamic bodies */
+    int heap_n;
+    int *kinematic;             /* kinematic bodies: every dynamic body checks them */
+    int *stack, *woken, *members;   /* scratch (waking a pile, freezing a cluster) */
+    int nkin;
+    grid g;
+    int prepared;
+    int broken;                 /* the generated headers do not match (see err) */
+    int any_kinds;              /* m2c_world_first_contact: predict pairs of any kinds */
+    long long same;             /* events in a row at one identical time (a guard) */
+    double last_time;
+    double bound_max;           /* largest bound of a dynamic body */
+    timer *timers;
+    int ntimers, captimers, next_timer_id;
+    m2c_event *out;             /* the step's output buffer */
+    int out_n, out_cap;
+    m2c_event *pending;         /* reported events that did not fit: given out first */
+    int npending, cappending;
+    m2c_stats st;
+    char err[256];
+};
+
+/* motion.c */
+snap motion_at(const motion *m, double t);
+void body_commit(body *b, double t);        /* make time t the body's reference time */
+void world_point(const snap *s, const double off[2], double out[2]);  /* s + R off */
+void world_vector(const snap *s, const double v[2], double out[2]);   /* R v */
+
+/* heap.c */
+int heap_init(m2c_world *w, int capacity);
+void heap_insert(m2c_world *w, int i);
+void heap_update(m2c_world *w, int i);      /* after b[i].ev.t changed */
+int heap_top(const m2c_world *w);           /* -1 when empty */
+
+/* grid.c */
+int grid_build(m2c_world *w);
+void grid_free(grid *g);
+void grid_cell_of(const grid *g, double x, double y, int *cx, int *cy);
+void grid_insert(m2c_world *w, int i);
+void grid_move(m2c_world *w, int i, int dx, int dy);
+double grid_crossing(const m2c_world *w, int i, double tmax, int *dx, int *dy);
+/* Calls visit(w, i, j, ctx) for every body j that may touch dynamic body i before it
+ * leaves its cell: dynamic bodies of the 3x3 cells around it, static bodies within reach
+ * of its cell, every kinematic body. */
+typedef void (*visit_fn)(m2c_world *w, int i, int j, void *ctx);
+void grid_neighbours(m2c_world *w, int i, visit_fn visit, void *ctx);
+
+/* predict.c */
+typedef struct {
+    double t;                   /* absolute time */
+    double rate;                /* how fast the gap closes then (ties: the fastest first) */
+    int feature, fa, fb, side;
+    int improved;               /* set when predict_pair found a better one */
+    double window;              /* rotation searched only up to here (then predict again) */
+} contact;
+int predict_check_generated(m2c_world *w);
+/* The earliest contact of bodies i (dynamic) and j at a time in (now, now + tmax]; 1 and
+ * *c if there is one before *the current best* (c->t on entry), else 0. */
+int predict_pair(m2c_world *w, int i, int j, contact *c);
+
+/* response.c */
+int respond(m2c_world *w, int i, int j, const event *ev);
+void contact_geometry(const m2c_world *w, int i, int j, const event *ev, double n[2], double p[2]);
+
+#define BURST 16 /* collisions in a row, each within t_c of the last: rules 2 and 4 of rest.c */
+#define INSTANT 64 /* collisions in a row at one instant: rule 5 of rest.c */
+
+/* rest.c: the rest rule and the inelastic-collapse rule (README: "The rest rule") */
+double rest_speed(const m2c_world *w, double gn);
+double collapse_time(const m2c_world *w);
+double wake_speed(const m2c_world *w, const body *b);
+int rest_after_contact(m2c_world *w, int k, int s, const event *ev, int k_is_a, double e);
+int wake_island(m2c_world *w, int i, int *woken, int cap);
+void rest_restore(m2c_world *w, int k);
+int body_still(const body *b);
+void fall_asleep(m2c_world *w, int k);
+void rest_burst(m2c_world *w, int k);
+double rest_leave_time(const m2c_world *w, int k, double tmax);
+
+/* motion.c */
+double first_crossing(double x, double v, double a, double edge, int dir, double tmax);
+
+/* world.c */
+void world_predict(m2c_world *w, int i);
+int world_emit(m2c_world *w, const m2c_event *e);
+
+#endif

@@ -1,0 +1,165 @@
+/*
+ * response.c -- what a contact does: an impulse along the contact normal, with restitution
+ * and the angular terms of both bodies (static and kinematic bodies have infinite mass and
+ * inertia).
+ *
+ * For bodies with inverse masses ma, mb, inverse inertias ia, ib, contact arms ra, rb (from
+ * each reference point to the contact point) and the normal n from a to b, the closing
+ * velocity along n is  u = -(vb + wb x rb - va - wa x ra) . n  and the impulse is
+ *     J = (1 + e) u / (ma + mb + ia (ra x n)^2 + ib (rb x n)^2)
+ * applied as -J n to a and +J n to b: momentum is conserved exactly, and for e = 1 so is the
+ * kinetic energy (up to rounding). e is the product of the two bodies' restitutions.
+ */
+#include <math.h>
+
+#include "engine.h"
+
+static double cross(const double a[2], const double b[2])
+{
+    return a[0] * b[1] - a[1] * b[0];
+}
+
+/* Contact point and normal (from body i towards body j) of the event's feature at now. */
+void contact_geometry(const m2c_world *w, int i, int j, const event *ev, double n[2], double p[2])
+{
+    const body *A = &w->b[i], *B = &w->b[j];
+    snap a = motion_at(&A->m, w->now), b = motion_at(&B->m, w->now);
+    double P[2], Q[2], D[2];
+    if (ev->feature == F_PP) {
+        world_point(&a, &w->verts[2 * (A->vert + ev->fa)], P);
+        world_point(&b, &w->verts[2 * (B->vert + ev->fb)], Q);
+        double dx = Q[0] - P[0], dy = Q[1] - P[1], d = hypot(dx, dy);
+        if (d > 0) {
+            n[0] = dx / d;
+            n[1] = dy / d;
+        } else { /* coincident centres: along the relative velocity */
+            double ux = a.vx - b.vx, uy = a.vy - b.vy, u = hypot(ux, uy);
+            n[0] = u > 0 ? ux / u : 1.0;
+            n[1] = u > 0 ? uy / u : 0.0;
+        }
+        p[0] = P[0] + n[0] * A->radius;
+        p[1] = P[1] + n[1] * A->radius;
+        return;
+    }
+    /* a point of one body on an edge of the other: the edge's normal on the point's side */
+    const body *E = ev->feature == F_PL ? B : A, *V = ev->feature == F_PL ? A : B;
+    const snap *se = ev->feature == F_PL ? &b : &a, *sv = ev->feature == F_PL ? &a : &b;
+    int edge = ev->feature == F_PL ? ev->fb : ev->fa, vert = ev->feature == F_PL ? ev->fa : ev->fb;
+    world_point(sv, &w->verts[2 * (V->vert + vert)], P);
+    world_vector(se, &w->edges[3 * (E->vert + edge)], D);
+    double nl[2] = {ev->side * D[1], -ev->side * D[0]}; /* from the edge towards the point */
+    p[0] = P[0] - nl[0] * V->radius;
+    p[1] = P[1] - nl[1] * V->radius;
+    if (ev->feature == F_PL) {
+        n[0] = -nl[0];
+        n[1] = -nl[1];
+    } else {
+        n[0] = nl[0];
+        n[1] = nl[1];
+    }
+}
+
+/* Moving under the impulses: dynamic, neither asleep nor stopped to fall asleep. */
+static int dynamic_awake(const body *b)
+{
+    return b->kind == M2C_DYNAMIC && !body_still(b);
+}
+
+/* How body X's velocity changes per unit impulse along `push`: along push itself, or -- for a
+ * body sliding on an edge (the rest rule) pushed into that edge -- along the edge only (the
+ * edge takes the rest). Without it a ball sliding on the floor under another would bounce
+ * between the two infinitely often at one instant. Returns 1 when constrained. */
+static int response_direction(const body *X, const double push[2], double u[2])
+{
+    if (X->kind == M2C_DYNAMIC && X->state == RESTING && X->support_edge >= 0) {
+        double ns = push[0] * X->support_n[0] + push[1] * X->support_n[1];
+        if (ns < 0) {
+            u[0] = push[0] - ns * X->support_n[0];
+            u[1] = push[1] - ns * X->support_n[1];
+            return 1;
+        }
+    }
+    u[0] = push[0];
+    u[1] = push[1];
+    return 0;
+}
+
+/* Returns the number of bodies woken (their ids in w->woken): the caller predicts them. */
+int respond(m2c_world *w, int i, int j, const event *ev)
+{
+    body *A = &w->b[i], *B = &w->b[j];
+    int woken = 0;
+    body_commit(A, w->now);
+    if (B->kind == M2C_DYNAMIC)
+        body_commit(B, w->now);
+    double n[2], p[2];
+    contact_geometry(w, i, j, ev, n, p);
+    snap a = motion_at(&A->m, w->now), b = motion_at(&B->m, w->now);
+    double ra[2] = {p[0] - a.x, p[1] - a.y}, rb[2] = {p[0] - b.x, p[1] - b.y};
+    double va[2] = {a.vx - a.w * ra[1], a.vy + a.w * ra[0]};
+    double vb[2] = {b.vx - b.w * rb[1], b.vy + b.w * rb[0]};
+    double closing = -((vb[0] - va[0]) * n[0] + (vb[1] - va[1]) * n[1]);
+    if (body_still(B) && wake_speed(w, B) > 0 && closing > wake_speed(w, B))
+        woken = wake_island(w, j, w->woken, w->cap);
+    int awake_b = dynamic_awake(B);
+    double push_a[2] = {-n[0], -n[1]}, ua[2], ub[2];
+    int ca = response_direction(A, push_a, ua);
+    int cb = awake_b && response_direction(B, n, ub);
+    if (!cb) {
+        ub[0] = n[0];
+        ub[1] = n[1];
+    }
+    /* a body that was resting and is not held by its edge is free again */
+    if (!ca)
+        rest_restore(w, i);
+    if (awake_b && !cb)
+        rest_restore(w, j);
+    double e = A->restitution * B->restitution;
+    double tc = collapse_time(w);
+    int fixed = !awake_b;
+    int recent = tc > 0 && !fixed && w->now - A->last_contact < tc && w->now - B->last_contact < tc;
+    if (recent && A->elastic && B->elastic)
+        e = 1.0; /* the collapse rule (rest.c, rule 2) */
+    double ima = A->inv_mass, imb = awake_b ? B->inv_mass : 0.0;
+    double iia = ca ? 0.0 : A->inv_inertia, iib = (awake_b && !cb) ? B->inv_inertia : 0.0;
+    double rna = cross(ra, n), rnb = cross(rb, n);
+    /* the relative normal velocity gained per unit impulse */
+    double k = ima * -(ua[0] * n[0] + ua[1] * n[1]) + imb * (ub[0] * n[0] + ub[1] * n[1])
+               + iia * rna * rna + iib * rnb * rnb;
+    double J = 0.0;
+    if (closing > 0 && k > 1e-12 * (ima + imb)) {
+        J = (1 + e) * closing / k;
+    }
+    /* pressed together with (almost) no approach speed -- a ball sliding on the floor under
+     * one falling onto it: they part at least as fast as an elastic bounce of period t_c */
+    double an = (b.ax - a.ax) * n[0] + (b.ay - a.ay) * n[1];
+    if (awake_b && tc > 0 && an < 0 && k > 1e-12 * (ima + imb)) {
+        double want = -0.5 * an * tc;
+        double sep = -closing + J * k;
+        if (sep < want)
+            J += (want - sep) / k;
+    }
+    if (J != 0.0) {
+        A->m.vx += J * ua[0] * ima;
+        A->m.vy += J * ua[1] * ima;
+        A->m.w -= J * rna * iia;
+        B->m.vx += J * ub[0] * imb;
+        B->m.vy += J * ub[1] * imb;
+        B->m.w += J * rnb * iib;
+    }
+    A->counter++;
+    if (awake_b)
+        B->counter++;
+    w->st.collisions++;
+    m2c_event out = {w->now, M2C_EVENT_COLLISION, i, j, n[0], n[1], p[0], p[1], closing, J};
+    world_emit(w, &out);
+    if (fixed)
+        rest_after_contact(w, i, j, ev, 1, e);
+    rest_burst(w, i);
+    A->last_contact = w->now;
+    if (awake_b) {
+        rest_burst(w, j);
+        B->last_contact = w->now;
+    }
+    return woken;
+}

@@ -1,0 +1,607 @@
+/*
+ * world.c -- the world: bodies, the event loop and the public API.
+ *
+ * The loop pops the earliest event (a body's predicted contact, cell crossing or window
+ * end, or a timer), advances only the bodies it involves, responds, and predicts those
+ * bodies again; everything else keeps its state at its own last event time.
+ */
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "engine.h"
+
+#define SAME_TIME_LIMIT 1000000 /* events at one identical time before the step gives up */
+
+static int fail(m2c_world *w, const char *msg)
+{
+    snprintf(w->err, sizeof w->err, "%s", msg);
+    return -1;
+}
+
+m2c_world *m2c_world_new(const m2c_config *config)
+{
+    m2c_world *w = calloc(1, sizeof *w);
+    if (!w)
+        return NULL;
+    if (config)
+        w->cfg = *config;
+    if (!(w->cfg.tolerance > 0) || !isfinite(w->cfg.tolerance))
+        w->cfg.tolerance = 1e-9;
+    w->broken = predict_check_generated(w) != 0; /* reported by every call that needs it */
+    return w;
+}
+
+void m2c_world_free(m2c_world *w)
+{
+    if (!w)
+        return;
+    free(w->b);
+    free(w->verts);
+    free(w->edges);
+    free(w->heap);
+    free(w->heap_pos);
+    free(w->kinematic);
+    free(w->stack);
+    free(w->woken);
+    free(w->members);
+    free(w->pending);
+    free(w->timers);
+    grid_free(&w->g);
+    free(w);
+}
+
+const char *m2c_world_error(const m2c_world *w)
+{
+    return w->err;
+}
+
+int m2c_world_body_count(const m2c_world *w)
+{
+    return w->n;
+}
+
+double m2c_world_time(const m2c_world *w)
+{
+    return w->now;
+}
+
+static int finite_all(const double *v, int n)
+{
+    for (int k = 0; k < n; k++)
+        if (!isfinite(v[k]))
+            return 0;
+    return 1;
+}
+
+static int check_def(m2c_world *w, const m2c_body_def *d)
+{
+    if (w->broken)
+        return -1;
+    if (d->kind != M2C_STATIC && d->kind != M2C_KINEMATIC && d->kind != M2C_DYNAMIC)
+        return fail(w, "kind must be static, kinematic or dynamic");
+    double nums[] = {d->x, d->y, d->angle, d->vx, d->vy, d->omega, d->ax, d->ay, d->radius,
+                     d->restitution};
+    if (!finite_all(nums, (int)(sizeof nums / sizeof nums[0])))
+        return fail(w, "a number of the body is not finite");
+    if (d->nvertices < 1 || !d->vertices)
+        return fail(w, "a body needs at least one vertex");
+    if (!finite_all(d->vertices, 2 * d->nvertices))
+        return fail(w, "a vertex is not finite");
+    if (d->radius < 0)
+        return fail(w, "the radius must not be negative");
+    if (d->nvertices == 1 && !(d->radius > 0))
+        return fail(w, "a circle needs a positive radius");
+    if (d->restitution < 0 || d->restitution > 1)
+        return fail(w, "restitution must be between 0 and 1");
+    if (d->kind == M2C_DYNAMIC && !(d->mass > 0 && d->inertia > 0 && isfinite(d->mass)
+                                    && isfinite(d->inertia)))
+        return fail(w, "a dynamic body needs a positive mass and moment of inertia");
+    const double *v = d->vertices;
+    for (int k = 0; k + 1 < d->nvertices || (d->nvertices >= 3 && k < d->nvertices); k++) {
+        int m = (k + 1) % d->nvertices;
+        if (v[2 * k] == v[2 * m] && v[2 * k + 1] == v[2 * m + 1])
+            return fail(w, "two consecutive vertices coincide");
+    }
+    if (d->nvertices >= 3) {
+        int n = d->nvertices;
+        for (int k = 0; k < n; k++) {
+            const double *p = &v[2 * k], *q = &v[2 * ((k + 1) % n)], *r = &v[2 * ((k + 2) % n)];
+            double c = (q[0] - p[0]) * (r[1] - q[1]) - (q[1] - p[1]) * (r[0] - q[0]);
+            if (!(c > 0))
+                return fail(w, "a polygon must be convex with its vertices anticlockwise");
+        }
+    }
+    return 0;
+}
+
+static int grow(m2c_world *w, int nverts)
+{
+    if (w->n == w->cap) {
+        int cap = w->cap ? 2 * w->cap : 16;
+        body *b = realloc(w->b, sizeof(body) * (size_t)cap);
+        if (!b)
+            return -1;
+        w->b = b;
+        w->cap = cap;
+        if (heap_init(w, cap) != 0)
+            return -1;
+        int *k = realloc(w->kinematic, sizeof(int) * (size_t)cap);
+        if (!k)
+            return -1;
+        w->kinematic = k;
+        int *st = realloc(w->stack, sizeof(int) * (size_t)cap);
+        if (!st)
+            return -1;
+        w->stack = st;
+        int *wk = realloc(w->woken, sizeof(int) * (size_t)cap);
+        if (!wk)
+            return -1;
+        w->woken = wk;
+        int *mb = realloc(w->members, sizeof(int) * (size_t)cap);
+        if (!mb)
+            return -1;
+        w->members = mb;
+    }
+    if (w->nverts + nverts > w->capverts) {
+        int cap = w->capverts ? 2 * w->capverts : 64;
+        while (cap < w->nverts + nverts)
+            cap *= 2;
+        double *v = realloc(w->verts, sizeof(double) * 2 * (size_t)cap);
+        if (!v)
+            return -1;
+        w->verts = v;
+        double *e = realloc(w->edges, sizeof(double) * 3 * (size_t)cap);
+        if (!e)
+            return -1;
+        w->edges = e;
+        w->capverts = cap;
+    }
+    return 0;
+}
+
+static void predict_all(m2c_world *w)
+{
+    for (int i = 0; i < w->n; i++)
+        if (w->b[i].kind == M2C_DYNAMIC)
+            world_predict(w, i);
+}
+
+static int prepare(m2c_world *w)
+{
+    if (grid_build(w) != 0)
+        return fail(w, "out of memory");
+    w->heap_n = 0;
+    for (int i = 0; i < w->n; i++) {
+        w->heap_pos[i] = -1;
+        if (w->b[i].kind == M2C_DYNAMIC) {
+            w->b[i].ev.t = INFINITY;
+            w->b[i].ev.kind = EV_NONE;
+            heap_insert(w, i);
+        }
+    }
+    w->prepared = 1;
+    predict_all(w);
+    return 0;
+}
+
+int m2c_world_add_body(m2c_world *w, const m2c_body_def *d)
+{
+    if (!w || !d)
+        return -1;
+    if (check_def(w, d) != 0)
+        return -1;
+    if (grow(w, d->nvertices) != 0)
+        return fail(w, "out of memory");
+    int i = w->n++;
+    body *b = &w->b[i];
+    memset(b, 0, sizeof *b);
+    b->kind = d->kind;
+    b->m = (motion){w->now, d->x, d->y, d->vx, d->vy, d->ax, d->ay, d->angle, d->omega,
+                    cos(d->angle), sin(d->angle)};
+    if (d->kind == M2C_DYNAMIC) {
+        b->mass = d->mass;
+        b->inertia = d->inertia;
+        b->inv_mass = 1 / d->mass;
+        b->inv_inertia = 1 / d->inertia;
+    } else {
+        b->mass = b->inertia = INFINITY;
+        if (d->kind == M2C_STATIC)
+            b->m.vx = b->m.vy = b->m.ax = b->m.ay = b->m.w = 0.0;
+    }
+    b->restitution = d->restitution;
+    b->radius = d->radius;
+    b->nvert = d->nvertices;
+    b->vert = w->nverts;
+    b->group = d->group;
+    b->support = -1;
+    b->gx = b->m.ax;
+    b->gy = b->m.ay;
+    b->rest_time = NAN;
+    b->state = AWAKE;
+    b->last_contact = -INFINITY;
+    b->next = b->prev = -1;
+    b->ev.t = INFINITY;
+    b->ev.kind = EV_NONE;
+    w->heap_pos[i] = -1;
+    double rho = 0;
+    for (int k = 0; k < d->nvertices; k++) {
+        const double *p = &d->vertices[2 * k];
+        w->verts[2 * (b->vert + k)] = p[0];
+        w->verts[2 * (b->vert + k) + 1] = p[1];
+        rho = fmax(rho, hypot(p[0], p[1]));
+        const double *q = &d->vertices[2 * ((k + 1) % d->nvertices)];
+        double len = hypot(q[0] - p[0], q[1] - p[1]);
+        double *e = &w->edges[3 * (b->vert + k)];
+        e[0] = len > 0 ? (q[0] - p[0]) / len : 0.0;
+        e[1] = len > 0 ? (q[1] - p[1]) / len : 0.0;
+        e[2] = len;
+    }
+    w->nverts += d->nvertices;
+    b->rho = rho;
+    b->bound = rho + d->radius;
+    if (d->kind == M2C_KINEMATIC)
+        w->kinematic[w->nkin++] = i;
+    if (w->prepared) {
+        if (d->kind == M2C_DYNAMIC && b->bound <= w->bound_max) {
+            grid_insert(w, i);
+            heap_insert(w, i);
+            world_predict(w, i);
+        } else {
+            w->prepared = 0; /* rebuilt (and everything predicted again) at the next step */
+        }
+    }
+    return i;
+}
+
+int world_emit(m2c_world *w, const m2c_event *e)
+{
+    if (w->out && w->out_n < w->out_cap && w->npending == 0) {
+        w->out[w->out_n++] = *e;
+        return 0;
+    }
+    if (w->npending == w->cappending) {
+        int cap = w->cappending ? 2 * w->cappending : 64;
+        m2c_event *p = realloc(w->pending, sizeof(m2c_event) * (size_t)cap);
+        if (!p)
+            return -1;
+        w->pending = p;
+        w->cappending = cap;
+    }
+    w->pending[w->npending++] = *e;
+    return 0;
+}
+
+/* Hand out events that did not fit last time; 1 when some are still waiting. */
+static int flush_pending(m2c_world *w)
+{
+    int k = 0;
+    while (k < w->npending && w->out_n < w->out_cap)
+        w->out[w->out_n++] = w->pending[k++];
+    memmove(w->pending, w->pending + k, sizeof(m2c_event) * (size_t)(w->npending - k));
+    w->npending -= k;
+    return w->npending > 0;
+}
+
+typedef struct {
+    contact c;
+    int partner;
+} best_contact;
+
+static void visit(m2c_world *w, int i, int j, void *ctx)
+{
+    best_contact *bc = ctx;
+    if (predict_pair(w, i, j, &bc->c))
+        bc->partner = j;
+}
+
+void world_predict(m2c_world *w, int i)
+{
+    body *b = &w->b[i];
+    w->st.predictions++;
+    event ev;
+    memset(&ev, 0, sizeof ev);
+    ev.t = INFINITY;
+    ev.kind = EV_NONE;
+    ev.partner = -1;
+    if (b->state == ASLEEP) {
+        b->ev = ev;
+        heap_update(w, i);
+        return;
+    }
+    int dx, dy;
+    double tc = grid_crossing(w, i, INFINITY, &dx, &dy);
+    if (tc < INFINITY) {
+        ev.t = w->now + tc;
+        ev.kind = EV_CELL;
+        ev.dx = dx;
+        ev.dy = dy;
+    }
+    if (b->state == RESTING) {
+        if (b->rest_time < ev.t) {
+            ev.t = b->rest_time > w->now ? b->rest_time : w->now;
+            ev.kind = EV_REST;
+        }
+        double tl = rest_leave_time(w, i, ev.t - w->now);
+        if (w->now + tl < ev.t) {
+            ev.t = w->now + tl;
+            ev.kind = EV_LEAVE;
+        }
+    }
+    best_contact bc;
+    memset(&bc, 0, sizeof bc);
+    bc.c.t = ev.t;
+    bc.c.rate = -INFINITY;
+    bc.c.window = INFINITY;
+    bc.partner = -1;
+    grid_neighbours(w, i, visit, &bc);
+    if (bc.c.window < bc.c.t) { /* a rotating search stopped early: resume by then */
+        ev.t = bc.c.window;
+        ev.kind = EV_WINDOW;
+        bc.partner = -1;
+    }
+    if (bc.partner >= 0) {
+        ev.t = bc.c.t;
+        ev.kind = EV_CONTACT;
+        ev.partner = bc.partner;
+        ev.partner_counter = w->b[bc.partner].counter;
+        ev.feature = bc.c.feature;
+        ev.fa = bc.c.fa;
+        ev.fb = bc.c.fb;
+        ev.side = bc.c.side;
+    }
+    b->ev = ev;
+    heap_update(w, i);
+}
+
+static void process(m2c_world *w, int i)
+{
+    event ev = w->b[i].ev;
+    w->st.events++;
+    switch (ev.kind) {
+    case EV_CELL:
+        w->st.cell_crossings++;
+        grid_move(w, i, ev.dx, ev.dy);
+        world_predict(w, i);
+        break;
+    case EV_CONTACT: {
+        int j = ev.partner;
+        if (w->b[j].counter != ev.partner_counter) {
+            w->st.stale++;
+            world_predict(w, i);
+            break;
+        }
+        int woken = respond(w, i, j, &ev);
+        world_predict(w, i);
+        if (w->b[j].kind == M2C_DYNAMIC)
+            world_predict(w, j);
+        for (int k = 0; k < woken; k++)
+            if (w->woken[k] != j)
+                world_predict(w, w->woken[k]);
+        break;
+    }
+    case EV_REST: {
+        body *b = &w->b[i];
+        m2c_event e = {w->now, M2C_EVENT_REST, i, b->support, 0, 0, 0, 0, 0, 0};
+        world_emit(w, &e);
+        b->rest_time = NAN;
+        if (b->sleep_at_rest) {
+            fall_asleep(w, i);
+        } else {
+            w->st.rests++;
+            world_predict(w, i);
+        }
+        break;
+    }
+    case EV_LEAVE:
+        rest_restore(w, i);
+        world_predict(w, i);
+        break;
+    case EV_WINDOW:
+        w->st.windows++;
+        world_predict(w, i);
+        break;
+    default:
+        w->b[i].ev.t = INFINITY;
+        heap_update(w, i);
+        break;
+    }
+}
+
+int m2c_world_step(m2c_world *w, double until, m2c_event *events, int capacity, int *count)
+{
+    int dummy;
+    if (!count)
+        count = &dummy;
+    *count = 0;
+    if (isnan(until))
+        return fail(w, "the time to step to is not a number");
+    if (capacity < 4 || !events)
+        return fail(w, "the event buffer needs room for at least 4 events");
+    if (w->broken)
+        return -1;
+    w->out = events;
+    w->out_cap = capacity;
+    w->out_n = 0;
+    if (!w->prepared && prepare(w) != 0)
+        return -1;
+    if (flush_pending(w)) {
+        *count = w->out_n;
+        w->out = NULL;
+        return 1;
+    }
+    long long processed = 0;
+    for (;;) {
+        int i = heap_top(w);
+        double t = i >= 0 ? w->b[i].ev.t : INFINITY;
+        double tt = w->ntimers > 0 ? w->timers[0].t : INFINITY;
+        double next = t < tt ? t : tt;
+        if (!(next <= until))
+            break;
+        w->same = next == w->last_time ? w->same + 1 : 0;
+        w->last_time = next;
+        if (w->same > SAME_TIME_LIMIT) {
+            w->out = NULL;
+            *count = w->out_n;
+            return fail(w, "more than a million events at one instant (a body stuck in a corner?)");
+        }
+        if (tt <= t) {
+            w->now = tt;
+            m2c_event e = {tt, M2C_EVENT_TIMER, w->timers[0].id, -1, 0, 0, 0, 0, 0, 0};
+            memmove(w->timers, w->timers + 1, sizeof(timer) * (size_t)--w->ntimers);
+            world_emit(w, &e);
+        } else {
+            if (next > w->now)
+                w->now = next;
+            process(w, i);
+        }
+        if (w->cfg.max_events > 0 && ++processed > w->cfg.max_events) {
+            w->out = NULL;
+            *count = w->out_n;
+            return fail(w, "the step exceeded max_events");
+        }
+        /* an event can report up to 4 records: stop while there is room (the caller resumes) */
+        if (w->npending > 0 || (w->out_n > 0 && w->out_n + 4 > w->out_cap)) {
+            flush_pending(w);
+            *count = w->out_n;
+            w->out = NULL;
+            return 1;
+        }
+    }
+    if (until > w->now && isfinite(until))
+        w->now = until;
+    *count = w->out_n;
+    w->out = NULL;
+    return 0;
+}
+
+int m2c_world_pose(const m2c_world *w, int i, double t, double out[3])
+{
+    if (i < 0 || i >= w->n || !(t >= w->b[i].m.t))
+        return -1;
+    snap s = motion_at(&w->b[i].m, t);
+    out[0] = s.x;
+    out[1] = s.y;
+    out[2] = s.th;
+    return 0;
+}
+
+int m2c_world_velocity(const m2c_world *w, int i, double t, double out[3])
+{
+    if (i < 0 || i >= w->n || !(t >= w->b[i].m.t))
+        return -1;
+    snap s = motion_at(&w->b[i].m, t);
+    out[0] = s.vx;
+    out[1] = s.vy;
+    out[2] = s.w;
+    return 0;
+}
+
+int m2c_world_poses(const m2c_world *w, double t, double *out)
+{
+    int status = 0;
+    for (int i = 0; i < w->n; i++) {
+        const motion *m = &w->b[i].m;
+        snap s = motion_at(m, t < m->t ? m->t : t);
+        if (t < m->t)
+            status = -1;
+        out[3 * i] = s.x;
+        out[3 * i + 1] = s.y;
+        out[3 * i + 2] = s.th;
+    }
+    return status;
+}
+
+int m2c_world_set_velocity(m2c_world *w, int i, double vx, double vy, double omega)
+{
+    if (i < 0 || i >= w->n || w->b[i].kind != M2C_DYNAMIC)
+        return fail(w, "set_velocity: not a dynamic body");
+    if (!isfinite(vx) || !isfinite(vy) || !isfinite(omega))
+        return fail(w, "set_velocity: not finite");
+    body *b = &w->b[i];
+    body_commit(b, w->now);
+    b->m.vx = vx;
+    b->m.vy = vy;
+    b->m.w = omega;
+    b->counter++;
+    rest_restore(w, i);
+    if (w->prepared)
+        world_predict(w, i);
+    return 0;
+}
+
+int m2c_world_add_timer(m2c_world *w, double t)
+{
+    if (!(t >= w->now) || !isfinite(t))
+        return fail(w, "a timer must be at a finite time not before now");
+    if (w->ntimers == w->captimers) {
+        int cap = w->captimers ? 2 * w->captimers : 8;
+        timer *n = realloc(w->timers, sizeof(timer) * (size_t)cap);
+        if (!n)
+            return fail(w, "out of memory");
+        w->timers = n;
+        w->captimers = cap;
+    }
+    int k = w->ntimers++;
+    while (k > 0 && w->timers[k - 1].t > t) {
+        w->timers[k] = w->timers[k - 1];
+        k--;
+    }
+    w->timers[k] = (timer){t, w->next_timer_id};
+    return w->next_timer_id++;
+}
+
+double m2c_world_energy(const m2c_world *w, double t)
+{
+    double e = 0;
+    for (int i = 0; i < w->n; i++) {
+        const body *b = &w->b[i];
+        if (b->kind != M2C_DYNAMIC)
+            continue;
+        snap s = motion_at(&b->m, t < b->m.t ? b->m.t : t);
+        e += 0.5 * b->mass * (s.vx * s.vx + s.vy * s.vy) + 0.5 * b->inertia * s.w * s.w
+             - b->mass * (b->gx * s.x + b->gy * s.y);
+    }
+    return e;
+}
+
+int m2c_world_asleep(const m2c_world *w, int i)
+{
+    return i >= 0 && i < w->n && w->b[i].state == ASLEEP;
+}
+
+void m2c_world_stats(const m2c_world *w, m2c_stats *out)
+{
+    *out = w->st;
+}
+
+int m2c_world_first_contact(m2c_world *w, int i, int j, double tmax, double *t)
+{
+    if (w->broken || i < 0 || j < 0 || i >= w->n || j >= w->n || i == j || !(tmax > 0))
+        return fail(w, "first_contact: bad bodies or horizon");
+    double now = w->now, end = now + tmax;
+    int found = 0;
+    w->any_kinds = 1;
+    for (int guard = 0; guard < 1000000; guard++) {
+        contact c;
+        memset(&c, 0, sizeof c);
+        c.t = end;
+        c.rate = -INFINITY;
+        c.window = INFINITY;
+        predict_pair(w, i, j, &c);
+        if (c.window < c.t && c.window < end) { /* a rotating search stopped: go on from there */
+            w->now = c.window;
+            continue;
+        }
+        if (c.improved) {
+            *t = c.t;
+            found = 1;
+        }
+        break;
+    }
+    w->any_kinds = 0;
+    w->now = now;
+    return found;
+}

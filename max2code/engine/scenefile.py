@@ -1,0 +1,397 @@
+"""Scene files: TOML or JSON, checked strictly, into a World.
+
+    name = "pinball"                 # optional; default: the file's stem
+    gravity = [0.0, -9.81]           # every dynamic body's acceleration unless it has its own
+    tolerance = 1e-9                 # lengths: contact slack, overlap allowed, Taylor budget
+    until = 10.0                     # optional: how long `max2code sim` runs by default
+    fps = 30                         # optional: frames per second of the pictures
+    view = [-1.0, -1.0, 1.0, 1.0]    # optional: what the pictures show (xmin, ymin, xmax, ymax)
+
+    [engine]                         # optional tuning (README: the rest rule)
+    cell_size = 0.0                  # 0: chosen from the bodies; < 0: one cell (no broad phase)
+    rest_speed = 0.0                 # the rest rule's v_r; 0: automatic; < 0: the rules off
+    collapse_time = 0.0              # the collapse rules' t_c; 0: automatic (1e-3 s); < 0: off
+    max_events = 0                   # a step processing more fails (0: no limit)
+
+    [[bodies]]
+    name = "ball"                    # optional, unique; default body<N>
+    kind = "dynamic"                 # dynamic (default) | static | kinematic
+    shape = "circle"                 # circle | segment | polygon | box
+    position = [0.0, 1.0]            # required for circle, polygon, box; default [0, 0]
+    radius = 0.1                     # circle: required, > 0; others: rounding, >= 0
+    offset = [0.0, 0.0]              # circle only: its centre's offset from position
+    points = [[-1, 0], [1, 0]]       # segment: its two ends (offsets from position)
+    vertices = [[0, 0], [1, 0], [0, 1]]   # polygon: convex, anticlockwise (offsets)
+    size = [1.0, 0.5]                # box: width and height, centred on position
+    angle = 0.0                      # radians
+    velocity = [0.0, 0.0]
+    omega = 0.0                      # angular velocity, radians per second, anticlockwise
+    gravity = [0.0, 0.0]             # this body's own acceleration
+    mass = 1.0                       # or density (default 1, per unit area); not both
+    inertia = 0.5                    # optional: default from the shape
+    restitution = 1.0                # 0..1; a contact uses the product of the two bodies'
+    group = "paddle"                 # bodies of one group never collide with each other
+    color = "#c03030"                # optional, for the pictures
+    comment = "..."                  # ignored (also at the top level)
+
+JSON has the same keys (`"bodies": [{...}, ...]`). Every error names the file, line and
+column of the offending key or value and the key path (`bodies[2].radius`): an unknown key, a
+wrong type, a missing field, a value out of range, a non-convex or clockwise polygon, two
+bodies with one name, and a body that starts overlapping another by more than the tolerance.
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+import re
+from dataclasses import dataclass, field
+from pathlib import Path as FilePath
+
+from .geometry import gap, transform
+from .located import Located, TextError, parse_json, parse_toml
+
+TOP_KEYS = {"name", "gravity", "tolerance", "until", "fps", "view", "engine", "bodies", "comment"}
+ENGINE_KEYS = {"cell_size", "rest_speed", "collapse_time", "max_events"}
+BODY_KEYS = {"name", "kind", "shape", "position", "radius", "offset", "points", "vertices", "size",
+             "angle", "velocity", "omega", "gravity", "mass", "density", "inertia",
+             "restitution", "group", "color", "comment"}
+SHAPE_KEYS = {"circle": {"radius", "offset"}, "segment": {"points", "radius"},
+              "polygon": {"vertices", "radius"}, "box": {"size", "radius"}}
+KINDS = ("dynamic", "static", "kinematic")
+
+Vec = tuple[float, float]
+
+
+@dataclass(frozen=True)
+class BodySpec:
+    name: str
+    kind: str
+    shape: str
+    vertices: tuple[Vec, ...]        # offsets from position, in the body frame
+    radius: float
+    position: Vec
+    angle: float = 0.0
+    velocity: Vec = (0.0, 0.0)
+    omega: float = 0.0
+    gravity: Vec | None = None
+    mass: float | None = None
+    density: float = 1.0
+    inertia: float | None = None
+    restitution: float = 1.0
+    group: str | None = None
+    color: str | None = None
+
+
+@dataclass(frozen=True)
+class Scene:
+    name: str
+    bodies: tuple[BodySpec, ...]
+    gravity: Vec = (0.0, 0.0)
+    tolerance: float = 1e-9
+    until: float | None = None
+    fps: float | None = None
+    view: tuple[float, float, float, float] | None = None
+    cell_size: float = 0.0
+    rest_speed: float = 0.0
+    collapse_time: float = 0.0
+    max_events: int = 0
+    path: str = ""
+
+
+class SceneError(ValueError):
+    """Every problem found, as `file:line:col: error: key.path: message` lines."""
+
+    def __init__(self, diagnostics: list[str]) -> None:
+        super().__init__("\n".join(diagnostics))
+        self.diagnostics = diagnostics
+
+
+def path_text(path: tuple) -> str:
+    out = ""
+    for p in path:
+        out += f"[{p}]" if isinstance(p, int) else (f".{p}" if out else str(p))
+    return out or "(top level)"
+
+
+@dataclass
+class _Checker:
+    file: str
+    doc: Located
+    errors: list[str] = field(default_factory=list)
+
+    def error(self, path: tuple, message: str) -> None:
+        line, col = self.doc.where(path)
+        self.errors.append(f"{self.file}:{line}:{col}: error: {path_text(path)}: {message}")
+
+    def keys(self, table: dict, allowed: set[str], path: tuple) -> None:
+        for key in table:
+            if key not in allowed:
+                close = difflib.get_close_matches(key, sorted(allowed), n=1)
+                hint = f" (did you mean '{close[0]}'?)" if close else ""
+                self.error(path + (key,), f"unknown key '{key}'{hint}; allowed: "
+                           f"{', '.join(sorted(allowed))}")
+
+    def number(self, table: dict, key: str, path: tuple, default=None, *, positive=False,
+               nonneg=False, lo=None, hi=None, required=False):
+        if key not in table:
+            if required:
+                self.error(path, f"missing field '{key}'")
+            return default
+        v = table[key]
+        p = path + (key,)
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+            self.error(p, f"expected a finite number, got {v!r}")
+            return default
+        v = float(v)
+        if positive and not v > 0:
+            self.error(p, f"must be positive, got {v:g}")
+            return default
+        if nonneg and v < 0:
+            self.error(p, f"must not be negative, got {v:g}")
+            return default
+        if lo is not None and (v < lo or v > hi):
+            self.error(p, f"must be between {lo:g} and {hi:g}, got {v:g}")
+            return default
+        return v
+
+    def vector(self, value: object, path: tuple) -> Vec | None:
+        if (not isinstance(value, list) or len(value) != 2 or
+                any(isinstance(x, bool) or not isinstance(x, (int, float)) or not math.isfinite(x)
+                    for x in value)):
+            self.error(path, f"expected [x, y] (two finite numbers), got {value!r}")
+            return None
+        return (float(value[0]), float(value[1]))
+
+    def vec(self, table: dict, key: str, path: tuple, default=None, required=False) -> Vec | None:
+        if key not in table:
+            if required:
+                self.error(path, f"missing field '{key}'")
+            return default
+        return self.vector(table[key], path + (key,))
+
+    def string(self, table: dict, key: str, path: tuple, default=None, choices=None):
+        if key not in table:
+            return default
+        v = table[key]
+        if not isinstance(v, str):
+            self.error(path + (key,), f"expected a string, got {v!r}")
+            return default
+        if choices and v not in choices:
+            self.error(path + (key,), f"must be one of {', '.join(choices)}, got '{v}'")
+            return default
+        return v
+
+
+def _polygon_problem(vertices: list[Vec]) -> str | None:
+    n = len(vertices)
+    for k in range(n):
+        (x0, y0), (x1, y1), (x2, y2) = vertices[k], vertices[(k + 1) % n], vertices[(k + 2) % n]
+        if (x0, y0) == (x1, y1):
+            return f"vertices {k} and {(k + 1) % n} coincide"
+        turn = (x1 - x0) * (y2 - y1) - (y1 - y0) * (x2 - x1)
+        if turn <= 0:
+            area = sum(vertices[i][0] * vertices[(i + 1) % n][1]
+                       - vertices[(i + 1) % n][0] * vertices[i][1] for i in range(n))
+            if area < 0:
+                return "the vertices go clockwise: list them anticlockwise"
+            return f"not convex (or three vertices in a line) at vertex {(k + 1) % n}"
+    return None
+
+
+def _body(c: _Checker, raw: object, index: int, names: set[str]) -> BodySpec | None:
+    path = ("bodies", index)
+    if not isinstance(raw, dict):
+        c.error(path, f"expected a table of body fields, got {raw!r}")
+        return None
+    before = len(c.errors)
+    c.keys(raw, BODY_KEYS, path)
+    name = c.string(raw, "name", path, f"body{index}")
+    if name in names:
+        c.error(path + ("name",), f"a second body named '{name}'")
+    names.add(name)
+    kind = c.string(raw, "kind", path, "dynamic", KINDS)
+    if "shape" not in raw:
+        c.error(path, "missing field 'shape' (circle, segment, polygon or box)")
+        return None
+    shape = c.string(raw, "shape", path, None, tuple(SHAPE_KEYS))
+    if shape is None:
+        return None
+    for other, keys in SHAPE_KEYS.items():
+        for key in keys - SHAPE_KEYS[shape]:
+            if key in raw:
+                c.error(path + (key,), f"'{key}' belongs to a {other}, not a {shape}")
+    radius = c.number(raw, "radius", path, 0.0, nonneg=True, required=shape == "circle")
+    vertices: list[Vec] = []
+    if shape == "circle":
+        if raw.get("radius") == 0 and not isinstance(raw.get("radius"), bool):
+            c.error(path + ("radius",), "a circle's radius must be positive")
+        vertices = [c.vec(raw, "offset", path, (0.0, 0.0)) or (0.0, 0.0)]
+    elif shape == "segment":
+        pts = raw.get("points")
+        if pts is None:
+            c.error(path, "missing field 'points' (the segment's two ends)")
+        elif not isinstance(pts, list) or len(pts) != 2:
+            c.error(path + ("points",), f"expected two points [[x, y], [x, y]], got {pts!r}")
+        else:
+            vs = [c.vector(p, path + ("points", k)) for k, p in enumerate(pts)]
+            if all(vs):
+                vertices = vs  # type: ignore[assignment]
+                if vertices[0] == vertices[1]:
+                    c.error(path + ("points",), "the two ends coincide")
+    elif shape == "polygon":
+        vs_raw = raw.get("vertices")
+        if vs_raw is None:
+            c.error(path, "missing field 'vertices'")
+        elif not isinstance(vs_raw, list) or len(vs_raw) < 3:
+            c.error(path + ("vertices",), f"a polygon needs at least 3 vertices, got {vs_raw!r}")
+        else:
+            vs = [c.vector(p, path + ("vertices", k)) for k, p in enumerate(vs_raw)]
+            if all(vs):
+                vertices = vs  # type: ignore[assignment]
+                problem = _polygon_problem(vertices)
+                if problem:
+                    c.error(path + ("vertices",), problem)
+    else:  # box
+        size = c.vec(raw, "size", path, required=True)
+        if size is not None:
+            if not (size[0] > 0 and size[1] > 0):
+                c.error(path + ("size",), f"width and height must be positive, got {list(size)}")
+            else:
+                hw, hh = size[0] / 2, size[1] / 2
+                vertices = [(-hw, -hh), (hw, -hh), (hw, hh), (-hw, hh)]
+    position = c.vec(raw, "position", path, (0.0, 0.0), required=shape != "segment")
+    angle = c.number(raw, "angle", path, 0.0)
+    velocity = c.vec(raw, "velocity", path, (0.0, 0.0))
+    omega = c.number(raw, "omega", path, 0.0)
+    gravity = c.vec(raw, "gravity", path, None)
+    mass = c.number(raw, "mass", path, None, positive=True)
+    density = c.number(raw, "density", path, 1.0, positive=True)
+    if "mass" in raw and "density" in raw:
+        c.error(path + ("density",), "give mass or density, not both")
+    inertia = c.number(raw, "inertia", path, None, positive=True)
+    restitution = c.number(raw, "restitution", path, 1.0, lo=0.0, hi=1.0)
+    group = c.string(raw, "group", path, None)
+    color = c.string(raw, "color", path, None)
+    if color is not None and not re.fullmatch(r"#[0-9a-fA-F]{6}([0-9a-fA-F]{2})?", color):
+        c.error(path + ("color",), f"expected a colour '#rrggbb' or '#rrggbbaa', got '{color}'")
+        color = None
+    if kind == "static" and ("velocity" in raw or "omega" in raw or "gravity" in raw):
+        key = next(k for k in ("velocity", "omega", "gravity") if k in raw)
+        c.error(path + (key,), "a static body does not move (make it kinematic)")
+    if kind == "dynamic" and shape == "segment" and not radius and mass is None:
+        c.error(path, "a dynamic thin segment has no area: give it a radius (a capsule) or a mass")
+    if len(c.errors) > before or not vertices:
+        return None
+    return BodySpec(name, kind, shape, tuple(vertices), float(radius or 0.0), position or (0.0, 0.0),
+                    angle, velocity or (0.0, 0.0), omega, gravity, mass, density, inertia,
+                    restitution, group, color)
+
+
+def _overlaps(c: _Checker, bodies: list[tuple[int, BodySpec]], tolerance: float) -> None:
+    """Bodies that start overlapping (by more than the tolerance): exact geometry, pairs that can
+    collide (a dynamic one, different groups), near pairs only (bounding circles)."""
+    shapes = []
+    for index, b in bodies:
+        pts = transform(b.vertices, (b.position[0], b.position[1], b.angle))
+        cx = sum(p[0] for p in pts) / len(pts)
+        cy = sum(p[1] for p in pts) / len(pts)
+        r = max(math.hypot(p[0] - cx, p[1] - cy) for p in pts) + b.radius
+        shapes.append((index, b, pts, cx, cy, r))
+    order = sorted(range(len(shapes)), key=lambda k: shapes[k][3] - shapes[k][5])
+    for a_pos, ka in enumerate(order):
+        ia, a, pa, ax, ay, ar = shapes[ka]
+        for kb in order[a_pos + 1:]:
+            ib, b, pb, bx, by, br = shapes[kb]
+            if bx - br > ax + ar:
+                break
+            if "dynamic" not in (a.kind, b.kind) or (a.group is not None and a.group == b.group):
+                continue
+            if math.hypot(ax - bx, ay - by) > ar + br:
+                continue
+            g = gap(pa, a.radius, pb, b.radius)
+            if g < -tolerance:
+                first, second = sorted((ia, ib))
+                c.error(("bodies", second), f"body '{shapes[ka if ia == second else kb][1].name}' "
+                        f"starts overlapping body '{(a if ia == first else b).name}' "
+                        f"(bodies[{first}]) by {-g:.3g}")
+
+
+def load(path: str | FilePath) -> Scene:
+    """Read and check a scene file; raises SceneError with every problem found."""
+    path = FilePath(path)
+    shown = str(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise SceneError([f"{shown}:1:1: error: cannot read the scene: {exc}"]) from exc
+    try:
+        doc = parse_toml(text) if path.suffix.lower() == ".toml" else parse_json(text)
+    except TextError as exc:
+        raise SceneError([f"{shown}:{exc.line}:{exc.col}: error: {exc.message}"]) from exc
+    return check(doc, shown, path.stem)
+
+
+def check(doc: Located, shown: str, stem: str = "scene") -> Scene:
+    c = _Checker(shown, doc)
+    data = doc.data
+    if not isinstance(data, dict):
+        raise SceneError([f"{shown}:1:1: error: a scene is a table (JSON object) of fields"])
+    c.keys(data, TOP_KEYS, ())
+    name = c.string(data, "name", (), stem)
+    gravity = c.vec(data, "gravity", (), (0.0, 0.0)) or (0.0, 0.0)
+    tolerance = c.number(data, "tolerance", (), 1e-9, positive=True)
+    until = c.number(data, "until", (), None, positive=True)
+    fps = c.number(data, "fps", (), None, positive=True)
+    view = None
+    if "view" in data:
+        v = data["view"]
+        if (isinstance(v, list) and len(v) == 4 and all(isinstance(x, (int, float)) and
+                                                        not isinstance(x, bool) for x in v)
+                and v[0] < v[2] and v[1] < v[3]):
+            view = tuple(float(x) for x in v)
+        else:
+            c.error(("view",), f"expected [xmin, ymin, xmax, ymax] with xmin < xmax, ymin < ymax, "
+                    f"got {v!r}")
+    eng = data.get("engine", {})
+    if not isinstance(eng, dict):
+        c.error(("engine",), "expected a table")
+        eng = {}
+    c.keys(eng, ENGINE_KEYS, ("engine",))
+    cell_size = c.number(eng, "cell_size", ("engine",), 0.0)
+    rest_speed = c.number(eng, "rest_speed", ("engine",), 0.0)
+    collapse_time = c.number(eng, "collapse_time", ("engine",), 0.0)
+    max_events = c.number(eng, "max_events", ("engine",), 0.0, nonneg=True)
+    raw_bodies = data.get("bodies")
+    bodies: list[tuple[int, BodySpec]] = []
+    if raw_bodies is None:
+        c.error((), "missing field 'bodies'")
+    elif not isinstance(raw_bodies, list) or not raw_bodies:
+        c.error(("bodies",), "expected a non-empty list of bodies")
+    else:
+        names: set[str] = set()
+        for k, raw in enumerate(raw_bodies):
+            b = _body(c, raw, k, names)
+            if b is not None:
+                bodies.append((k, b))
+    if not c.errors:
+        _overlaps(c, bodies, tolerance)
+    if c.errors:
+        raise SceneError(c.errors)
+    return Scene(name, tuple(b for _, b in bodies), gravity, tolerance, until, fps, view,
+                 cell_size, rest_speed, collapse_time, int(max_events), shown)
+
+
+def build_world(scene: Scene):
+    """The scene's World, bodies in file order (body i of the file is id i)."""
+    from .world import World
+
+    w = World(gravity=scene.gravity, tolerance=scene.tolerance, cell_size=scene.cell_size,
+              rest_speed=scene.rest_speed, collapse_time=scene.collapse_time,
+              max_events=scene.max_events)
+    for b in scene.bodies:
+        w.add_body(b.vertices, radius=b.radius, kind=b.kind, position=b.position, angle=b.angle,
+                   velocity=b.velocity, omega=b.omega, gravity=b.gravity, mass=b.mass,
+                   density=b.density, inertia=b.inertia, restitution=b.restitution,
+                   group=b.group, name=b.name, color=b.color)
+    return w

@@ -1,0 +1,70 @@
+"""Mass, centre of mass and moment of inertia of the engine's shapes.
+
+A shape is a list of vertices (body-frame offsets) and a rounding radius: one vertex is a
+circle, two a segment (a capsule when rounded), three or more a convex polygon. Dynamic
+bodies turn about their centre of mass, so the World moves a dynamic body's reference point
+there and its vertices with it (the numbers come from here).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+Vec = tuple[float, float]
+
+
+@dataclass(frozen=True)
+class MassProperties:
+    area: float
+    centroid: Vec
+    inertia_per_mass: float   # about the centroid: I = mass * inertia_per_mass
+
+
+def polygon_area(vertices: list[Vec]) -> float:
+    """Signed area (positive when anticlockwise)."""
+    n = len(vertices)
+    return 0.5 * sum(vertices[k][0] * vertices[(k + 1) % n][1]
+                     - vertices[(k + 1) % n][0] * vertices[k][1] for k in range(n))
+
+
+def mass_properties(vertices: list[Vec], radius: float) -> MassProperties:
+    """Exact for circles, segments' capsules and sharp polygons; a rounded polygon (radius > 0,
+    three or more vertices) counts its rounding as area but takes the core's inertia shape."""
+    if len(vertices) == 1:
+        return MassProperties(math.pi * radius * radius, vertices[0], radius * radius / 2)
+    if len(vertices) == 2:
+        (x0, y0), (x1, y1) = vertices
+        length = math.hypot(x1 - x0, y1 - y0)
+        centre = ((x0 + x1) / 2, (y0 + y1) / 2)
+        if radius == 0:  # a thin rod
+            return MassProperties(0.0, centre, length * length / 12)
+        rect, disc = 2 * radius * length, math.pi * radius * radius
+        i_rect = rect * (length ** 2 + (2 * radius) ** 2) / 12
+        # two half-discs: a disc's r^2/2 about its centre, moved to the ends (parallel axis,
+        # from each half-disc's own centroid 4r/3pi beyond the end)
+        d = 4 * radius / (3 * math.pi)
+        i_half = disc / 2 * (radius * radius / 2 - d * d) + disc / 2 * (length / 2 + d) ** 2
+        area = rect + disc
+        return MassProperties(area, centre, (i_rect + 2 * i_half) / area)
+    area = polygon_area(vertices)
+    n = len(vertices)
+    cx = cy = 0.0
+    for k in range(n):
+        (x0, y0), (x1, y1) = vertices[k], vertices[(k + 1) % n]
+        cr = x0 * y1 - x1 * y0
+        cx += (x0 + x1) * cr
+        cy += (y0 + y1) * cr
+    cx, cy = cx / (6 * area), cy / (6 * area)
+    # second moment about the centroid, per unit area
+    j = 0.0
+    for k in range(n):
+        (x0, y0), (x1, y1) = vertices[k], vertices[(k + 1) % n]
+        x0, y0, x1, y1 = x0 - cx, y0 - cy, x1 - cx, y1 - cy
+        cr = x0 * y1 - x1 * y0
+        j += cr * (x0 * x0 + x0 * x1 + x1 * x1 + y0 * y0 + y0 * y1 + y1 * y1)
+    j /= 12
+    perimeter = sum(math.hypot(vertices[(k + 1) % n][0] - vertices[k][0],
+                               vertices[(k + 1) % n][1] - vertices[k][1]) for k in range(n))
+    rounded = area + perimeter * radius + math.pi * radius * radius
+    return MassProperties(rounded, (cx, cy), j / area)

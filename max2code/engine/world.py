@@ -1,0 +1,280 @@
+"""The Python face of the C engine: a World of bodies, stepped from event to event."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Callable, Iterable, Sequence
+
+from .binding import load
+from .shapes import mass_properties
+
+Vec = tuple[float, float]
+KINDS = {"static": 0, "kinematic": 1, "dynamic": 2}
+EVENT_KINDS = {1: "collision", 2: "rest", 3: "wake", 4: "timer"}
+BUFFER = 1024
+
+
+class EngineError(RuntimeError):
+    """The engine refused something (the message is the C core's)."""
+
+
+@dataclass(frozen=True)
+class BodyInfo:
+    """What the engine holds about a body, in its own frame: `vertices` are offsets from the
+    reference point (a dynamic body's centre of mass), as `pose()` reports it."""
+    id: int
+    name: str
+    kind: str
+    vertices: tuple[Vec, ...]
+    radius: float
+    mass: float
+    inertia: float
+    restitution: float
+    group: str | None
+    color: str | None = None
+
+    @property
+    def shape(self) -> str:
+        n = len(self.vertices)
+        return "circle" if n == 1 else ("capsule" if self.radius > 0 else "segment") if n == 2 else "polygon"
+
+
+@dataclass(frozen=True)
+class Event:
+    """One reported event. `normal` points from body a towards body b; `speed` is the closing
+    speed along it before the response and `impulse` the normal impulse given to b (-impulse
+    to a). Timers have a = the timer's id and b = -1."""
+    time: float
+    kind: str
+    a: int
+    b: int
+    normal: Vec
+    point: Vec
+    speed: float
+    impulse: float
+
+
+@dataclass
+class _Timer:
+    callback: Callable[["World", Event], None] | None
+
+
+class World:
+    """A world of rigid bodies (see the package docstring for the whole API)."""
+
+    def __init__(self, *, gravity: Vec = (0.0, 0.0), tolerance: float = 1e-9,
+                 cell_size: float = 0.0, rest_speed: float = 0.0, collapse_time: float = 0.0,
+                 max_events: int = 0) -> None:
+        self._ffi, self._lib = load()
+        cfg = self._ffi.new("m2c_config *")
+        cfg.tolerance = tolerance
+        cfg.cell_size = cell_size
+        cfg.rest_speed = rest_speed
+        cfg.collapse_time = collapse_time
+        cfg.max_events = max_events
+        ptr = self._lib.m2c_world_new(cfg)
+        if ptr == self._ffi.NULL:
+            raise MemoryError("m2c_world_new")
+        self._w = self._ffi.gc(ptr, self._lib.m2c_world_free)
+        self.gravity = (float(gravity[0]), float(gravity[1]))
+        self.tolerance = tolerance
+        self.bodies: list[BodyInfo] = []
+        self._names: dict[str, int] = {}
+        self._groups: dict[str, int] = {}
+        self._callbacks: list[Callable[["World", Event], None]] = []
+        self._timers: dict[int, _Timer] = {}
+        self._buf = self._ffi.new("m2c_event[]", BUFFER)
+        self._count = self._ffi.new("int *")
+        self._pose = self._ffi.new("double[3]")
+
+    # -- building ---------------------------------------------------------------------------
+
+    def add_body(self, vertices: Sequence[Vec], *, radius: float = 0.0, kind: str = "dynamic",
+                 position: Vec = (0.0, 0.0), angle: float = 0.0, velocity: Vec = (0.0, 0.0),
+                 omega: float = 0.0, gravity: Vec | None = None, mass: float | None = None,
+                 density: float = 1.0, inertia: float | None = None, restitution: float = 1.0,
+                 group: str | None = None, name: str | None = None,
+                 color: str | None = None) -> int:
+        """Add a body; returns its id. `vertices` are offsets from `position` in the body's
+        frame (turned by `angle`): one vertex and a radius make a circle, two a segment (a
+        capsule with a radius), three or more a convex polygon, anticlockwise. A dynamic body's
+        reference point moves to its centre of mass (and its vertices with it: see `bodies`).
+        `gravity` overrides the world's for this body (static bodies have none)."""
+        if kind not in KINDS:
+            raise EngineError(f"kind must be one of {', '.join(KINDS)}, not {kind!r}")
+        verts = [(float(x), float(y)) for x, y in vertices]
+        px, py = float(position[0]), float(position[1])
+        m = I = 0.0
+        if kind == "dynamic":
+            props = mass_properties(verts, radius)
+            cx, cy = props.centroid
+            if cx or cy:
+                verts = [(x - cx, y - cy) for x, y in verts]
+                c, s = math.cos(angle), math.sin(angle)
+                px, py = px + c * cx - s * cy, py + s * cx + c * cy
+            m = float(mass) if mass is not None else density * props.area
+            I = float(inertia) if inertia is not None else m * props.inertia_per_mass
+            if not (m > 0):
+                raise EngineError("a dynamic body needs a positive mass (give mass=, or an area)")
+            if not (I > 0):  # a point mass (a segment's rod with no length cannot happen)
+                I = m * 1e-12
+        g = self.gravity if gravity is None else (float(gravity[0]), float(gravity[1]))
+        if kind == "static":
+            g = (0.0, 0.0)
+        if kind == "kinematic" and gravity is None:
+            g = (0.0, 0.0)
+        gid = -1
+        if group is not None:
+            gid = self._groups.setdefault(group, len(self._groups))
+        d = self._ffi.new("m2c_body_def *")
+        flat = self._ffi.new("double[]", [c for v in verts for c in v])
+        d.kind = KINDS[kind]
+        d.x, d.y, d.angle = px, py, float(angle)
+        d.vx, d.vy, d.omega = float(velocity[0]), float(velocity[1]), float(omega)
+        d.ax, d.ay = g
+        d.mass, d.inertia = m, I
+        d.restitution = float(restitution)
+        d.radius = float(radius)
+        d.nvertices = len(verts)
+        d.vertices = flat
+        d.group = gid
+        i = self._lib.m2c_world_add_body(self._w, d)
+        if i < 0:
+            raise EngineError(self.error())
+        name = name if name is not None else f"body{i}"
+        self.bodies.append(BodyInfo(i, name, kind, tuple(verts), float(radius),
+                                    m if kind == "dynamic" else math.inf,
+                                    I if kind == "dynamic" else math.inf,
+                                    float(restitution), group, color))
+        self._names[name] = i
+        return i
+
+    def add_circle(self, position: Vec, radius: float, **kw) -> int:
+        return self.add_body([(0.0, 0.0)], radius=radius, position=position, **kw)
+
+    def add_segment(self, a: Vec, b: Vec, *, radius: float = 0.0, kind: str = "static", **kw) -> int:
+        return self.add_body([a, b], radius=radius, kind=kind, **kw)
+
+    def add_polygon(self, vertices: Sequence[Vec], **kw) -> int:
+        return self.add_body(vertices, **kw)
+
+    def body(self, name_or_id: str | int) -> BodyInfo:
+        i = self._names[name_or_id] if isinstance(name_or_id, str) else name_or_id
+        return self.bodies[i]
+
+    # -- running ----------------------------------------------------------------------------
+
+    @property
+    def time(self) -> float:
+        return float(self._lib.m2c_world_time(self._w))
+
+    def on_collision(self, callback: Callable[["World", Event], None]) -> None:
+        """callback(world, event) for every reported event (collision, rest, wake), in order,
+        at the event's time (the world's time is then the event's)."""
+        self._callbacks.append(callback)
+
+    def add_timer(self, t: float, callback: Callable[["World", Event], None] | None = None) -> int:
+        """A timer event at time t (reported, and passed to callback(world, event))."""
+        k = self._lib.m2c_world_add_timer(self._w, float(t))
+        if k < 0:
+            raise EngineError(self.error())
+        self._timers[k] = _Timer(callback)
+        return k
+
+    def step_to(self, t: float, events: bool = True) -> list[Event]:
+        """Process every event up to time t (inclusive); returns the reported events (none with
+        events=False, which saves making Python objects of them: callbacks still run)."""
+        out: list[Event] = []
+        # with callbacks the core stops after each reported event, so that a callback sees the
+        # world at its event's time (and may change it: set_velocity, add_timer)
+        room = 4 if self._callbacks or any(tm.callback for tm in self._timers.values()) else BUFFER
+        while True:
+            status = self._lib.m2c_world_step(self._w, float(t), self._buf, room, self._count)
+            if status < 0:
+                raise EngineError(self.error())
+            if not events and not self._callbacks and not self._timers:
+                if status == 0:
+                    return out
+                continue
+            for k in range(self._count[0]):
+                e = self._buf[k]
+                ev = Event(e.time, EVENT_KINDS.get(e.kind, str(e.kind)), e.a, e.b, (e.nx, e.ny),
+                           (e.px, e.py), e.speed, e.impulse)
+                if events:
+                    out.append(ev)
+                self._dispatch(ev)
+            if status == 0:
+                return out
+
+    def _dispatch(self, ev: Event) -> None:
+        if ev.kind == "timer":
+            timer = self._timers.pop(ev.a, None)
+            if timer and timer.callback:
+                timer.callback(self, ev)
+            return
+        for cb in self._callbacks:
+            cb(self, ev)
+
+    def set_velocity(self, body: int, velocity: Vec, omega: float = 0.0) -> None:
+        """Change a dynamic body's velocity now (an input event)."""
+        if self._lib.m2c_world_set_velocity(self._w, body, float(velocity[0]), float(velocity[1]),
+                                            float(omega)) < 0:
+            raise EngineError(self.error())
+
+    # -- reading ----------------------------------------------------------------------------
+
+    def pose(self, body: int, t: float | None = None) -> tuple[float, float, float]:
+        """(x, y, angle) of the body's reference point at time t (default: now), exactly."""
+        if self._lib.m2c_world_pose(self._w, body, self.time if t is None else float(t),
+                                    self._pose) < 0:
+            raise EngineError(f"pose of body {body} at {t}: no such body, or before its last event")
+        return (self._pose[0], self._pose[1], self._pose[2])
+
+    def velocity(self, body: int, t: float | None = None) -> tuple[float, float, float]:
+        """(vx, vy, omega) at time t (default: now)."""
+        if self._lib.m2c_world_velocity(self._w, body, self.time if t is None else float(t),
+                                        self._pose) < 0:
+            raise EngineError(f"velocity of body {body} at {t}: no such body, or before its last event")
+        return (self._pose[0], self._pose[1], self._pose[2])
+
+    def poses(self, t: float | None = None) -> list[tuple[float, float, float]]:
+        """Every body's pose at time t (default: now): what a frame draws."""
+        n = len(self.bodies)
+        buf = self._ffi.new("double[]", 3 * n)
+        if self._lib.m2c_world_poses(self._w, self.time if t is None else float(t), buf) < 0:
+            raise EngineError(f"poses at {t}: before some body's last event")
+        return [(buf[3 * i], buf[3 * i + 1], buf[3 * i + 2]) for i in range(n)]
+
+    def first_contact(self, a: int, b: int, horizon: float) -> float | None:
+        """When bodies a and b would first touch within `horizon` from now, were they alone
+        and nothing changed (any kinds: kinematic orbits too); None when they would not."""
+        t = self._ffi.new("double *")
+        r = self._lib.m2c_world_first_contact(self._w, a, b, float(horizon), t)
+        if r < 0:
+            raise EngineError(self.error())
+        return t[0] if r == 1 else None
+
+    def energy(self, t: float | None = None) -> float:
+        """Kinetic plus potential energy (-m a.x) of the dynamic bodies."""
+        return float(self._lib.m2c_world_energy(self._w, self.time if t is None else float(t)))
+
+    def asleep(self, body: int) -> bool:
+        return bool(self._lib.m2c_world_asleep(self._w, body))
+
+    def stats(self) -> dict[str, object]:
+        s = self._ffi.new("m2c_stats *")
+        self._lib.m2c_world_stats(self._w, s)
+        out: dict[str, object] = {}
+        for name in ("events", "collisions", "cell_crossings", "windows", "windows_solved", "stale",
+                     "predictions", "pair_tests", "solves", "rests", "wakes", "ncells_x", "ncells_y",
+                     "cell_size"):
+            out[name] = getattr(s, name)
+        out["solves_by_degree"] = {d: s.solves_by_degree[d] for d in range(17) if s.solves_by_degree[d]}
+        return out
+
+    def error(self) -> str:
+        return self._ffi.string(self._lib.m2c_world_error(self._w)).decode(errors="replace")
+
+    def names(self) -> Iterable[str]:
+        return (b.name for b in self.bodies)
