@@ -1,8 +1,8 @@
 """Issue 12's generated-name clashes that exit 0: a parameter named like a name the generated
 code (or its runtime) defines. Either max2code refuses the equation with a diagnostic, or what
 it writes compiles. The general scheme (no generated identifier can clash with a user's name,
-in any language) is issue 11 item 1, built on the `users` branch: until it is merged these are
-expected failures (strict: an unexpected pass means the marker must go).
+in any language) is issue 11 item 1 (max2code/names.py); tests/test_names.py checks it on a
+corpus of every language's keywords and predeclared names, these are the issue's reproducers.
 """
 
 from __future__ import annotations
@@ -15,8 +15,6 @@ from pathlib import Path
 import pytest
 
 from conftest import ROOT, require
-
-PENDING = pytest.mark.xfail(reason="issue 11 item 1, branch users", strict=True)
 
 # (language, parameter name); the equation's function is `clash`.
 CASES = [("c", "clash_DEGREE"), ("c", "clash_NPARAMS"), ("c", "M2C_MAX_DEGREE"),
@@ -32,7 +30,6 @@ def rlib(tmp_path_factory: pytest.TempPathFactory) -> Path:
     return out
 
 
-@PENDING
 @pytest.mark.parametrize("lang,name", CASES, ids=[f"{lang}-{name}" for lang, name in CASES])
 def test_a_parameter_named_like_a_generated_name(lang: str, name: str, tmp_path: Path,
                                                  rlib: Path, maxima_exe: str) -> None:
