@@ -53,7 +53,7 @@ INSERTS = [b"{", b"}", b"{ }", b'"', b"'", b"''", b"\0", b"\r", b"\r\n", b"\n", 
            b'"' * 201, b"// {\n" * 50, b"begin\n" * 20, b"\\" * 100, b"?" * 10, b":lisp ",
            b"load(\"" + b'\\"' * 100]
 
-DIAGNOSTIC = re.compile(r"^.+:\d+:\d+: (error|warning): \S.*$")
+DIAGNOSTIC = re.compile(r"^.+:\d+:\d+: (error|warning|note): \S.*$")  # notes: roles without a variant
 
 
 @st.composite
