@@ -18,6 +18,7 @@ its Python face (cffi, ABI mode).
     events = w.step_to(2.0)            # process every event up to t = 2 (callbacks too)
     x, y, angle = w.pose(ball)         # now (t = 2), exactly; w.pose(ball, t) for t >= now
     frame = w.poses(2.0)               # every body's (x, y, angle): what a frame draws
+    xya = w.poses_array(2.0)           # the same as a numpy (N, 3) array (one call, one copy)
     w.set_velocity(ball, (0, 3))       # an input event, at the world's time
     w.add_timer(2.5, callback)         # a timer event
     w.first_contact(ball, box, 1.0)    # a pair's first contact alone (no response): max2code scene
