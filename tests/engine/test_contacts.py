@@ -234,3 +234,22 @@ def test_determinism_same_log(engine) -> None:
                  e.impulse.hex()) for e in w.step_to(3.0)]
     a, b = run(), run()
     assert len(a) > 100 and a == b
+
+
+@pytest.mark.parametrize("shape,other,want", [
+    # a 2 x 2 square centred 0.5 above a thin floor: pushed up 0.5 (not down 1.5) to part
+    ([(-1.0, -0.5), (1.0, -0.5), (1.0, 1.5), (-1.0, 1.5)], [(-5.0, 0.0), (5.0, 0.0)], -0.5),
+    # the same square crossing the floor near its end (x from 4 to 6): still 0.5
+    ([(4.0, -0.5), (6.0, -0.5), (6.0, 1.5), (4.0, 1.5)], [(-5.0, 0.0), (5.0, 0.0)], -0.5),
+    # two boxes overlapping by 1 along x (1.5 along y)
+    ([(0.0, 0.0), (2.0, 0.0), (2.0, 2.0), (0.0, 2.0)], [(1.0, 0.5), (3.0, 0.5), (3.0, 1.5), (1.0, 1.5)], -1.0),
+    # a small square inside a big one: it must move 1.5 to leave (through the nearer side)
+    ([(-3.0, -3.0), (3.0, -3.0), (3.0, 3.0), (-3.0, 3.0)], [(1.0, -0.5), (2.0, -0.5), (2.0, 0.5), (1.0, 0.5)], -2.0),
+    # apart: the distance between the nearest points
+    ([(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)], [(4.0, 5.0), (7.0, 5.0)], 5.0),
+])
+def test_exact_gap_of_crossing_shapes(shape, other, want) -> None:
+    """The tests' overlap oracle, on shapes whose answer is plain arithmetic: an overlap is the
+    shortest push that parts them (a shape deep across a thin segment is not 'touching')."""
+    assert gap(shape, 0.0, other, 0.0) == pytest.approx(want, abs=1e-15)
+    assert gap(other, 0.0, shape, 0.0) == pytest.approx(want, abs=1e-15)
