@@ -159,3 +159,29 @@ def test_picture_writer_errors_are_reported(engine, tmp_path: Path, capsys: pyte
     assert rc == 1 and f"{gif}: error: cannot write output: No space left on device" in err, err
     assert gif.read_bytes() == b"the previous run's"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["a-file", "out.gif", "travel.toml"]
+
+
+def test_every_picture_kind(engine, tmp_path: Path, capsys: pytest.CaptureFixture) -> None:
+    """--gif, --mp4, --png-dir and --svg: one frame per 1/fps from 0 to T inclusive (11 here)."""
+    need("PIL")
+    from PIL import Image
+    scene = tmp_path / "travel.toml"
+    scene.write_text(TRAVEL)
+    common = [str(scene), "--until", "1", "--fps", "10", "--size", "160x120"]
+    rc, err = _sim(common + ["--gif", str(tmp_path / "a.gif")], capsys)
+    assert rc == 0, err
+    with Image.open(tmp_path / "a.gif") as gif:
+        assert gif.n_frames == 11 and gif.size == (160, 120)
+    rc, err = _sim(common + ["--png-dir", str(tmp_path / "frames")], capsys)
+    assert rc == 0, err
+    assert sorted(p.name for p in (tmp_path / "frames").iterdir()) == [f"frame-{i:05d}.png" for i in range(11)]
+    rc, err = _sim(common + ["--svg", str(tmp_path / "end.svg")], capsys)
+    assert rc == 0, err
+    text = (tmp_path / "end.svg").read_text()
+    assert text.lstrip().startswith(("<svg", "<?xml")) and 'width="160"' in text and "#ff0000" in text
+    need("imageio_ffmpeg")
+    rc, err = _sim(common + ["--mp4", str(tmp_path / "a.mp4")], capsys)
+    assert rc == 0, err
+    import imageio.v2 as imageio
+    with imageio.get_reader(str(tmp_path / "a.mp4"), format="FFMPEG") as video:
+        assert sum(1 for _ in video) == 11
