@@ -33,6 +33,7 @@ class BodyInfo:
     restitution: float
     group: str | None
     color: str | None = None
+    friction: float = 0.0
 
     @property
     def shape(self) -> str:
@@ -96,12 +97,13 @@ class World:
                  omega: float = 0.0, gravity: Vec | None = None, mass: float | None = None,
                  density: float = 1.0, inertia: float | None = None, restitution: float = 1.0,
                  group: str | None = None, name: str | None = None,
-                 color: str | None = None) -> int:
+                 color: str | None = None, friction: float = 0.0) -> int:
         """Add a body; returns its id. `vertices` are offsets from `position` in the body's
         frame (turned by `angle`): one vertex and a radius make a circle, two a segment (a
         capsule with a radius), three or more a convex polygon, anticlockwise. A dynamic body's
         reference point moves to its centre of mass (and its vertices with it: see `bodies`).
-        `gravity` overrides the world's for this body (static bodies have none)."""
+        `gravity` overrides the world's for this body (static bodies have none). `friction`
+        is a Coulomb coefficient, at impacts only (a contact uses sqrt(fa fb); README)."""
         if kind not in KINDS:
             raise EngineError(f"kind must be one of {', '.join(KINDS)}, not {kind!r}")
         verts = [(float(x), float(y)) for x, y in vertices]
@@ -136,6 +138,7 @@ class World:
         d.ax, d.ay = g
         d.mass, d.inertia = m, I
         d.restitution = float(restitution)
+        d.friction = float(friction)
         d.radius = float(radius)
         d.nvertices = len(verts)
         d.vertices = flat
@@ -147,7 +150,7 @@ class World:
         self.bodies.append(BodyInfo(i, name, kind, tuple(verts), float(radius),
                                     m if kind == "dynamic" else math.inf,
                                     I if kind == "dynamic" else math.inf,
-                                    float(restitution), group, color))
+                                    float(restitution), group, color, float(friction)))
         self._names[name] = i
         return i
 

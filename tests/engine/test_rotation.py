@@ -13,6 +13,8 @@ import pytest
 
 from max2code.engine.geometry import gap, transform
 
+from .scenes import spinning_gas
+
 mpmath.mp.dps = 40
 
 
@@ -113,33 +115,8 @@ def test_angular_impulse_on_a_rod(engine) -> None:
     assert ev[0].time == pytest.approx((1.0 - 0.05 - r) / u, rel=1e-14)
 
 
-def _spinning_gas(engine, seed: int, walls: bool):
-    rng = random.Random(seed)
-    w = engine.World()
-    if walls:
-        for a, b in [((0, 0), (8, 0)), ((8, 0), (8, 8)), ((8, 8), (0, 8)), ((0, 8), (0, 0))]:
-            w.add_segment(a, b)
-    pts: list[tuple[float, float]] = []
-    while len(pts) < 14:
-        x, y = rng.uniform(0.8, 7.2), rng.uniform(0.8, 7.2)
-        if all(math.hypot(x - a, y - b) > 1.5 for a, b in pts):
-            pts.append((x, y))
-    for k, (x, y) in enumerate(pts):
-        v, om = (rng.uniform(-2, 2), rng.uniform(-2, 2)), rng.uniform(-4, 4)
-        if k % 4 == 0:
-            w.add_circle((x, y), 0.4, velocity=v, omega=om)
-        elif k % 4 == 1:
-            w.add_segment((-0.5, 0.0), (0.5, 0.0), radius=0.1, kind="dynamic", position=(x, y),
-                          velocity=v, omega=om)
-        else:
-            n = 3 + k % 3
-            vs = [(0.55 * math.cos(2 * math.pi * i / n), 0.55 * math.sin(2 * math.pi * i / n)) for i in range(n)]
-            w.add_polygon(vs, position=(x, y), velocity=v, omega=om)
-    return w
-
-
 def test_spin_conserves_momentum_angular_momentum_and_energy(engine) -> None:
-    w = _spinning_gas(engine, 4, walls=False)
+    w = spinning_gas(engine.World, 4, walls=False)
 
     def totals(t):
         px = py = lz = 0.0
@@ -161,7 +138,7 @@ def test_spin_conserves_momentum_angular_momentum_and_energy(engine) -> None:
 
 def test_spinning_shapes_never_overlap(engine) -> None:
     """Polygons, capsules and circles spinning in a box: exact geometry at every frame."""
-    w = _spinning_gas(engine, 9, walls=True)
+    w = spinning_gas(engine.World, 9, walls=True)
     e0 = w.energy(0.0)
     for k in range(1, 121):
         t = k / 30

@@ -47,6 +47,8 @@ BAD_TOML = [
     ("a box across a thin wall", GOOD.replace('shape = "circle"\nposition = [0, 1]\nradius = 0.1',
                                               'shape = "box"\nposition = [0, 0.1]\nsize = [0.4, 0.4]'),
      9, 3, ["bodies[1]", "overlapping", "by 0.1"]),
+    ("negative friction", GOOD.replace("radius = 0.1", "radius = 0.1\nfriction = -0.5"),
+     14, 1, ["bodies[1].friction", "must not be negative"]),
     ("a wrong type", GOOD.replace("radius = 0.1", 'radius = "big"'),
      13, 1, ["bodies[1].radius", "expected a finite number"]),
     ("restitution above 1", GOOD.replace("radius = 0.1", "radius = 0.1\nrestitution = 1.5"),
