@@ -5,6 +5,8 @@ from __future__ import annotations
 import math
 import random
 
+from max2code.engine.geometry import gap, transform
+
 
 def box(world, width: float, height: float, restitution: float = 1.0) -> list[int]:
     corners = [(0.0, 0.0), (width, 0.0), (width, height), (0.0, height)]
@@ -61,3 +63,17 @@ def spinning_gas(World, seed: int, walls: bool, friction: float = 0.0):
             vs = [(0.55 * math.cos(2 * math.pi * i / n), 0.55 * math.sin(2 * math.pi * i / n)) for i in range(n)]
             w.add_polygon(vs, position=(x, y), velocity=v, omega=om, friction=friction)
     return w
+
+
+def assert_apart(world, t: float | None = None, tol: float = 1e-9) -> float:
+    """No two bodies (one of them dynamic) overlap by more than tol at time t (default: now),
+    by exact geometry; returns the smallest gap."""
+    shapes = [(b, transform(b.vertices, world.pose(b.id, t))) for b in world.bodies]
+    worst = math.inf
+    for i, (a, pa) in enumerate(shapes):
+        for b, pb in shapes[i + 1:]:
+            if "dynamic" in (a.kind, b.kind):
+                g = gap(pa, a.radius, pb, b.radius)
+                assert g >= -tol, f"{a.name} and {b.name} overlap by {-g} at t = {world.time if t is None else t}"
+                worst = min(worst, g)
+    return worst

@@ -9,9 +9,9 @@ import random
 import mpmath
 import pytest
 
-from max2code.engine.geometry import gap, transform
+from max2code.engine.geometry import gap
 
-from .scenes import gas
+from .scenes import assert_apart, gas
 
 mpmath.mp.dps = 50
 
@@ -173,18 +173,6 @@ def test_energy_with_gravity_20_balls_60_s(engine) -> None:
     assert abs(w.energy() - e0) <= 1e-12 * abs(e0)
 
 
-def _check_no_overlap(w, t: float, tol: float) -> float:
-    worst = math.inf
-    shapes = [(b, transform(b.vertices, w.pose(b.id, t))) for b in w.bodies]
-    for i, (a, pa) in enumerate(shapes):
-        for b, pb in shapes[i + 1:]:
-            if "dynamic" not in (a.kind, b.kind):
-                continue
-            worst = min(worst, gap(pa, a.radius, pb, b.radius))
-    assert worst >= -tol, f"overlap {worst} at t = {t}"
-    return worst
-
-
 def test_no_overlap_at_events_and_frames(engine) -> None:
     """A dense gas under gravity: at every event and every frame, exact geometry finds no two
     bodies overlapping beyond the tolerance (and contacts do touch)."""
@@ -197,7 +185,7 @@ def test_no_overlap_at_events_and_frames(engine) -> None:
         for e in events:
             if e.kind == "collision" and abs(e.time - t) == 0:
                 touching.append(e)
-        _check_no_overlap(w, t, tol)
+        assert_apart(w, t, tol)
     # and at the time of every collision in a second run, stepping to each event's time
     w2 = gas(engine.World, 30, 0.15, 2.5, 4.0, seed=5, gravity=(0.0, -9.81), tolerance=tol)
     times = sorted({e.time for e in w2.step_to(0.5) if e.kind == "collision"})
@@ -205,7 +193,7 @@ def test_no_overlap_at_events_and_frames(engine) -> None:
     closest = []
     for t in times[:150]:
         w3.step_to(t)
-        closest.append(_check_no_overlap(w3, t, tol))
+        closest.append(assert_apart(w3, t, tol))
     assert len(closest) > 50
     assert max(closest) <= 1e-9  # at each collision time some pair touches
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import pytest
 
-from .scenes import spinning_gas
+from .scenes import assert_apart, spinning_gas
 
 M, R, V, E, W0 = 2.0, 0.5, 2.0, 0.5, 3.0   # mass, radius, landing speed, restitution, spin
 
@@ -79,7 +79,6 @@ def test_friction_never_adds_energy_and_keeps_momenta(engine) -> None:
 
 
 def test_friction_with_walls_never_overlaps_nor_gains(engine) -> None:
-    from max2code.engine.geometry import gap, transform
     w = spinning_gas(engine.World, 9, walls=True, friction=0.8)
     e = w.energy(0.0)
     for k in range(1, 61):
@@ -87,11 +86,7 @@ def test_friction_with_walls_never_overlaps_nor_gains(engine) -> None:
         now = w.energy()
         assert now <= e * (1 + 1e-13)
         e = now
-        shapes = [(b, transform(b.vertices, w.pose(b.id))) for b in w.bodies]
-        for i, (a, pa) in enumerate(shapes):
-            for b, pb in shapes[i + 1:]:
-                if "dynamic" in (a.kind, b.kind):
-                    assert gap(pa, a.radius, pb, b.radius) >= -1e-9
+        assert_apart(w)
 
 
 def test_negative_friction_refused(engine) -> None:
