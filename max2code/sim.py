@@ -117,10 +117,23 @@ def main(argv: list[str]) -> int:
     return 0
 
 
-def _pictures(args, scene, world, frames, fps: float) -> int:
-    from .engine.frames import render_bodies
+def picture_view(scene, bodies, frames, width: int, height: int):
+    """The scene's view, else the smallest one holding every body in every frame (bodies that
+    travel stay in the picture: fitting the first frame only would lose them)."""
     from .render.fit import fit_view
-    from .render.model import RenderModelError, View
+    from .render.model import View
+
+    if scene.view:
+        return View(*scene.view, width=width, height=height)
+    return fit_view(bodies, frames, width, height)
+
+
+def _pictures(args, scene, world, frames, fps: float) -> int:
+    """Write the pictures asked for; 0, or 1 after an `error:` line (a writer's failure leaves
+    no partial file: every writer renames a finished temporary file into place)."""
+    from .diagnostics import Max2CodeError
+    from .engine.frames import render_bodies
+    from .render.model import RenderModelError
 
     try:
         from .render import write
@@ -130,10 +143,7 @@ def _pictures(args, scene, world, frames, fps: float) -> int:
     bodies = render_bodies(world)
     width, height = args.size
     try:
-        if scene.view:
-            view = View(*scene.view, width=width, height=height)
-        else:
-            view = fit_view(bodies, frames[:1], width, height)
+        view = picture_view(scene, bodies, frames, width, height)
         if args.gif:
             write.write_gif(args.gif, bodies, frames, view, fps)
         elif args.mp4:
@@ -144,10 +154,29 @@ def _pictures(args, scene, world, frames, fps: float) -> int:
             write.write_svg(args.svg, bodies, frames[-1], view)
         elif args.png:
             write.write_png(args.png, bodies, frames[-1], view)
-        if args.live:
-            from .render import live
-            live.show(bodies, frames, view, fps)
-    except (RenderModelError, getattr(write, "RenderUnavailable", RuntimeError)) as exc:
+    except Max2CodeError as exc:
+        for d in exc.diagnostics:
+            print(d, file=sys.stderr)
+        return 1
+    except OSError as exc:
+        name = getattr(exc, "filename", None) or "max2code sim"
+        print(f"{name}: error: cannot write output: {exc.strerror or exc}", file=sys.stderr)
+        return 1
+    except (RenderModelError, write.RenderUnavailable) as exc:
         print(f"max2code sim: error: {exc}", file=sys.stderr)
         return 1
+    if args.live:
+        _live(bodies, frames, view, fps)
     return 0
+
+
+def _live(bodies, frames, view, fps: float) -> None:
+    """The window is a convenience: without pygame (or a display) say so and go on."""
+    from .render import live
+    from .render.write import RenderUnavailable
+
+    try:
+        live.show(bodies, frames, view, fps)
+    except RenderUnavailable as exc:
+        print(f"max2code sim: note: no live window: {exc}; the run went on without it",
+              file=sys.stderr)

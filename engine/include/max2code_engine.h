@@ -53,6 +53,7 @@ typedef struct {
     int nvertices;             /* 1: circle, 2: segment/capsule, >= 3: convex polygon */
     const double *vertices;    /* 2 * nvertices numbers: offsets in the body frame */
     int group;                 /* >= 0: bodies of one group never collide with each other */
+    double friction;           /* Coulomb coefficient >= 0; a contact uses sqrt(fa fb); impacts only */
 } m2c_body_def;
 
 typedef struct {

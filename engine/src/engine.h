@@ -54,7 +54,7 @@ typedef struct {
     motion m;
     int kind;                   /* M2C_STATIC / M2C_KINEMATIC / M2C_DYNAMIC */
     double inv_mass, inv_inertia, mass, inertia;
-    double restitution, radius;
+    double restitution, radius, friction;
     double bound;               /* max |offset| + radius: a circle about the reference point */
     double rho;                 /* max |offset| (what rotation moves) */
     int nvert, vert;            /* vertices: w->verts[2 (vert + k)], k < nvert */

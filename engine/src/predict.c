@@ -719,6 +719,19 @@ static void points_on_edges(feat *f, contact *best, int swapped)
                                     f->a.vy + f->a.w * f->pa[0] - (f->b.vy + f->b.w * f->pb[0])};
                     double rate = vq[0] * D[1] - vq[1] * D[0] + f->b.w * (q[0] * D[0] + q[1] * D[1]);
                     double where = fabs(across) > w->cfg.tolerance ? across : rate;
+                    if (fabs(across) <= w->cfg.tolerance && f->A->nvert >= 3) {
+                        /* a polygon's corner on the line: the polygon is on the side of its
+                         * interior next to that corner (its speed says nothing when it was
+                         * resting there and turns into the edge: it would pass through) */
+                        int nv = f->A->nvert;
+                        double pp[2], pn[2];
+                        set_point(w, f->A, &f->a, (va + nv - 1) % nv, pp);
+                        set_point(w, f->A, &f->a, (va + 1) % nv, pn);
+                        double ix = pp[0] + pn[0] - 2 * f->pa[0], iy = pp[1] + pn[1] - 2 * f->pa[1];
+                        double inner = ix * D[1] - iy * D[0];
+                        if (inner != 0.0)
+                            where = inner;
+                    }
                     own = where > 0 ? 1 : where < 0 ? -1 : 2;
                 }
             }

@@ -9,6 +9,8 @@
  *     J = (1 + e) u / (ma + mb + ia (ra x n)^2 + ib (rb x n)^2)
  * applied as -J n to a and +J n to b: momentum is conserved exactly, and for e = 1 so is the
  * kinetic energy (up to rounding). e is the product of the two bodies' restitutions.
+ * With friction (sqrt of the two bodies' coefficients) a tangential impulse follows: see
+ * friction_impulse.
  */
 #include <math.h>
 
@@ -84,6 +86,45 @@ static int response_direction(const body *X, const double push[2], double u[2])
     return 0;
 }
 
+/* Coulomb friction at an impact, after the normal impulse J: a tangential impulse that stops
+ * the contact points' relative sliding if at most `bound` (= mu J) does (they stick), else
+ * `bound` against the sliding. With t the tangent and rt = r x t, the sliding speed after the
+ * normal impulse is vt = (vb - va).t + J (ia rna rta + ib rnb rtb) and a tangential impulse
+ * P changes it by P kt, kt = ma + mb + ia rta^2 + ib rtb^2. The energy it takes,
+ * -P (2 vt + P kt) / 2, is never negative for P between 0 and -vt / kt: friction never adds
+ * energy. Through the arms a tangential impulse also changes the normal speed (by P knt,
+ * knt = ia rna rta + ib rnb rtb): it is limited so that the bodies still part (the normal
+ * speed `sep` after the normal impulse is not undone), else a spinning corner would strike
+ * again at the same instant, again and again. Not applied to a body held by its edge (the
+ * rest rule), which slides freely. */
+static void friction_impulse(body *A, body *B, double bound, double sep, const double ra[2],
+                             const double rb[2], const double va[2], const double vb[2],
+                             const double n[2], double J, double rna, double rnb, double ima,
+                             double imb, double iia, double iib)
+{
+    double t[2] = {-n[1], n[0]};
+    double rta = cross(ra, t), rtb = cross(rb, t);
+    double vt = (vb[0] - va[0]) * t[0] + (vb[1] - va[1]) * t[1] + J * (iia * rna * rta + iib * rnb * rtb);
+    double kt = ima + imb + iia * rta * rta + iib * rtb * rtb;
+    double knt = iia * rna * rta + iib * rnb * rtb;
+    if (!(kt > 0) || vt == 0.0)
+        return;
+    double P = -vt / kt;
+    if (P > bound)
+        P = bound;
+    else if (P < -bound)
+        P = -bound;
+    double keep = sep > 0 ? sep * (1 - 1e-9) : 0.0; /* the parting speed friction may take */
+    if (P * knt < -keep)
+        P = -keep / knt;
+    A->m.vx -= P * t[0] * ima;
+    A->m.vy -= P * t[1] * ima;
+    A->m.w -= P * rta * iia;
+    B->m.vx += P * t[0] * imb;
+    B->m.vy += P * t[1] * imb;
+    B->m.w += P * rtb * iib;
+}
+
 /* Returns the number of bodies woken (their ids in w->woken): the caller predicts them. */
 int respond(m2c_world *w, int i, int j, const event *ev)
 {
@@ -147,6 +188,10 @@ int respond(m2c_world *w, int i, int j, const event *ev)
         B->m.vy += J * ub[1] * imb;
         B->m.w += J * rnb * iib;
     }
+    double mu = sqrt(A->friction * B->friction);
+    if (mu > 0 && J > 0 && !ca && !cb)
+        friction_impulse(A, B, mu * J, -closing + J * k, ra, rb, va, vb, n, J, rna, rnb, ima,
+                         imb, iia, iib);
     A->counter++;
     if (awake_b)
         B->counter++;

@@ -83,7 +83,7 @@ static int check_def(m2c_world *w, const m2c_body_def *d)
     if (d->kind != M2C_STATIC && d->kind != M2C_KINEMATIC && d->kind != M2C_DYNAMIC)
         return fail(w, "kind must be static, kinematic or dynamic");
     double nums[] = {d->x, d->y, d->angle, d->vx, d->vy, d->omega, d->ax, d->ay, d->radius,
-                     d->restitution};
+                     d->restitution, d->friction};
     if (!finite_all(nums, (int)(sizeof nums / sizeof nums[0])))
         return fail(w, "a number of the body is not finite");
     if (d->nvertices < 1 || !d->vertices)
@@ -96,6 +96,8 @@ static int check_def(m2c_world *w, const m2c_body_def *d)
         return fail(w, "a circle needs a positive radius");
     if (d->restitution < 0 || d->restitution > 1)
         return fail(w, "restitution must be between 0 and 1");
+    if (d->friction < 0)
+        return fail(w, "friction must not be negative");
     if (d->kind == M2C_DYNAMIC && !(d->mass > 0 && d->inertia > 0 && isfinite(d->mass)
                                     && isfinite(d->inertia)))
         return fail(w, "a dynamic body needs a positive mass and moment of inertia");
@@ -212,6 +214,7 @@ int m2c_world_add_body(m2c_world *w, const m2c_body_def *d)
             b->m.vx = b->m.vy = b->m.ax = b->m.ay = b->m.w = 0.0;
     }
     b->restitution = d->restitution;
+    b->friction = d->friction;
     b->radius = d->radius;
     b->nvert = d->nvertices;
     b->vert = w->nverts;

@@ -18,13 +18,14 @@ its Python face (cffi, ABI mode).
     events = w.step_to(2.0)            # process every event up to t = 2 (callbacks too)
     x, y, angle = w.pose(ball)         # now (t = 2), exactly; w.pose(ball, t) for t >= now
     frame = w.poses(2.0)               # every body's (x, y, angle): what a frame draws
+    xya = w.poses_array(2.0)           # the same as a numpy (N, 3) array (one call, one copy)
     w.set_velocity(ball, (0, 3))       # an input event, at the world's time
     w.add_timer(2.5, callback)         # a timer event
     w.first_contact(ball, box, 1.0)    # a pair's first contact alone (no response): max2code scene
     w.stats()                          # events, collisions, cell crossings, solves by degree, ...
 
 Bodies (`World.add_body(vertices, radius=, kind=, position=, angle=, velocity=, omega=,
-gravity=, mass= | density=, inertia=, restitution=, group=, name=, color=)`, returns the id):
+gravity=, mass= | density=, inertia=, restitution=, friction=, group=, name=, color=)`, returns the id):
   * vertices are offsets from `position` in the body frame: one vertex + radius = a circle
     (its offset puts it off the reference point: the paper's orbiting paddles), two = a
     segment (thin, two-sided) or capsule (radius > 0), three or more = a convex polygon,
@@ -35,6 +36,7 @@ gravity=, mass= | density=, inertia=, restitution=, group=, name=, color=)`, ret
   * gravity: the body's own acceleration (default: the world's; static bodies have none,
     kinematic ones none unless given);
   * restitution: a contact uses the product of the two bodies' (default 1: elastic);
+  * friction: Coulomb coefficient at impacts, a contact uses sqrt(fa fb) (default 0: none);
   * group: bodies of one group never collide with each other.
 `World.bodies[id]` is a BodyInfo (name, kind, vertices in the engine's frame, radius, mass,
 inertia, restitution, group, color): with `poses()` it is all a renderer needs.

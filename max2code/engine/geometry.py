@@ -64,7 +64,9 @@ def _penetration(P: Sequence[Vec], Q: Sequence[Vec]) -> float:
             nx, ny = nx / n, ny / n
             pa = [x * nx + y * ny for x, y in P]
             qa = [x * nx + y * ny for x, y in Q]
-            depth = min(depth, min(max(pa), max(qa)) - max(min(pa), min(qa)))
+            # the shorter push that separates them along this axis (not the intervals'
+            # common length, which is 0 for a thin segment however deep a shape crosses it)
+            depth = min(depth, min(max(pa) - min(qa), max(qa) - min(pa)))
     return max(depth, 0.0) if math.isfinite(depth) else 0.0
 
 

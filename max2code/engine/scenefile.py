@@ -30,6 +30,7 @@
     mass = 1.0                       # or density (default 1, per unit area); not both
     inertia = 0.5                    # optional: default from the shape
     restitution = 1.0                # 0..1; a contact uses the product of the two bodies'
+    friction = 0.0                   # Coulomb coefficient >= 0, at impacts; a contact uses sqrt(fa fb)
     group = "paddle"                 # bodies of one group never collide with each other
     color = "#c03030"                # optional, for the pictures
     comment = "..."                  # ignored (also at the top level)
@@ -55,7 +56,7 @@ TOP_KEYS = {"name", "gravity", "tolerance", "until", "fps", "view", "engine", "b
 ENGINE_KEYS = {"cell_size", "rest_speed", "collapse_time", "max_events"}
 BODY_KEYS = {"name", "kind", "shape", "position", "radius", "offset", "points", "vertices", "size",
              "angle", "velocity", "omega", "gravity", "mass", "density", "inertia",
-             "restitution", "group", "color", "comment"}
+             "restitution", "friction", "group", "color", "comment"}
 SHAPE_KEYS = {"circle": {"radius", "offset"}, "segment": {"points", "radius"},
               "polygon": {"vertices", "radius"}, "box": {"size", "radius"}}
 KINDS = ("dynamic", "static", "kinematic")
@@ -81,6 +82,7 @@ class BodySpec:
     restitution: float = 1.0
     group: str | None = None
     color: str | None = None
+    friction: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -271,6 +273,7 @@ def _body(c: _Checker, raw: object, index: int, names: set[str]) -> BodySpec | N
         c.error(path + ("density",), "give mass or density, not both")
     inertia = c.number(raw, "inertia", path, None, positive=True)
     restitution = c.number(raw, "restitution", path, 1.0, lo=0.0, hi=1.0)
+    friction = c.number(raw, "friction", path, 0.0, nonneg=True)
     group = c.string(raw, "group", path, None)
     color = c.string(raw, "color", path, None)
     if color is not None and not re.fullmatch(r"#[0-9a-fA-F]{6}([0-9a-fA-F]{2})?", color):
@@ -285,7 +288,7 @@ def _body(c: _Checker, raw: object, index: int, names: set[str]) -> BodySpec | N
         return None
     return BodySpec(name, kind, shape, tuple(vertices), float(radius or 0.0), position or (0.0, 0.0),
                     angle, velocity or (0.0, 0.0), omega, gravity, mass, density, inertia,
-                    restitution, group, color)
+                    restitution, group, color, friction)
 
 
 def _overlaps(c: _Checker, bodies: list[tuple[int, BodySpec]], tolerance: float) -> None:
@@ -392,6 +395,6 @@ def build_world(scene: Scene):
     for b in scene.bodies:
         w.add_body(b.vertices, radius=b.radius, kind=b.kind, position=b.position, angle=b.angle,
                    velocity=b.velocity, omega=b.omega, gravity=b.gravity, mass=b.mass,
-                   density=b.density, inertia=b.inertia, restitution=b.restitution,
+                   density=b.density, inertia=b.inertia, restitution=b.restitution, friction=b.friction,
                    group=b.group, name=b.name, color=b.color)
     return w

@@ -33,6 +33,7 @@ class BodyInfo:
     restitution: float
     group: str | None
     color: str | None = None
+    friction: float = 0.0
 
     @property
     def shape(self) -> str:
@@ -87,6 +88,7 @@ class World:
         self._buf = self._ffi.new("m2c_event[]", BUFFER)
         self._count = self._ffi.new("int *")
         self._pose = self._ffi.new("double[3]")
+        self._poses = self._ffi.new("double[]", 0)
 
     # -- building ---------------------------------------------------------------------------
 
@@ -95,12 +97,13 @@ class World:
                  omega: float = 0.0, gravity: Vec | None = None, mass: float | None = None,
                  density: float = 1.0, inertia: float | None = None, restitution: float = 1.0,
                  group: str | None = None, name: str | None = None,
-                 color: str | None = None) -> int:
+                 color: str | None = None, friction: float = 0.0) -> int:
         """Add a body; returns its id. `vertices` are offsets from `position` in the body's
         frame (turned by `angle`): one vertex and a radius make a circle, two a segment (a
         capsule with a radius), three or more a convex polygon, anticlockwise. A dynamic body's
         reference point moves to its centre of mass (and its vertices with it: see `bodies`).
-        `gravity` overrides the world's for this body (static bodies have none)."""
+        `gravity` overrides the world's for this body (static bodies have none). `friction`
+        is a Coulomb coefficient, at impacts only (a contact uses sqrt(fa fb); README)."""
         if kind not in KINDS:
             raise EngineError(f"kind must be one of {', '.join(KINDS)}, not {kind!r}")
         verts = [(float(x), float(y)) for x, y in vertices]
@@ -135,6 +138,7 @@ class World:
         d.ax, d.ay = g
         d.mass, d.inertia = m, I
         d.restitution = float(restitution)
+        d.friction = float(friction)
         d.radius = float(radius)
         d.nvertices = len(verts)
         d.vertices = flat
@@ -146,7 +150,7 @@ class World:
         self.bodies.append(BodyInfo(i, name, kind, tuple(verts), float(radius),
                                     m if kind == "dynamic" else math.inf,
                                     I if kind == "dynamic" else math.inf,
-                                    float(restitution), group, color))
+                                    float(restitution), group, color, float(friction)))
         self._names[name] = i
         return i
 
@@ -239,12 +243,26 @@ class World:
         return (self._pose[0], self._pose[1], self._pose[2])
 
     def poses(self, t: float | None = None) -> list[tuple[float, float, float]]:
-        """Every body's pose at time t (default: now): what a frame draws."""
+        """Every body's pose at time t (default: now): what a frame draws. One call into the
+        core fills a flat buffer, copied out in bulk (no per-body crossing of the binding)."""
+        flat = self._fill_poses(t)
+        it = iter(memoryview(self._ffi.buffer(flat)).cast("d").tolist())
+        return list(zip(it, it, it))
+
+    def poses_array(self, t: float | None = None):
+        """poses(t) as a numpy array of shape (N, 3), columns x, y, angle (a copy; needs numpy)."""
+        import numpy as np
+        flat = self._fill_poses(t)
+        return np.frombuffer(self._ffi.buffer(flat), dtype=np.float64).reshape(-1, 3).copy()
+
+    def _fill_poses(self, t: float | None):
+        """The core's poses at t in a buffer of exactly 3 N doubles (kept between calls)."""
         n = len(self.bodies)
-        buf = self._ffi.new("double[]", 3 * n)
-        if self._lib.m2c_world_poses(self._w, self.time if t is None else float(t), buf) < 0:
+        if len(self._poses) != 3 * n:
+            self._poses = self._ffi.new("double[]", 3 * n)
+        if self._lib.m2c_world_poses(self._w, self.time if t is None else float(t), self._poses) < 0:
             raise EngineError(f"poses at {t}: before some body's last event")
-        return [(buf[3 * i], buf[3 * i + 1], buf[3 * i + 2]) for i in range(n)]
+        return self._poses
 
     def first_contact(self, a: int, b: int, horizon: float) -> float | None:
         """When bodies a and b would first touch within `horizon` from now, were they alone

@@ -40,9 +40,13 @@ def show(bodies: Sequence[Body], frames: Iterable[Frame], view: View, fps: float
         raise RenderUnavailable("the live window needs pygame: pip install 'max2code[live]'")
     raster, _ = _imports()
     fps = _check_fps(fps)
-    pygame.display.init()
     try:
+        pygame.display.init()
         screen = pygame.display.set_mode((view.width, view.height))
+    except pygame.error as exc:  # no display to open a window on
+        pygame.display.quit()
+        raise RenderUnavailable(f"pygame cannot open a window: {exc}") from None
+    try:
         pygame.display.set_caption(title)
         start = clock()
         shown = 0

@@ -5,6 +5,8 @@ from __future__ import annotations
 import math
 import random
 
+from max2code.engine.geometry import gap, transform
+
 
 def box(world, width: float, height: float, restitution: float = 1.0) -> list[int]:
     corners = [(0.0, 0.0), (width, 0.0), (width, height), (0.0, height)]
@@ -35,3 +37,43 @@ def gas(World, n: int, radius: float, size: float, speed: float, seed: int, *, g
         w.add_circle((x, y), radius, velocity=(rng.uniform(-speed, speed), rng.uniform(-speed, speed)),
                      restitution=restitution, mass=rng.uniform(0.5, 2.0))
     return w
+
+
+def spinning_gas(World, seed: int, walls: bool, friction: float = 0.0):
+    """14 circles, capsules and polygons spinning in an 8 x 8 box (or free, walls=False)."""
+    rng = random.Random(seed)
+    w = World()
+    if walls:
+        for a, b in [((0, 0), (8, 0)), ((8, 0), (8, 8)), ((8, 8), (0, 8)), ((0, 8), (0, 0))]:
+            w.add_segment(a, b, friction=friction)
+    pts: list[tuple[float, float]] = []
+    while len(pts) < 14:
+        x, y = rng.uniform(0.8, 7.2), rng.uniform(0.8, 7.2)
+        if all(math.hypot(x - a, y - b) > 1.5 for a, b in pts):
+            pts.append((x, y))
+    for k, (x, y) in enumerate(pts):
+        v, om = (rng.uniform(-2, 2), rng.uniform(-2, 2)), rng.uniform(-4, 4)
+        if k % 4 == 0:
+            w.add_circle((x, y), 0.4, velocity=v, omega=om, friction=friction)
+        elif k % 4 == 1:
+            w.add_segment((-0.5, 0.0), (0.5, 0.0), radius=0.1, kind="dynamic", position=(x, y),
+                          velocity=v, omega=om, friction=friction)
+        else:
+            n = 3 + k % 3
+            vs = [(0.55 * math.cos(2 * math.pi * i / n), 0.55 * math.sin(2 * math.pi * i / n)) for i in range(n)]
+            w.add_polygon(vs, position=(x, y), velocity=v, omega=om, friction=friction)
+    return w
+
+
+def assert_apart(world, t: float | None = None, tol: float = 1e-9) -> float:
+    """No two bodies (one of them dynamic) overlap by more than tol at time t (default: now),
+    by exact geometry; returns the smallest gap."""
+    shapes = [(b, transform(b.vertices, world.pose(b.id, t))) for b in world.bodies]
+    worst = math.inf
+    for i, (a, pa) in enumerate(shapes):
+        for b, pb in shapes[i + 1:]:
+            if "dynamic" in (a.kind, b.kind):
+                g = gap(pa, a.radius, pb, b.radius)
+                assert g >= -tol, f"{a.name} and {b.name} overlap by {-g} at t = {world.time if t is None else t}"
+                worst = min(worst, g)
+    return worst

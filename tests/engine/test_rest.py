@@ -9,7 +9,7 @@ import random
 
 import pytest
 
-from max2code.engine.geometry import gap, transform
+from .scenes import assert_apart
 
 
 @pytest.mark.parametrize("h,e", [(1.0, 0.5), (2.5, 0.8), (0.3, 0.2)])
@@ -99,11 +99,7 @@ def test_pile_settles(engine, seed: int) -> None:
         e = w.energy()
         assert e <= prev + allowance + 1e-12 * e0
         prev = e
-        shapes = [(b, transform(b.vertices, w.pose(b.id))) for b in w.bodies]
-        for i, (a, pa) in enumerate(shapes):
-            for b, pb in shapes[i + 1:]:
-                if "dynamic" in (a.kind, b.kind):
-                    assert gap(pa, a.radius, pb, b.radius) >= -1e-9, (t, a.id, b.id)
+        assert_apart(w)
     assert all(w.asleep(b.id) for b in w.bodies if b.kind == "dynamic")
     assert w.energy() < e0
     assert w.stats()["events"] < 40 * 5000

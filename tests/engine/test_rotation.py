@@ -13,6 +13,8 @@ import pytest
 
 from max2code.engine.geometry import gap, transform
 
+from .scenes import assert_apart, spinning_gas
+
 mpmath.mp.dps = 40
 
 
@@ -113,33 +115,8 @@ def test_angular_impulse_on_a_rod(engine) -> None:
     assert ev[0].time == pytest.approx((1.0 - 0.05 - r) / u, rel=1e-14)
 
 
-def _spinning_gas(engine, seed: int, walls: bool):
-    rng = random.Random(seed)
-    w = engine.World()
-    if walls:
-        for a, b in [((0, 0), (8, 0)), ((8, 0), (8, 8)), ((8, 8), (0, 8)), ((0, 8), (0, 0))]:
-            w.add_segment(a, b)
-    pts: list[tuple[float, float]] = []
-    while len(pts) < 14:
-        x, y = rng.uniform(0.8, 7.2), rng.uniform(0.8, 7.2)
-        if all(math.hypot(x - a, y - b) > 1.5 for a, b in pts):
-            pts.append((x, y))
-    for k, (x, y) in enumerate(pts):
-        v, om = (rng.uniform(-2, 2), rng.uniform(-2, 2)), rng.uniform(-4, 4)
-        if k % 4 == 0:
-            w.add_circle((x, y), 0.4, velocity=v, omega=om)
-        elif k % 4 == 1:
-            w.add_segment((-0.5, 0.0), (0.5, 0.0), radius=0.1, kind="dynamic", position=(x, y),
-                          velocity=v, omega=om)
-        else:
-            n = 3 + k % 3
-            vs = [(0.55 * math.cos(2 * math.pi * i / n), 0.55 * math.sin(2 * math.pi * i / n)) for i in range(n)]
-            w.add_polygon(vs, position=(x, y), velocity=v, omega=om)
-    return w
-
-
 def test_spin_conserves_momentum_angular_momentum_and_energy(engine) -> None:
-    w = _spinning_gas(engine, 4, walls=False)
+    w = spinning_gas(engine.World, 4, walls=False)
 
     def totals(t):
         px = py = lz = 0.0
@@ -161,16 +138,12 @@ def test_spin_conserves_momentum_angular_momentum_and_energy(engine) -> None:
 
 def test_spinning_shapes_never_overlap(engine) -> None:
     """Polygons, capsules and circles spinning in a box: exact geometry at every frame."""
-    w = _spinning_gas(engine, 9, walls=True)
+    w = spinning_gas(engine.World, 9, walls=True)
     e0 = w.energy(0.0)
     for k in range(1, 121):
         t = k / 30
         w.step_to(t, events=False)
-        shapes = [(b, transform(b.vertices, w.pose(b.id))) for b in w.bodies]
-        for i, (a, pa) in enumerate(shapes):
-            for b, pb in shapes[i + 1:]:
-                if "dynamic" in (a.kind, b.kind):
-                    assert gap(pa, a.radius, pb, b.radius) >= -1e-9, (t, a.id, b.id)
+        assert_apart(w)
     assert w.stats()["collisions"] > 20
     assert abs(w.energy() - e0) <= 1e-11 * e0
 
@@ -210,3 +183,44 @@ def test_a_later_root_of_the_edge_line(engine) -> None:
     ev = [e for e in w.step_to(4.0) if e.kind == "collision"]
     assert ev and ev[0].b == rod and abs(ev[0].time - exact) <= 1e-12 * exact
     del b
+
+
+SQUARE = [(-0.1, -0.1), (0.1, -0.1), (0.1, 0.1), (-0.1, 0.1)]
+
+
+@pytest.mark.parametrize("floor", ["segment", "polygon"])
+@pytest.mark.parametrize("when", [0.0, 0.5])
+def test_a_corner_resting_on_a_wall_turning_into_it(engine, floor: str, when: float) -> None:
+    """A square resting on a floor starts turning (spin given at creation, or later as an input
+    event): a bottom corner on the floor's line moves into it at once. A thin (two-sided)
+    segment must take that as a contact now, like a closed polygon does, not as the corner
+    coming from the other side (it went through the floor: the pinball box did)."""
+    w = engine.World()
+    if floor == "segment":
+        wall = w.add_segment((-2.0, 0.0), (2.0, 0.0))
+    else:
+        wall = w.add_polygon([(-2.0, -1.0), (2.0, -1.0), (2.0, 0.0), (-2.0, 0.0)], kind="static")
+    box = w.add_polygon(SQUARE, position=(0.0, 0.1), omega=-1.0 if when == 0.0 else 0.0)
+    if when:
+        w.step_to(when)
+        w.set_velocity(box, (0.0, 0.0), -1.0)
+    events = w.step_to(when + 1.0)
+    assert events and events[0].kind == "collision" and events[0].time == when
+    assert {events[0].a, events[0].b} == {box, wall}
+    floor_shape = transform(w.body(wall).vertices, w.pose(wall))
+    for k in range(101):
+        t = when + k / 100
+        corners = transform(w.body(box).vertices, w.pose(box, t))
+        assert gap(corners, 0.0, floor_shape, 0.0) >= -1e-9, t
+
+
+def test_pinball_never_overlaps(engine) -> None:
+    """The README's pinball table (spinning polygons, a kinematic windmill, restitution < 1 and
+    the rest rule): exact geometry at every tenth of a second finds no overlap."""
+    from conftest import ROOT
+    from max2code.engine.scenefile import build_world, load
+    w = build_world(load(str(ROOT / "examples" / "scenes" / "pinball.toml")))
+    for k in range(1, 101):
+        t = k / 10
+        w.step_to(t, events=False)
+        assert_apart(w)
