@@ -397,7 +397,7 @@ def charts(results: dict) -> list[Path]:
     def per_n(name: str, ylabel: str, series, legend_size: float = 10) -> None:
         """Two log-log panels (sparse, dense) against N; series(label, kind) gives
         (values, style, legend) lines, values None where there are none."""
-        fig, axes = plt.subplots(1, 2, figsize=(9, 4), sharey=True)
+        fig, axes = plt.subplots(1, 2, figsize=(12, 4), sharey=True)
         for ax, kind in zip(axes, KINDS):
             for label in ran("cost"):
                 for values, style, legend in series(label, kind):
@@ -409,7 +409,8 @@ def charts(results: dict) -> list[Path]:
             ax.set_title(f"{kind} gas")
             ax.grid(alpha=0.3)
         axes[0].set_ylabel(ylabel)
-        axes[0].legend(fontsize=legend_size)
+        # Beside the panels, not over them: the lines cross every corner of the plots.
+        axes[1].legend(fontsize=legend_size, loc="upper left", bbox_to_anchor=(1.02, 1))
         save(fig, name, "cost")
 
     def cost_of(label: str, kind: str, key: str) -> list:
