@@ -893,7 +893,7 @@ def scenes_report(meta: dict) -> str:
              "and the largest error against the exact motion (mpmath).", "",
              "| scene | pairs | tolerance | solves by degree | rotating windows | time | max error |",
              "|---|---:|---:|---|---:|---:|---:|"]
-    for f in sorted((ROOT / "examples" / "scenes").glob("*.json")):
+    for f in sorted((ROOT / "examples" / "frozen").glob("*.json")):
         r = scene.run(scene.load_scene(f), check=True)
         d = r.as_dict()
         solves = ", ".join(f"{k}: {v}" for k, v in sorted(r.solves().items()))

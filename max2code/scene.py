@@ -1,6 +1,6 @@
 """`max2code scene FILE`: every pair's first collision in a frozen scene, predicted by the engine.
 
-    max2code scene examples/scenes/billiards-break.json [--check] [--json]
+    max2code scene examples/frozen/billiards-break.json [--check] [--json]
 
 A frozen scene (JSON, or TOML on Python >= 3.11) holds circles and their motions, a time horizon
 and a tolerance on collision times:

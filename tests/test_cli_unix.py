@@ -31,7 +31,7 @@ def closed_reader(args: list[str], cwd: Path = ROOT) -> tuple[int, str]:
 
 @pytest.mark.parametrize("args", [
     ["runtime"],
-    ["scene", "examples/scenes/billiards-break.json"],
+    ["scene", "examples/frozen/billiards-break.json"],
     ["--lang=c", "equations/point-line.mxm"],
     ["vectors", "equations/point-line.mxm"],
 ], ids=lambda a: " ".join(a)[:30])
@@ -51,7 +51,7 @@ def test_help_into_a_closed_pipe_is_quiet(args: list[str]) -> None:
 def test_head_reads_the_first_lines(maxima_exe: str) -> None:
     """The issue's reproducer through a real shell pipeline."""
     proc = subprocess.run(
-        f"{sys.executable} -m max2code scene examples/scenes/paddles.json --json | head -c 100; "
+        f"{sys.executable} -m max2code scene examples/frozen/paddles.json --json | head -c 100; "
         f"exit ${{PIPESTATUS[0]}}", shell=True, executable="/bin/bash", cwd=ROOT, env=ENV,
         capture_output=True, text=True, timeout=600)
     assert proc.returncode in (0, 141)  # 0 when everything fitted in the pipe before head left

@@ -18,7 +18,7 @@ from conftest import ROOT
 
 pytest.importorskip("mpmath")
 
-SCENES = ROOT / "examples" / "scenes"
+SCENES = ROOT / "examples" / "frozen"
 
 
 @pytest.fixture(scope="module")
