@@ -15,6 +15,11 @@ build: setup
 	$(PYTHON) -m max2code report -o build/report equations/*.mxm > /dev/null
 	@echo "variant report: build/report/report.md (also .json, .html)"
 
+# The parser fuzz runs at issue 12's scale here (100,000 mutated files, about 3 minutes); a bare
+# `pytest` runs 3,000. Either scale is an environment variable (tests/test_fuzz.py).
+MAX2CODE_FUZZ_EXAMPLES ?= 100000
+export MAX2CODE_FUZZ_EXAMPLES
+
 test: setup
 	$(PYTHON) -m pytest
 
