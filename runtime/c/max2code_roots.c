@@ -447,6 +447,14 @@ static int first_root_quadratic(const double c[3], double tmax, double skin,
  * evaluation is rounding noise: a few ulps, n u kappa for kappa ~ 2. */
 #define NOISE_STEP (32 * UNIT_ROUNDOFF)
 
+/* After this many iterations, a Newton step that moves x by more than a
+ * quarter in a bracket spanning more than a factor 8 is replaced by a
+ * geometric bisection (from lo = 0: hi / 2^64).  Newton far from a root of
+ * p = a - b x^2 only halves x per step: from 1e-14 to a root at 1e-150 that
+ * is 450 steps, beyond MAX_ITER (it returned 1.5e-71).  Converging solves
+ * take fewer steps than this and are unchanged. */
+#define SLOW_AFTER 16
+
 /* Bisection point of [lo, hi] (0 <= lo < hi): geometric when the bracket
  * spans more than a factor 8, so roots near 0 (1e-12) are reached in a few
  * dozen steps and to relative, not absolute, accuracy. */
@@ -567,12 +575,15 @@ static double refine_root(const double P[], const double D[], int m,
         }
         double xn = x - (k ? ldexp(f / df, k) : f / df);
         double s = x - xn;
+        int slow = it >= SLOW_AFTER && (lo == 0 || hi > 8 * lo) &&
+                   fabs(s) > 0.25 * fabs(xn);
         /* Newton must stay inside the bracket and at least halve the step
          * before last; otherwise bisect (rtsafe's rule). */
-        if (!(xn > lo && xn < hi) || fabs(s) > 0.5 * fabs(step_old)) {
+        if (!(xn > lo && xn < hi) || fabs(s) > 0.5 * fabs(step_old) || slow) {
             if (precise && fabs(s) <= NOISE_STEP * fabs(x))
                 return x;
-            xn = split_point(lo, hi);
+            double far = hi * 0x1p-64;
+            xn = slow && lo == 0 && far > DBL_MIN ? far : split_point(lo, hi);
             s = x - xn;
         }
         step_old = step;

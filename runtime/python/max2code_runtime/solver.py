@@ -27,6 +27,10 @@ SAFE_HIGH = 2.0**60
 FAST_LIMIT_LOW = 2.0**100
 FAST_LIMIT_HIGH = 2.0**56
 MAX_ITER = 200
+# after this many iterations a Newton step moving x by over a quarter in a bracket spanning more
+# than a factor 8 becomes a geometric bisection (from lo = 0: hi / 2^64): far from a root of
+# a - b x^2 Newton only halves x per step (see the C runtime)
+SLOW_AFTER = 16
 TOL_CRITICAL = 2.0**-36
 TOL_LEVEL = 2.0**-28
 PRECISE_FROM = 2.0**-26
@@ -317,7 +321,7 @@ def _refine_root(P: Sequence[float], D: Sequence[float], m: int, lo: float, hi: 
     step = step_old = hi - lo
     precise = False
     stop = tol if tol > 0 else PRECISE_FROM
-    for _ in range(MAX_ITER):
+    for it in range(MAX_ITER):
         k = _scale_exponent(x, m)
         f, df, size = _value_and_slope(P, D, m, x, k, precise)
         if tol == 0 and not precise and abs(f) <= noise_factor(m) * size:
@@ -341,10 +345,12 @@ def _refine_root(P: Sequence[float], D: Sequence[float], m: int, lo: float, hi: 
             stop = 2 * U
         xn = x - (_ldexp(_div(f, df), k) if k else _div(f, df))
         s = x - xn
-        if not (lo < xn < hi) or abs(s) > 0.5 * abs(step_old):
+        slow = it >= SLOW_AFTER and (lo == 0 or hi > 8 * lo) and abs(s) > 0.25 * abs(xn)
+        if not (lo < xn < hi) or abs(s) > 0.5 * abs(step_old) or slow:
             if precise and abs(s) <= NOISE_STEP * abs(x):
                 return x
-            xn = _split_point(lo, hi)
+            far = hi * 2.0**-64
+            xn = far if slow and lo == 0 and far > DBL_MIN else _split_point(lo, hi)
             s = x - xn
         step_old = step
         step = s

@@ -23,6 +23,10 @@ const SAFE_HIGH: f64 = 1.152_921_504_606_847e18; // 2^60
 const FAST_LIMIT_LOW: f64 = 1.267_650_600_228_229_4e30; // 2^100
 const FAST_LIMIT_HIGH: f64 = 7.205_759_403_792_794e16; // 2^56
 const MAX_ITER: usize = 200;
+/// After this many iterations a Newton step that moves x by over a quarter in a bracket
+/// spanning more than a factor 8 is replaced by a geometric bisection (from lo = 0: hi / 2^64):
+/// far from a root of a - b x^2 Newton only halves x per step (see the C runtime).
+const SLOW_AFTER: usize = 16;
 const TOL_CRITICAL: f64 = 1.455_191_522_836_685_2e-11; // 2^-36
 const TOL_LEVEL: f64 = 3.725_290_298_461_914e-9; // 2^-28
 const PRECISE_FROM: f64 = 1.490_116_119_384_765_6e-8; // 2^-26
@@ -400,7 +404,7 @@ fn refine_root(p: &[f64], d: &[f64], m: usize, mut lo: f64, mut hi: f64, slo: i3
     let mut step_old = step;
     let mut precise = false;
     let mut stop = if tol > 0.0 { tol } else { PRECISE_FROM };
-    for _ in 0..MAX_ITER {
+    for it in 0..MAX_ITER {
         let k = scale_exponent(x, m);
         let (f, df, size) = value_and_slope(p, d, m, x, k, precise);
         if tol == 0.0 && !precise && f.abs() <= noise_factor(m) * size {
@@ -430,11 +434,14 @@ fn refine_root(p: &[f64], d: &[f64], m: usize, mut lo: f64, mut hi: f64, slo: i3
         }
         let mut xn = x - if k != 0 { ldexp(f / df, i64::from(k)) } else { f / df };
         let mut s = x - xn;
-        if !(xn > lo && xn < hi) || s.abs() > 0.5 * step_old.abs() {
+        // see SLOW_AFTER
+        let slow = it >= SLOW_AFTER && (lo == 0.0 || hi > 8.0 * lo) && s.abs() > 0.25 * xn.abs();
+        if !(xn > lo && xn < hi) || s.abs() > 0.5 * step_old.abs() || slow {
             if precise && s.abs() <= NOISE_STEP * x.abs() {
                 return x;
             }
-            xn = split_point(lo, hi);
+            let far = hi * f64::from_bits(0x3bf0_0000_0000_0000); // 2^-64
+            xn = if slow && lo == 0.0 && far > f64::MIN_POSITIVE { far } else { split_point(lo, hi) };
             s = x - xn;
         }
         step_old = step;
