@@ -26,7 +26,8 @@ says whether a runtime's answer agrees, allowing exactly what the runtimes docum
 to within ``max(2^-40, 64 n u kappa)`` relative (kappa its condition number), a reported touch
 where ``|p|`` is within ``2^-40`` of ``sum |c_i| t^i`` (rounding noise; a cluster counts too),
 status 0 when the first root is not representable (below the smallest subnormal or above
-DBL_MAX), is within its tolerance of tmax, or is a cluster of even multiplicity (a touch the
+DBL_MAX), is within its tolerance of tmax or so ill-conditioned that the tolerance exceeds 1
+(a sign change inside the rounding noise, as in a rounded (t - a)^12), or is a cluster of even multiplicity (a touch the
 rounding of the coefficients may have removed; an odd one is a sign change: a miss), and an
 absolute 2^-1074 on a subnormal root.
 """
@@ -34,6 +35,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import lru_cache
 from fractions import Fraction
 from typing import Sequence
 
@@ -235,6 +237,11 @@ def _log(x: Fraction) -> float:
 
 def first_root(coeffs: Sequence[float], tmax: float) -> Truth:
     """The truth for finite coefficients and tmax > 0 (tmax may be inf)."""
+    return _first_root(tuple(coeffs), tmax)
+
+
+@lru_cache(maxsize=4096)  # judge() asks again for each method run on one vector
+def _first_root(coeffs: tuple[float, ...], tmax: float) -> Truth:
     c = list(coeffs)
     while c and c[-1] == 0:
         c.pop()
@@ -264,13 +271,13 @@ def _representable(x: Fraction) -> bool:
     return Fraction(TRUE_MIN) / 2 < x <= Fraction(DBL_MAX)
 
 
-def _near_zero(coeffs: Sequence[float], t: float, rel: float) -> bool:
-    """|p(t)| <= rel * sum |c_i| t^i, exactly."""
+def _near_zero(coeffs: Sequence[float], t: float, rel: float, eps: float = 0.0) -> bool:
+    """|p(t)| <= rel * sum |c_i| t^i + eps, exactly."""
     x = Fraction(t)
     c = [Fraction(v) for v in coeffs]
     val = sum(ci * x**i for i, ci in enumerate(c))
     size = sum(abs(ci) * x**i for i, ci in enumerate(c))
-    return abs(val) <= Fraction(rel) * size
+    return abs(val) <= Fraction(rel) * size + Fraction(eps)
 
 
 def _log2(x: float) -> float:
@@ -312,23 +319,26 @@ def documented_reduction(coeffs: Sequence[float], tmax: float) -> tuple[float, .
             return tuple(c)
 
 
-def judge(coeffs: Sequence[float], tmax: float, status: int, t: float, graze: bool) -> str:
+def judge(coeffs: Sequence[float], tmax: float, status: int, t: float, graze: bool,
+          eps: float = 0.0) -> str:
     """judge_exact() of the coefficients, or of their documented_reduction(): when the header's
     rule drops a leading term, a root that exists only because of it may be missed or moved
-    ("ok-lead-dropped")."""
-    verdict = judge_exact(coeffs, tmax, status, t, graze)
+    ("ok-lead-dropped").  eps: the contact skin the runtime was given (a touch may then be
+    reported wherever |p| is within it)."""
+    verdict = judge_exact(coeffs, tmax, status, t, graze, eps)
     if verdict.startswith("ok"):
         return verdict
     reduced = documented_reduction(coeffs, tmax)
     trimmed = tuple(coeffs)
     while trimmed and trimmed[-1] == 0:
         trimmed = trimmed[:-1]
-    if len(reduced) < len(trimmed) and judge_exact(reduced, tmax, status, t, graze).startswith("ok"):
+    if len(reduced) < len(trimmed) and judge_exact(reduced, tmax, status, t, graze, eps).startswith("ok"):
         return "ok-lead-dropped"
     return verdict
 
 
-def judge_exact(coeffs: Sequence[float], tmax: float, status: int, t: float, graze: bool) -> str:
+def judge_exact(coeffs: Sequence[float], tmax: float, status: int, t: float, graze: bool,
+                eps: float = 0.0) -> str:
     """"ok-..." when the answer is right within what the runtimes document, else why not:
     "wrong-early" / "wrong-late" (a root reported before / after the first one), "false" (a
     root where there is none), "miss" (status 0 with a representable first root: simple, or
@@ -346,11 +356,13 @@ def judge_exact(coeffs: Sequence[float], tmax: float, status: int, t: float, gra
                 return "miss"
             return "ok-cluster-missed"  # even: a touch rounding may have removed
         tol = _tolerance(n, truth.kappa)
-        if math.isinf(tol) or (math.isfinite(tmax) and truth.lo >= Fraction(tmax) * (1 - Fraction(tol))):
+        if tol >= 1:
+            return "ok-ill-conditioned"  # not located within itself: a sign change in the noise
+        if math.isfinite(tmax) and truth.lo >= Fraction(tmax) * (1 - Fraction(tol)):
             return "ok-at-tmax"  # within its error bound of tmax
         return "miss"
     x = Fraction(t)
-    near = _near_zero(coeffs, t, TOUCH_REL)
+    near = _near_zero(coeffs, t, TOUCH_REL, eps)
     if truth.kind == "none":
         return "ok-touch" if near else "false"
     if truth.kind == "cluster":

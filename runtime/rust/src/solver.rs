@@ -23,9 +23,9 @@ const SAFE_HIGH: f64 = 1.152_921_504_606_847e18; // 2^60
 const FAST_LIMIT_LOW: f64 = 1.267_650_600_228_229_4e30; // 2^100
 const FAST_LIMIT_HIGH: f64 = 7.205_759_403_792_794e16; // 2^56
 const MAX_ITER: usize = 200;
-/// After this many iterations a Newton step that moves x by over a quarter in a bracket
+/// After this many iterations a Newton step that moves x by over 2^-10 of it in a bracket
 /// spanning more than a factor 8 is replaced by a geometric bisection (from lo = 0: hi / 2^64):
-/// far from a root of a - b x^2 Newton only halves x per step (see the C runtime).
+/// far from every root Newton converges only linearly (see the C runtime).
 const SLOW_AFTER: usize = 16;
 const TOL_CRITICAL: f64 = 1.455_191_522_836_685_2e-11; // 2^-36
 const TOL_LEVEL: f64 = 3.725_290_298_461_914e-9; // 2^-28
@@ -74,8 +74,9 @@ fn ceil_div(num: i32, den: i32) -> i32 {
     q
 }
 
-/// Fujiwara bound (C `root_bound`).
-pub(crate) fn root_bound(c: &[f64], n: usize) -> f64 {
+/// C `root_bound_exponent`: every root is below 2^(the result); `None` when all c_i (i < n)
+/// are 0.
+fn root_bound_exponent(c: &[f64], n: usize) -> Option<i32> {
     let en = exponent_of(c[n]);
     let mut best = i32::MIN;
     for i in 0..n {
@@ -85,21 +86,45 @@ pub(crate) fn root_bound(c: &[f64], n: usize) -> f64 {
         let e = ceil_div(exponent_of(c[i]) + 1 - en, (n - i) as i32);
         best = best.max(e);
     }
-    if best == i32::MIN {
-        return 0.0;
-    }
-    if best + 1 >= 1024 {
-        return f64::MAX;
-    }
-    if best + 1 >= -1022 {
-        pow2(best + 1)
-    } else {
-        ldexp(1.0, i64::from(best + 1))
+    (best != i32::MIN).then_some(best + 1)
+}
+
+/// Fujiwara bound (C `root_bound`).
+pub(crate) fn root_bound(c: &[f64], n: usize) -> f64 {
+    match root_bound_exponent(c, n) {
+        None => 0.0,
+        Some(e) if e >= 1024 => f64::MAX,
+        Some(e) if e >= -1022 => pow2(e),
+        Some(e) => ldexp(1.0, i64::from(e)),
     }
 }
 
+/// C `scaled_le`: |a| T^j <= k |b| with T = mt 2^et, in mantissas and exponents.
+fn scaled_le(a: f64, mt: f64, et: i32, j: usize, k: f64, b: f64) -> bool {
+    let (mut ea, mut eb, ek) = (exponent_of(a), exponent_of(b), exponent_of(k));
+    let mut ma = ldexp(a.abs(), -i64::from(ea));
+    let mut mb = ldexp(b.abs(), -i64::from(eb)) * ldexp(k, -i64::from(ek));
+    for _ in 0..j {
+        ma *= mt;
+        let e = ma >= 2.0;
+        if e {
+            ma *= 0.5;
+        }
+        ea += et + i32::from(e);
+    }
+    let e = mb >= 2.0;
+    if e {
+        mb *= 0.5;
+    }
+    eb += ek + i32::from(e);
+    ea < eb || (ea == eb && ma <= mb)
+}
+
+/// C `leading_negligible` (in exponents where a side leaves the normal range).
 fn leading_negligible(c: &[f64], n: usize, tmax: f64) -> bool {
     let mut t = tmax;
+    let mut mt = 1.0;
+    let et;
     if t.is_infinite() {
         let mut m = n - 1;
         while m > 0 && c[m] == 0.0 {
@@ -108,13 +133,30 @@ fn leading_negligible(c: &[f64], n: usize, tmax: f64) -> bool {
         if m == 0 {
             return false;
         }
-        t = root_bound(c, m);
+        et = root_bound_exponent(c, m).unwrap_or(0);
+        t = if et >= 1024 {
+            f64::INFINITY
+        } else if et >= -1022 {
+            pow2(et)
+        } else {
+            0.0
+        };
+    } else {
+        et = exponent_of(t);
+        mt = ldexp(t, -i64::from(et));
     }
     let k = 4.0 * n as f64 * f64::EPSILON;
     let mut tp = 1.0;
     for i in (0..n).rev() {
         tp *= t;
-        if c[i] != 0.0 && c[n].abs() * tp <= k * c[i].abs() {
+        if c[i] == 0.0 {
+            continue;
+        }
+        let (lhs, rhs) = (c[n].abs() * tp, k * c[i].abs());
+        let normal = (f64::MIN_POSITIVE..=f64::MAX).contains(&tp)
+            && (f64::MIN_POSITIVE..=f64::MAX).contains(&lhs)
+            && rhs >= f64::MIN_POSITIVE;
+        if if normal { lhs <= rhs } else { scaled_le(c[n], mt, et, n - i, k, c[i]) } {
             return true;
         }
     }
@@ -147,88 +189,49 @@ pub(crate) fn reduce(c: &mut Coeffs, mut n: usize, tmax: f64) -> i32 {
     }
 }
 
-fn spread_after_shift(e: &[i32], nz: &[bool], n: usize, k: i32) -> i32 {
-    let (mut hi, mut lo) = (i32::MIN, i32::MAX);
-    for i in 0..=n {
-        if nz[i] {
-            let v = e[i] + k * i as i32;
-            hi = hi.max(v);
-            lo = lo.min(v);
-        }
-    }
-    hi - lo
-}
-
-fn balancing_shift(e: &[i32], nz: &[bool], n: usize) -> i32 {
-    let (mut best_k, mut best): (i32, i32) = (0, spread_after_shift(e, nz, n, 0));
-    for i in 0..=n {
-        if !nz[i] {
-            continue;
-        }
-        for j in i + 1..=n {
-            if !nz[j] {
-                continue;
-            }
-            let k0 = (e[i] - e[j]).div_euclid((j - i) as i32);
-            for k in k0..=k0 + 1 {
-                let s = spread_after_shift(e, nz, n, k);
-                if s < best || (s == best && (k.abs() < best_k.abs() || (k.abs() == best_k.abs() && k < best_k))) {
-                    best = s;
-                    best_k = k;
-                }
-            }
-        }
-    }
-    best_k
-}
-
-/// C `normalise`: returns (flushed, k, E).
-pub(crate) fn normalise(c: &mut Coeffs, n: usize) -> (bool, i32, i32) {
-    let mut e = [0i32; MAXN + 1];
-    let mut nz = [false; MAXN + 1];
+/// C `exponents`: the exponents of c[0..=n] (nz: nonzero) and their spread (-1: all zero).
+pub(crate) fn exponents(c: &[f64], n: usize, e: &mut [i32; MAXN + 1], nz: &mut [bool; MAXN + 1]) -> i32 {
     let (mut emax, mut emin) = (i32::MIN, i32::MAX);
     for i in 0..=n {
         nz[i] = c[i] != 0.0;
+        e[i] = if nz[i] { exponent_of(c[i]) } else { 0 };
         if nz[i] {
-            e[i] = exponent_of(c[i]);
             emax = emax.max(e[i]);
             emin = emin.min(e[i]);
         }
     }
     if emax == i32::MIN {
-        return (false, 0, 0);
+        -1
+    } else {
+        emax - emin
     }
-    let (mut k, mut big_e) = (0, emax + 1);
-    let spread = emax - emin > MAX_SPREAD;
-    if spread {
-        k = balancing_shift(&e, &nz, n);
-        let mut top = i32::MIN;
-        for i in 0..=n {
-            if nz[i] {
-                top = top.max(e[i] + k * i as i32);
-            }
-        }
-        big_e = top + 1;
+}
+
+/// The spread above which `solve` takes `first_root_sliced`.
+pub(crate) const fn max_spread() -> i32 {
+    MAX_SPREAD
+}
+
+/// C `normalise`: scales exactly so that max |c_i| is in [1/2, 1); returns E.
+pub(crate) fn normalise(c: &mut Coeffs, n: usize) -> i32 {
+    let mut e = [0i32; MAXN + 1];
+    let mut nz = [false; MAXN + 1];
+    if exponents(c, n, &mut e, &mut nz) < 0 {
+        return 0;
     }
-    if k == 0 && (-1021..=1022).contains(&big_e) {
+    let emax = (0..=n).filter(|&i| nz[i]).map(|i| e[i]).max().unwrap_or(0);
+    let big_e = emax + 1;
+    if (-1021..=1022).contains(&big_e) {
         let f = pow2(-big_e);
         for v in c.iter_mut().take(n + 1) {
             *v *= f;
         }
     } else {
-        for (i, v) in c.iter_mut().enumerate().take(n + 1) {
-            *v = ldexp(*v, i64::from(k) * i as i64 - i64::from(big_e));
+        for v in c.iter_mut().take(n + 1) {
+            *v = ldexp(*v, -i64::from(big_e));
         }
     }
-    if !spread {
-        return (false, 0, big_e);
-    }
-    for v in c.iter_mut().take(n + 1) {
-        if v.abs() < f64::MIN_POSITIVE {
-            *v = 0.0;
-        }
-    }
-    (true, k, big_e)
+    big_e
 }
 
 #[inline]
@@ -326,11 +329,11 @@ pub(crate) fn quad_roots(a: f64, b: f64, c: f64) -> (Option<[f64; 2]>, f64) {
     (Some([r1.min(r2), r1.max(r2)]), d)
 }
 
-fn first_root_quadratic(c: &[f64], tmax: f64, skin: f64) -> Option<(f64, bool)> {
+fn first_root_quadratic(c: &[f64], lo: f64, tmax: f64, skin: f64) -> Option<(f64, bool)> {
     let (roots, disc) = quad_roots(c[2], c[1], c[0]);
     if let Some(r) = roots {
         for x in r {
-            if x > 0.0 && x <= tmax {
+            if x > lo && x <= tmax {
                 return Some((x, disc == 0.0));
             }
         }
@@ -340,7 +343,7 @@ fn first_root_quadratic(c: &[f64], tmax: f64, skin: f64) -> Option<(f64, bool)> 
         return None;
     }
     let x = -c[1] / (2.0 * c[2]);
-    (x > 0.0 && x <= tmax && within_noise(c, 2, x, skin)).then_some((x, true))
+    (x > lo && x <= tmax && within_noise(c, 2, x, skin)).then_some((x, true))
 }
 
 fn split_point(lo: f64, hi: f64) -> f64 {
@@ -435,7 +438,7 @@ fn refine_root(p: &[f64], d: &[f64], m: usize, mut lo: f64, mut hi: f64, slo: i3
         let mut xn = x - if k != 0 { ldexp(f / df, i64::from(k)) } else { f / df };
         let mut s = x - xn;
         // see SLOW_AFTER
-        let slow = it >= SLOW_AFTER && (lo == 0.0 || hi > 8.0 * lo) && s.abs() > 0.25 * xn.abs();
+        let slow = it >= SLOW_AFTER && (lo == 0.0 || hi > 8.0 * lo) && s.abs() > 9.765_625e-4 * xn.abs(); // 2^-10
         if !(xn > lo && xn < hi) || s.abs() > 0.5 * step_old.abs() || slow {
             if precise && s.abs() <= NOISE_STEP * x.abs() {
                 return x;
@@ -871,7 +874,115 @@ pub(crate) fn first_root_interval(c: &[f64], n: usize, t_end: f64, skin: f64) ->
 
 /// The quadratic, for the entry point.
 pub(crate) fn quadratic(c: &[f64], tmax: f64, skin: f64) -> Option<(f64, bool)> {
-    first_root_quadratic(c, tmax, skin)
+    first_root_quadratic(c, 0.0, tmax, skin)
+}
+
+const SLICE: i32 = 32;
+const DOMINANCE: i32 = 6;
+
+/// C `dominant_term`: the term that beats every other by 2^DOMINANCE at t = 2^d.
+fn dominant_term(e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n: usize, d: i32) -> Option<usize> {
+    let (mut best, mut top, mut second) = (None, i32::MIN, i32::MIN);
+    for i in 0..=n {
+        if !nz[i] {
+            continue;
+        }
+        let v = e[i] + d * i as i32;
+        if v > top {
+            second = top;
+            top = v;
+            best = Some(i);
+        } else if v > second {
+            second = v;
+        }
+    }
+    if second == i32::MIN || top - second >= DOMINANCE {
+        best
+    } else {
+        None
+    }
+}
+
+/// C `first_root_sliced`: coefficients spanning more than 2^MAX_SPREAD, solved slice by slice
+/// of t (see the C runtime); c has c[0] != 0 and is not normalised.
+pub(crate) fn first_root_sliced(c: &[f64], n: usize, tmax: f64, eps: f64, nograze: bool) -> Option<(f64, bool)> {
+    let mut e = [0i32; MAXN + 1];
+    let mut nz = [false; MAXN + 1];
+    exponents(c, n, &mut e, &mut nz);
+    let mut emax = e[0];
+    for i in 1..=n {
+        if nz[i] && e[i] > emax {
+            emax = e[i];
+        }
+    }
+    let lo = pow2(-16);
+    let lo_open = f64::from_bits(lo.to_bits() - 1);
+    let hi = pow2(16);
+    let mut d = (e[0] - emax - 2).div_euclid(SLICE) * SLICE;
+    while d < 1024 {
+        if d >= -1074 && ldexp(1.0, i64::from(d)) >= tmax {
+            return None;
+        }
+        let v = dominant_term(&e, &nz, n, d);
+        if v.is_some() && v == dominant_term(&e, &nz, n, d + SLICE) {
+            d += SLICE;
+            continue;
+        }
+        let k = d + SLICE / 2;
+        let mut top = i32::MIN;
+        for i in 0..=n {
+            if nz[i] {
+                top = top.max(e[i] + k * i as i32);
+            }
+        }
+        let mut q = [0.0f64; MAXN + 1];
+        for i in 0..=n {
+            q[i] = if nz[i] { ldexp(c[i], i64::from(k * i as i32 - top - 1)) } else { 0.0 };
+            if q[i].abs() < f64::MIN_POSITIVE {
+                q[i] = 0.0;
+            }
+        }
+        let mut m = n;
+        while m > 0 && q[m] == 0.0 {
+            m -= 1;
+        }
+        if m > 0 {
+            let tu = ldexp(tmax, -i64::from(k));
+            let t_end = if tu < hi { tu } else { hi };
+            let skin = if nograze {
+                -1.0
+            } else if eps == 0.0 {
+                0.0
+            } else {
+                ldexp(eps, -i64::from(top + 1))
+            };
+            let hit = match m {
+                1 => {
+                    let r = -q[0] / q[1];
+                    (r > lo_open && r <= t_end).then_some((r, false))
+                }
+                2 => first_root_quadratic(&q, lo_open, t_end, skin),
+                _ => {
+                    let s = sign_at(&q, m, lo, true);
+                    if s < 0 {
+                        for v in q.iter_mut().take(m + 1) {
+                            *v = -*v;
+                        }
+                    }
+                    if s == 0 {
+                        Some((lo, false))
+                    } else {
+                        derivative_method(&q, m, lo, t_end, skin)
+                    }
+                }
+            };
+            if let Some((r, g)) = hit {
+                return Some((ldexp(r, i64::from(k)), g));
+            }
+        }
+        d += SLICE;
+    }
+    None
 }
 
 static BINOM: [[f64; MAXN + 1]; MAXN + 1] = binom_table();
