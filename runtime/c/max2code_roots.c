@@ -133,10 +133,17 @@ static double root_bound(const double c[], int n)
     return e >= DBL_MIN_EXP - 1 ? pow2(e) : ldexp(1.0, e);
 }
 
-/* |a| T^j <= k |b| (a, b, k nonzero, T = mt 2^et with mt in [1, 2)),
- * without leaving the double range: mantissas in [1, 2), exponents apart. */
-static int scaled_le(double a, double mt, int et, int j, double k, double b)
+/* |a| T^j <= k |b| (a, b, k nonzero; T = 2^et, or T itself when et is
+ * INT_MIN), without leaving the double range: mantissas in [1, 2),
+ * exponents apart.  (Rare: only where the plain products leave the normal
+ * range.) */
+static int scaled_le(double a, double T, int et, int j, double k, double b)
 {
+    double mt = 1;
+    if (et == INT_MIN) {
+        et = exponent_of(T);
+        mt = ldexp(T, -et);
+    }
     int ea = exponent_of(a), eb = exponent_of(b), ek = exponent_of(k);
     double ma = ldexp(fabs(a), -ea);
     double mb = ldexp(fabs(b), -eb) * ldexp(k, -ek);
@@ -159,8 +166,8 @@ static int scaled_le(double a, double mt, int et, int j, double k, double b)
  * (scaled_le). */
 static int leading_negligible(const double c[], int n, double tmax)
 {
-    double T = tmax, mt = 1;
-    int et;
+    double T = tmax;
+    int et = INT_MIN; /* T's exponent when T is a power of two beyond range */
     if (isinf(T)) {
         int m = n - 1;
         while (m > 0 && c[m] == 0)
@@ -171,9 +178,6 @@ static int leading_negligible(const double c[], int n, double tmax)
         T = et >= DBL_MAX_EXP       ? INFINITY
             : et >= DBL_MIN_EXP - 1 ? pow2(et)
                                     : 0; /* (the exponents then) */
-    } else {
-        et = exponent_of(T);
-        mt = ldexp(T, -et);
     }
     double k = 4.0 * n * DBL_EPSILON;
     double Tp = 1.0;
@@ -185,7 +189,7 @@ static int leading_negligible(const double c[], int n, double tmax)
         if (Tp >= DBL_MIN && Tp <= DBL_MAX && lhs >= DBL_MIN && lhs <= DBL_MAX &&
                     rhs >= DBL_MIN
                 ? lhs <= rhs
-                : scaled_le(c[n], mt, et, n - i, k, c[i]))
+                : scaled_le(c[n], T, et, n - i, k, c[i]))
             return 1;
     }
     return 0;
@@ -228,32 +232,28 @@ static int floor_div(int a, int b)
     return q - (a % b != 0 && a < 0);
 }
 
-/* The exponents of c[0..n] (nz[i]: c[i] != 0); returns the spread, or -1
- * when every coefficient is 0. */
-static int exponents(const double c[], int n, int e[], int nz[])
+/* The exponents of c[0..n] (nz[i]: c[i] != 0) and the largest, *emax;
+ * returns the spread, or -1 when every coefficient is 0. */
+static int exponents(const double c[], int n, int e[], int nz[], int *emax)
 {
-    int emax = INT_MIN, emin = INT_MAX;
+    int hi = INT_MIN, lo = INT_MAX;
     for (int i = 0; i <= n; i++) {
         nz[i] = c[i] != 0;
         e[i] = nz[i] ? exponent_of(c[i]) : 0;
         if (nz[i]) {
-            emax = e[i] > emax ? e[i] : emax;
-            emin = e[i] < emin ? e[i] : emin;
+            hi = e[i] > hi ? e[i] : hi;
+            lo = e[i] < lo ? e[i] : lo;
         }
     }
-    return emax == INT_MIN ? -1 : emax - emin;
+    *emax = hi;
+    return hi == INT_MIN ? -1 : hi - lo;
 }
 
 /* Scale by a power of two (exact: the spread is at most MAX_SPREAD) so that
- * max |c_i| is in [1/2, 1); returns E: the values of p are scaled by 2^-E. */
-static int normalise(double c[], int n)
+ * max |c_i| (exponent emax) is in [1/2, 1); returns E: the values of p are
+ * scaled by 2^-E. */
+static int normalise(double c[], int n, int emax)
 {
-    int e[MAXN + 1], nz[MAXN + 1], emax = INT_MIN;
-    if (exponents(c, n, e, nz) < 0)
-        return 0;
-    for (int i = 0; i <= n; i++)
-        if (nz[i] && e[i] > emax)
-            emax = e[i];
     int E = emax + 1;
     if (E >= DBL_MIN_EXP && E <= DBL_MAX_EXP - 2) {
         /* multiplying by an exact power of two rounds as ldexp does */
@@ -1093,13 +1093,8 @@ static int dominant_term(const int e[], const int nz[], int n, int d)
 static int first_root_sliced(const double c[], int n, double tmax, double eps,
                              int nograze, double *t, int *graze)
 {
-    int e[MAXN + 1], nz[MAXN + 1], emax = INT_MIN;
-    exponents(c, n, e, nz);
-    for (int i = 1; i <= n; i++)
-        if (nz[i] && e[i] > emax)
-            emax = e[i];
-    if (e[0] > emax)
-        emax = e[0];
+    int e[MAXN + 1], nz[MAXN + 1], emax;
+    exponents(c, n, e, nz, &emax);
     /* u in [2^(-SLICE/2), 2^(SLICE/2)]: the lower end is closed, so a root
      * that the slice below decided to be just beyond it (by a dropped term)
      * is found at it; lo_open is the largest double below it */
@@ -1610,10 +1605,10 @@ static int first_root_closed(const double c[], int n, double tmax, double *t,
 
 /* solve() once the coefficients span at most 2^MAX_SPREAD (always, but for
  * extremes): scaled exactly, then by degree and method. */
-static int solve_normalised(double c[], int n, double tu, int method,
-                            double eps, double *root, int *g)
+static int solve_normalised(double c[], int n, int emax, double tu,
+                            int method, double eps, double *root, int *g)
 {
-    int E = normalise(c, n);
+    int E = normalise(c, n, emax);
     /* skin < 0: no graze check; else the skin in the normalised units */
     double skin = method == M2C_METHOD_INTERVAL_NOGRAZE ? -1
                   : eps == 0                           ? 0
@@ -1657,13 +1652,13 @@ static int solve(const double c_in[], int degree, double tmax, int method,
     int n = reduce(c, degree, tmax);
     if (n <= 0)
         return 0;
-    int e[MAXN + 1], nz[MAXN + 1], g = 0, found;
+    int e[MAXN + 1], nz[MAXN + 1], emax, g = 0, found;
     double root = 0;
-    if (exponents(c, n, e, nz) > MAX_SPREAD)
+    if (exponents(c, n, e, nz, &emax) > MAX_SPREAD)
         found = first_root_sliced(c, n, tmax, eps,
                                   method == M2C_METHOD_INTERVAL_NOGRAZE, &root, &g);
     else
-        found = solve_normalised(c, n, tmax, method, eps, &root, &g);
+        found = solve_normalised(c, n, emax, tmax, method, eps, &root, &g);
     if (!found)
         return 0;
     /* a root that underflows to 0 or overflows is not representable: none */

@@ -227,7 +227,7 @@ def _kappa(coeffs: Sequence[float], r: Fraction) -> float:
     slope = abs(sum(i * ci * r ** (i - 1) for i, ci in enumerate(c) if i))
     if slope == 0:
         return math.inf
-    return math.exp(_log(size) - _log(slope * r))
+    return math.exp(min(_log(size) - _log(slope * r), 709.0))  # (inf-like beyond 1e308)
 
 
 def _log(x: Fraction) -> float:

@@ -83,10 +83,10 @@ def _valid(cc: list[float], tmax: float, eps: float) -> bool:
             and all(math.isfinite(x) for x in cc) and 0 <= eps < math.inf)
 
 
-def _solve_normalised(c: list[float], n: int, tu: float, method: str, eps: float
+def _solve_normalised(c: list[float], n: int, emax: int, tu: float, method: str, eps: float
                       ) -> tuple[float, bool] | None:
     """The C runtime's solve_normalised (spread within 2^MAX_SPREAD)."""
-    E = solver.normalise(c, n)
+    E = solver.normalise(c, n, emax)
     if method == "interval-nograze":
         skin = -1.0
     else:
@@ -109,10 +109,11 @@ def _solve_python(cc: list[float], tmax: float, method: str, eps: float) -> tupl
     n = solver.reduce(c, len(cc) - 1, tmax)
     if n <= 0:
         return 0, math.nan, False
-    if solver.exponents(c, n)[2] > solver.MAX_SPREAD:
+    _, _, spread, emax = solver.exponents(c, n)
+    if spread > solver.MAX_SPREAD:
         found = solver.first_root_sliced(c, n, tmax, eps, method == "interval-nograze")
     else:
-        found = _solve_normalised(c, n, tmax, method, eps)
+        found = _solve_normalised(c, n, emax, tmax, method, eps)
     if found is None:
         return 0, math.nan, False
     t, graze = found

@@ -106,8 +106,13 @@ def root_bound(c: Sequence[float], n: int) -> float:
     return math.ldexp(1.0, e)
 
 
-def _scaled_le(a: float, mt: float, et: int, j: int, k: float, b: float) -> bool:
-    """|a| T^j <= k |b|, T = mt 2^et, in mantissas and exponents (C scaled_le)."""
+def _scaled_le(a: float, T: float, et: int | None, j: int, k: float, b: float) -> bool:
+    """|a| T^j <= k |b|, T = 2^et (or T itself when et is None), in mantissas and exponents
+    (C scaled_le)."""
+    mt = 1.0
+    if et is None:
+        et = ilogb(T)
+        mt = math.ldexp(T, -et)
     ea, eb, ek = ilogb(a), ilogb(b), ilogb(k)
     ma = math.ldexp(abs(a), -ea)
     mb = math.ldexp(abs(b), -eb) * math.ldexp(k, -ek)
@@ -124,7 +129,7 @@ def _scaled_le(a: float, mt: float, et: int, j: int, k: float, b: float) -> bool
 
 def _leading_negligible(c: Coeffs, n: int, tmax: float) -> bool:
     """C leading_negligible (in exponents where a side leaves the normal range)."""
-    T, mt = tmax, 1.0
+    T, et = tmax, None
     if math.isinf(T):
         m = n - 1
         while m > 0 and c[m] == 0:
@@ -133,9 +138,6 @@ def _leading_negligible(c: Coeffs, n: int, tmax: float) -> bool:
             return False
         et = _root_bound_exponent(c, m) or 0
         T = INF if et >= 1024 else math.ldexp(1.0, et) if et >= -1022 else 0.0
-    else:
-        et = ilogb(T)
-        mt = math.ldexp(T, -et)
     k = 4.0 * n * EPS
     Tp = 1.0
     for i in range(n - 1, -1, -1):
@@ -144,7 +146,7 @@ def _leading_negligible(c: Coeffs, n: int, tmax: float) -> bool:
             continue
         lhs, rhs = abs(c[n]) * Tp, k * abs(c[i])
         normal = DBL_MIN <= Tp <= DBL_MAX and DBL_MIN <= lhs <= DBL_MAX and rhs >= DBL_MIN
-        if (lhs <= rhs) if normal else _scaled_le(c[n], mt, et, n - i, k, c[i]):
+        if (lhs <= rhs) if normal else _scaled_le(c[n], T, et, n - i, k, c[i]):
             return True
     return False
 
@@ -169,21 +171,19 @@ def reduce(c: Coeffs, n: int, tmax: float) -> int:
         return n
 
 
-def exponents(c: Sequence[float], n: int) -> tuple[list[int], list[bool], int]:
-    """(e, nz, spread) as C exponents(): spread -1 when every coefficient is 0."""
+def exponents(c: Sequence[float], n: int) -> tuple[list[int], list[bool], int, int]:
+    """(e, nz, spread, emax) as C exponents(): spread -1 when every coefficient is 0."""
     nz = [c[i] != 0 for i in range(n + 1)]
     e = [ilogb(c[i]) if nz[i] else 0 for i in range(n + 1)]
     if not any(nz):
-        return e, nz, -1
-    return e, nz, max(e[i] for i in range(n + 1) if nz[i]) - min(e[i] for i in range(n + 1) if nz[i])
+        return e, nz, -1, 0
+    emax = max(e[i] for i in range(n + 1) if nz[i])
+    return e, nz, emax - min(e[i] for i in range(n + 1) if nz[i]), emax
 
 
-def normalise(c: Coeffs, n: int) -> int:
-    """C normalise: scale exactly so that max |c_i| is in [1/2, 1); returns E."""
-    e, nz, spread = exponents(c, n)
-    if spread < 0:
-        return 0
-    E = max(e[i] for i in range(n + 1) if nz[i]) + 1
+def normalise(c: Coeffs, n: int, emax: int) -> int:
+    """C normalise: scale exactly so that max |c_i| (exponent emax) is in [1/2, 1); returns E."""
+    E = emax + 1
     if -1021 <= E <= 1022:
         f = math.ldexp(1.0, -E)
         for i in range(n + 1):
@@ -640,8 +640,7 @@ def first_root_sliced(c: Sequence[float], n: int, tmax: float, eps: float,
                       nograze: bool) -> tuple[float, bool] | None:
     """Coefficients spanning more than 2^MAX_SPREAD (c[0] != 0, not normalised), slice by
     slice of t: the C runtime's first_root_sliced."""
-    e, nz, _ = exponents(c, n)
-    emax = max([e[0]] + [e[i] for i in range(1, n + 1) if nz[i]])
+    e, nz, _, emax = exponents(c, n)
     d = (e[0] - emax - 2) // SLICE * SLICE
     while d < 1024:
         if d >= -1074 and math.ldexp(1.0, d) >= tmax:

@@ -153,7 +153,10 @@ fn solve(coef: &[f64], tmax: f64, method: Method, eps: f64) -> Status {
         return Status::Invalid;
     }
     let mut c: Coeffs = [0.0; MAXN + 1];
-    c[..coef.len()].copy_from_slice(coef);
+    // an element loop, as C's: copy_from_slice of a run-time length is a memcpy call
+    for (d, &v) in c.iter_mut().zip(coef) {
+        *d = v;
+    }
     let n = solver::reduce(&mut c, coef.len() - 1, tmax);
     if n <= 0 {
         return Status::NoRoot;
@@ -161,10 +164,11 @@ fn solve(coef: &[f64], tmax: f64, method: Method, eps: f64) -> Status {
     let n = n as usize;
     let mut e = [0i32; MAXN + 1];
     let mut nz = [false; MAXN + 1];
-    let hit = if solver::exponents(&c, n, &mut e, &mut nz) > solver::max_spread() {
+    let (spread, emax) = solver::exponents(&c, n, &mut e, &mut nz);
+    let hit = if spread > solver::max_spread() {
         solver::first_root_sliced(&c, n, tmax, eps, method == Method::IntervalNoGraze)
     } else {
-        solve_normalised(&mut c, n, tmax, method, eps)
+        solve_normalised(&mut c, n, emax, tmax, method, eps)
     };
     let Some((t, graze)) = hit else {
         return Status::NoRoot;
@@ -178,8 +182,8 @@ fn solve(coef: &[f64], tmax: f64, method: Method, eps: f64) -> Status {
 
 /// C `solve_normalised`: coefficients within 2^MAX_SPREAD, scaled exactly, then by degree and
 /// method.
-fn solve_normalised(c: &mut Coeffs, n: usize, tu: f64, method: Method, eps: f64) -> Option<(f64, bool)> {
-    let e = solver::normalise(c, n);
+fn solve_normalised(c: &mut Coeffs, n: usize, emax: i32, tu: f64, method: Method, eps: f64) -> Option<(f64, bool)> {
+    let e = solver::normalise(c, n, emax);
     let skin = if method == Method::IntervalNoGraze {
         -1.0
     } else if eps == 0.0 {

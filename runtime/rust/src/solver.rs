@@ -68,7 +68,11 @@ const fn recip_table() -> [f64; MAXN + 1] {
 /// solve, and an integer division is slow).
 #[inline]
 fn ceil_div(num: i32, den: i32) -> i32 {
-    let mut q = (f64::from(num) * RECIP[den as usize]) as i32; // toward zero
+    debug_assert!((1..=MAXN as i32).contains(&den) && num.abs() < 1 << 13);
+    // SAFETY: 0 < den <= MAXN indexes RECIP, and |num / den| < 2^13 fits an i32.  Unchecked:
+    // C's plain truncation (`as i32` saturates, with NaN and range compares and selects, and
+    // the index is bounds-checked: a third of root_bound's time, which runs on every solve)
+    let mut q: i32 = unsafe { (f64::from(num) * *RECIP.get_unchecked(den as usize)).to_int_unchecked() };
     q += i32::from(q * den < num);
     q -= i32::from((q - 1) * den >= num);
     q
@@ -99,8 +103,17 @@ pub(crate) fn root_bound(c: &[f64], n: usize) -> f64 {
     }
 }
 
-/// C `scaled_le`: |a| T^j <= k |b| with T = mt 2^et, in mantissas and exponents.
-fn scaled_le(a: f64, mt: f64, et: i32, j: usize, k: f64, b: f64) -> bool {
+/// C `scaled_le`: |a| T^j <= k |b| with T = 2^et (or T itself when et is `None`), in
+/// mantissas and exponents.
+#[cold]
+fn scaled_le(a: f64, t: f64, et: Option<i32>, j: usize, k: f64, b: f64) -> bool {
+    let (mt, et) = match et {
+        Some(et) => (1.0, et),
+        None => {
+            let et = exponent_of(t);
+            (ldexp(t, -i64::from(et)), et)
+        }
+    };
     let (mut ea, mut eb, ek) = (exponent_of(a), exponent_of(b), exponent_of(k));
     let mut ma = ldexp(a.abs(), -i64::from(ea));
     let mut mb = ldexp(b.abs(), -i64::from(eb)) * ldexp(k, -i64::from(ek));
@@ -123,8 +136,7 @@ fn scaled_le(a: f64, mt: f64, et: i32, j: usize, k: f64, b: f64) -> bool {
 /// C `leading_negligible` (in exponents where a side leaves the normal range).
 fn leading_negligible(c: &[f64], n: usize, tmax: f64) -> bool {
     let mut t = tmax;
-    let mut mt = 1.0;
-    let et;
+    let mut et = None; // T's exponent when T is a power of two beyond range
     if t.is_infinite() {
         let mut m = n - 1;
         while m > 0 && c[m] == 0.0 {
@@ -133,17 +145,15 @@ fn leading_negligible(c: &[f64], n: usize, tmax: f64) -> bool {
         if m == 0 {
             return false;
         }
-        et = root_bound_exponent(c, m).unwrap_or(0);
-        t = if et >= 1024 {
+        let e = root_bound_exponent(c, m).unwrap_or(0);
+        et = Some(e);
+        t = if e >= 1024 {
             f64::INFINITY
-        } else if et >= -1022 {
-            pow2(et)
+        } else if e >= -1022 {
+            pow2(e)
         } else {
             0.0
         };
-    } else {
-        et = exponent_of(t);
-        mt = ldexp(t, -i64::from(et));
     }
     let k = 4.0 * n as f64 * f64::EPSILON;
     let mut tp = 1.0;
@@ -156,7 +166,7 @@ fn leading_negligible(c: &[f64], n: usize, tmax: f64) -> bool {
         let normal = (f64::MIN_POSITIVE..=f64::MAX).contains(&tp)
             && (f64::MIN_POSITIVE..=f64::MAX).contains(&lhs)
             && rhs >= f64::MIN_POSITIVE;
-        if if normal { lhs <= rhs } else { scaled_le(c[n], mt, et, n - i, k, c[i]) } {
+        if if normal { lhs <= rhs } else { scaled_le(c[n], t, et, n - i, k, c[i]) } {
             return true;
         }
     }
@@ -189,10 +199,11 @@ pub(crate) fn reduce(c: &mut Coeffs, mut n: usize, tmax: f64) -> i32 {
     }
 }
 
-/// C `exponents`: the exponents of c[0..=n] (nz: nonzero) and their spread (-1: all zero).
-pub(crate) fn exponents(c: &[f64], n: usize, e: &mut [i32; MAXN + 1], nz: &mut [bool; MAXN + 1]) -> i32 {
+/// C `exponents`: the exponents of c[0..=n] (nz: nonzero), the spread (-1: all zero) and the
+/// largest exponent.
+pub(crate) fn exponents(c: &[f64], n: usize, e: &mut [i32; MAXN + 1], nz: &mut [bool; MAXN + 1]) -> (i32, i32) {
     let (mut emax, mut emin) = (i32::MIN, i32::MAX);
-    for i in 0..=n {
+    for i in 0..=n.min(MAXN) {
         nz[i] = c[i] != 0.0;
         e[i] = if nz[i] { exponent_of(c[i]) } else { 0 };
         if nz[i] {
@@ -200,11 +211,7 @@ pub(crate) fn exponents(c: &[f64], n: usize, e: &mut [i32; MAXN + 1], nz: &mut [
             emin = emin.min(e[i]);
         }
     }
-    if emax == i32::MIN {
-        -1
-    } else {
-        emax - emin
-    }
+    (if emax == i32::MIN { -1 } else { emax - emin }, emax)
 }
 
 /// The spread above which `solve` takes `first_root_sliced`.
@@ -212,14 +219,8 @@ pub(crate) const fn max_spread() -> i32 {
     MAX_SPREAD
 }
 
-/// C `normalise`: scales exactly so that max |c_i| is in [1/2, 1); returns E.
-pub(crate) fn normalise(c: &mut Coeffs, n: usize) -> i32 {
-    let mut e = [0i32; MAXN + 1];
-    let mut nz = [false; MAXN + 1];
-    if exponents(c, n, &mut e, &mut nz) < 0 {
-        return 0;
-    }
-    let emax = (0..=n).filter(|&i| nz[i]).map(|i| e[i]).max().unwrap_or(0);
+/// C `normalise`: scales exactly so that max |c_i| (exponent emax) is in [1/2, 1); returns E.
+pub(crate) fn normalise(c: &mut Coeffs, n: usize, emax: i32) -> i32 {
     let big_e = emax + 1;
     if (-1021..=1022).contains(&big_e) {
         let f = pow2(-big_e);
@@ -532,16 +533,6 @@ struct Point {
 }
 
 impl Point {
-    const EMPTY: Point = Point {
-        x: 0.0,
-        px: 0.0,
-        dpx: 0.0,
-        vp: 0,
-        vq: 0,
-        qt: [MaybeUninit::uninit(); MAXN + 1],
-        tol: [MaybeUninit::uninit(); MAXN + 1],
-    };
-
     /// q's Taylor coefficient k (k <= n: written by point_at / point_at_zero).
     #[inline]
     fn qt(&self, k: usize) -> f64 {
@@ -557,27 +548,36 @@ impl Point {
 }
 
 #[inline]
-fn point_at_zero(p: &[f64], n: usize, e: f64, skin: f64) -> Point {
-    let mut pt = Point::EMPTY;
-    let mut qt = [0.0f64; MAXN + 1];
-    pt.px = p[0];
-    pt.dpx = p[1];
-    for i in 0..=n {
-        qt[i] = p[i] - e * p[i].abs();
-        pt.tol[i].write(f64::EPSILON * p[i].abs());
+/// C `point_at_zero`, written in place into a slot (building a `Point` and returning it cost a
+/// memset and a 300-byte memcpy per solve: a tenth of a "no root" solve).
+fn point_at_zero<'a>(p: &[f64], n: usize, e: f64, skin: f64, slot: &'a mut MaybeUninit<Point>) -> &'a mut Point {
+    let n = n.min(MAXN);
+    let pt = slot.as_mut_ptr();
+    // SAFETY: field writes through the slot's pointer (no reference to uninitialised memory is
+    // made; the fields have no drop glue); every field is written before the reference is made
+    // (qt and tol entries 0..=n, all that is ever read).
+    unsafe {
+        (*pt).x = 0.0;
+        (*pt).px = p[0];
+        (*pt).dpx = p[1];
+        for i in 0..=n {
+            (*pt).qt[i] = MaybeUninit::new(p[i] - e * p[i].abs());
+            (*pt).tol[i] = MaybeUninit::new(f64::EPSILON * p[i].abs());
+        }
+        (*pt).vp = sign_changes(p, n);
+        (*pt).vq = (*pt).vp;
+        let pt = slot.assume_init_mut();
+        if skin > 0.0 {
+            pt.qt[0] = MaybeUninit::new(pt.qt(0) - skin);
+            pt.tol[0] = MaybeUninit::new(pt.tol(0) + f64::EPSILON * skin);
+            let mut qt = [0.0f64; MAXN + 1];
+            for (i, q) in qt.iter_mut().enumerate().take(n + 1) {
+                *q = pt.qt(i);
+            }
+            pt.vq = sign_changes(&qt, n);
+        }
+        pt
     }
-    pt.vp = sign_changes(p, n);
-    if skin > 0.0 {
-        qt[0] -= skin;
-        pt.tol[0].write(pt.tol(0) + f64::EPSILON * skin);
-        pt.vq = sign_changes(&qt, n);
-    } else {
-        pt.vq = pt.vp;
-    }
-    for i in 0..=n {
-        pt.qt[i].write(qt[i]);
-    }
-    pt
 }
 
 /// Writes the point x into `slot` (all of x, px, vp, vq and entries 0..=n of qt and tol) and
@@ -690,11 +690,12 @@ enum Isolation {
 fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64) -> Isolation {
     let e = if skin >= 0.0 { noise_factor(n) } else { 0.0 };
     let sk = if skin > 0.0 { skin } else { 0.0 };
-    let mut a = point_at_zero(p, n, e, sk);
+    let mut a_slot = MaybeUninit::<Point>::uninit();
+    let a = point_at_zero(p, n, e, sk, &mut a_slot);
     if !(a.qt(0) - a.tol(0) > 0.0) {
         return Isolation::Unresolved(0.0);
     }
-    if a.vq == 0 || clearly_positive(&a, n, t_end, 1) {
+    if a.vq == 0 || clearly_positive(a, n, t_end, 1) {
         return Isolation::Cleared;
     }
     let mut slot = MaybeUninit::<Taylor>::uninit();
@@ -714,8 +715,8 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64) -> Isolation {
         let b = unsafe { stack[top - 1].assume_init_ref() };
         let w = b.x - a.x;
         let odd = (a.vp - b.vp) % 2 != 0;
-        if a.vq == b.vq || (!odd && (clearly_positive(&a, n, w, 1) || clearly_positive(b, n, w, -1))) {
-            a = *b;
+        if a.vq == b.vq || (!odd && (clearly_positive(a, n, w, 1) || clearly_positive(b, n, w, -1))) {
+            *a = *b;
             top -= 1;
             if top == 0 {
                 return Isolation::Cleared;
@@ -752,7 +753,7 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64) -> Isolation {
         if !(b.qt(0) - b.tol(0) > 0.0) {
             return Isolation::Unresolved(b.x);
         }
-        a = *b;
+        *a = *b;
         top -= 1;
         if top == 0 {
             return Isolation::Cleared;
@@ -908,13 +909,7 @@ fn dominant_term(e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n: usize, d: i32) -
 pub(crate) fn first_root_sliced(c: &[f64], n: usize, tmax: f64, eps: f64, nograze: bool) -> Option<(f64, bool)> {
     let mut e = [0i32; MAXN + 1];
     let mut nz = [false; MAXN + 1];
-    exponents(c, n, &mut e, &mut nz);
-    let mut emax = e[0];
-    for i in 1..=n {
-        if nz[i] && e[i] > emax {
-            emax = e[i];
-        }
-    }
+    let (_, emax) = exponents(c, n, &mut e, &mut nz);
     let lo = pow2(-16);
     let lo_open = f64::from_bits(lo.to_bits() - 1);
     let hi = pow2(16);
