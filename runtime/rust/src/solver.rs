@@ -83,12 +83,10 @@ fn ceil_div(num: i32, den: i32) -> i32 {
 fn root_bound_exponent(c: &[f64], n: usize) -> Option<i32> {
     let en = exponent_of(c[n]);
     let mut best = i32::MIN;
-    for i in 0..n {
-        if c[i] == 0.0 {
-            continue;
+    for (i, &ci) in c[..n].iter().enumerate() {
+        if ci != 0.0 {
+            best = best.max(ceil_div(exponent_of(ci) + 1 - en, (n - i) as i32));
         }
-        let e = ceil_div(exponent_of(c[i]) + 1 - en, (n - i) as i32);
-        best = best.max(e);
     }
     (best != i32::MIN).then_some(best + 1)
 }
