@@ -10,7 +10,7 @@ only, and is independent of both the runtimes and mpmath:
 * the smallest positive root is isolated by Descartes' rule of signs (the Collins-Akritas
   bisection: the sign variations of ``(1+y)^n p((a + b y)/(1+y))`` bound the number of roots
   in (a, b) and have its parity), first over dyadic exponent ranges (roots from 2^-2200 to
-  2^1100), then by halving;
+  2^2200: Cauchy's bounds for doubles), then by halving;
 * a simple root is refined by exact bisection on the sign of p to 2^-80 relative (geometric
   while the bracket spans more than a factor 4);
 * a cluster that Descartes cannot split at 2^-60 relative width (a double root, or roots
@@ -21,15 +21,17 @@ Everything is integer arithmetic on dyadic intervals (Fractions only at the inte
 10 ms per fuzz vector, where the first version (rational Taylor shifts, arithmetic bisection
 from 2^-2200) took 0.3 s and up to 9 s.
 
-``first_root(coeffs, tmax)`` returns what is true; ``judge(coeffs, tmax, status, t, graze)``
-says whether a runtime's answer agrees, allowing exactly what the runtimes document: the root
-to within ``max(2^-40, 64 n u kappa)`` relative (kappa its condition number), a reported touch
-where ``|p|`` is within ``2^-40`` of ``sum |c_i| t^i`` (rounding noise; a cluster counts too),
-status 0 when the first root is not representable (below the smallest subnormal or above
-DBL_MAX), is within its tolerance of tmax or so ill-conditioned that the tolerance exceeds 1
-(a sign change inside the rounding noise, as in a rounded (t - a)^12), or is a cluster of even multiplicity (a touch the
-rounding of the coefficients may have removed; an odd one is a sign change: a miss), and an
-absolute 2^-1074 on a subnormal root.
+``first_root(coeffs, tmax)`` returns what is true; ``judge(coeffs, tmax, status, t, graze,
+eps)`` says whether a runtime's answer agrees, allowing exactly what the runtimes document: the
+root to within ``max(2^-40, 64 n u kappa)`` relative (kappa its condition number), a reported
+touch where ``|p|`` is within ``2^-40`` of ``sum |c_i| t^i`` plus the contact skin eps
+(rounding noise; a cluster counts too), status 0 when the first root is not representable
+(below the smallest subnormal or above DBL_MAX), is within its tolerance of tmax or so
+ill-conditioned that the tolerance exceeds 1 (a sign change inside the rounding noise, as in a
+rounded (t - a)^12), or is a cluster of even multiplicity (a touch the rounding of the
+coefficients may have removed; an odd one is a sign change: a miss), an absolute 2^-1074 on a
+subnormal root, and the header's rule that drops a negligible leading term (step 3; written
+here from the header, in exact logarithms: ``documented_reduction``).
 """
 from __future__ import annotations
 
