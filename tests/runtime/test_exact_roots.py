@@ -85,3 +85,16 @@ def test_multiple_roots() -> None:
     assert ex.first_root((1.0, 2.0, 1.0), inf).kind == "none"
     assert ex.judge((1.0, 2.0, 1.0), inf, 1, 1.0, False) == "false"
     assert ex.judge((-6.0, 5.0, -1.0), 1.5, 0, math.nan, False) == "ok-none"
+
+
+def test_documented_lead_rule() -> None:
+    """The header's step 3 drops 1.09e-133 t^2 beside -8.9e96 t with tmax = inf (its root,
+    8.1e229, exists only because of it): a runtime may miss that root, not an ordinary one."""
+    c = (-4386.296610043701, -8.87599604097008e96, 1.0897379656641521e-133)
+    assert ex.documented_reduction(c, math.inf) == c[:2]
+    assert ex.judge(c, math.inf, 0, math.nan, False) == "ok-lead-dropped"
+    assert ex.judge_exact(c, math.inf, 0, math.nan, False) == "miss"
+    # not negligible over a finite window that holds the root, nor at ordinary sizes
+    assert ex.documented_reduction(c, 1e300) == c
+    assert ex.documented_reduction((-2.0, 1.0, 1.0), math.inf) == (-2.0, 1.0, 1.0)
+    assert ex.judge((-2.0, 1.0, 1.0), math.inf, 0, math.nan, False) == "miss"
