@@ -68,7 +68,10 @@ def sampled_equation(path: Path, count: int):
     samples = random_samples(poly.parameters, count, seed=zlib.crc32(path.stem.encode()))
     exact = exact_coefficients(path, poly.parameters, samples)
     hits = sum(1 for e in exact if e.first_root(TMAX)[0] is not None)
-    assert 20 <= hits <= count - 20, f"{hits} of {count} samples collide: too one-sided a test"
+    # A tenth of either outcome at least: a line (circle-orbit-line) is crossed by most motions,
+    # so misses are rarer there than between two circles, but still tested.
+    least = count // 10
+    assert least <= hits <= count - least, f"{hits} of {count} samples collide: too one-sided a test"
     return spec, poly, exact
 
 
