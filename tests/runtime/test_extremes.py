@@ -10,8 +10,9 @@ header's negligible-leading-term rule, status 0 for a root that is not represent
 other runtimes give the same bits (test_fuzz_runtimes.py), so they are judged with it.
 
 EXACT_COUNT vectors (1000 by default: about 10 s on an idle core; 10^5 take about 15 minutes).
-Before the sliced solver of the C runtime (first_root_sliced) about 8 % of the valid vectors
-got a wrong answer; all of them had coefficients spanning more than 2^1021.
+Before this change 1,373 of 15,150 valid vectors (9 %) got a wrong answer from the default
+method (`python -m tests.runtime.judge_c --count 20000 --seed 5 --source <main's runtime/c>`),
+nearly all with coefficients spanning more than 2^1021; none since.
 """
 from __future__ import annotations
 
