@@ -107,8 +107,8 @@ static int ceil_div(int num, int den)
 
 /* Fujiwara bound 2 max |c_i/c_n|^(1/(n-i)), each ratio rounded up to a power
  * of two using exponents only (no overflow, no logs): every root z has
- * |z| < the result.  c[n] != 0.  Returns 0 when all c_i (i < n) are 0. */
-static double root_bound(const double c[], int n)
+ * |z| < 2^(the result).  c[n] != 0.  INT_MIN when all c_i (i < n) are 0. */
+static int root_bound_exponent(const double c[], int n)
 {
     int en = exponent_of(c[n]);
     int best = INT_MIN;
@@ -119,31 +119,77 @@ static double root_bound(const double c[], int n)
         int e = ceil_div(exponent_of(c[i]) + 1 - en, n - i);
         best = e > best ? e : best;
     }
-    if (best == INT_MIN)
+    return best == INT_MIN ? INT_MIN : best + 1;
+}
+
+/* The bound as a double (DBL_MAX beyond it); 0 when all c_i (i < n) are 0. */
+static double root_bound(const double c[], int n)
+{
+    int e = root_bound_exponent(c, n);
+    if (e == INT_MIN)
         return 0;
-    if (best + 1 >= DBL_MAX_EXP)
+    if (e >= DBL_MAX_EXP)
         return DBL_MAX;
-    return best + 1 >= DBL_MIN_EXP - 1 ? pow2(best + 1) : ldexp(1.0, best + 1);
+    return e >= DBL_MIN_EXP - 1 ? pow2(e) : ldexp(1.0, e);
+}
+
+/* |a| T^j <= k |b| (a, b, k nonzero; T = 2^et, or T itself when et is
+ * INT_MIN), without leaving the double range: mantissas in [1, 2),
+ * exponents apart.  (Rare: only where the plain products leave the normal
+ * range.) */
+static int scaled_le(double a, double T, int et, int j, double k, double b)
+{
+    double mt = 1;
+    if (et == INT_MIN) {
+        et = exponent_of(T);
+        mt = ldexp(T, -et);
+    }
+    int ea = exponent_of(a), eb = exponent_of(b), ek = exponent_of(k);
+    double ma = ldexp(fabs(a), -ea);
+    double mb = ldexp(fabs(b), -eb) * ldexp(k, -ek);
+    for (int s = 0; s < j; s++) {
+        ma *= mt;
+        int e = ma >= 2;
+        ma = e ? 0.5 * ma : ma;
+        ea += et + e;
+    }
+    int e = mb >= 2;
+    mb = e ? 0.5 * mb : mb;
+    eb += ek + e;
+    return ea < eb || (ea == eb && ma <= mb);
 }
 
 /* Is the leading term negligible over [0, T] (see header)?  Compared term by
- * term as |c_n| T^(n-i) <= k |c_i|, which overflows/underflows harmlessly. */
+ * term as |c_n| T^(n-i) <= k |c_i|; where a side leaves the normal range
+ * (T^2 underflowed to 0 for T = 2^-1020, and every leading term looked
+ * negligible; a bound beyond 2^1024 was taken as DBL_MAX), in exponents
+ * (scaled_le). */
 static int leading_negligible(const double c[], int n, double tmax)
 {
     double T = tmax;
+    int et = INT_MIN; /* T's exponent when T is a power of two beyond range */
     if (isinf(T)) {
         int m = n - 1;
         while (m > 0 && c[m] == 0)
             m--;
         if (m == 0)
             return 0; /* the rest is a constant: no scale to compare with */
-        T = root_bound(c, m);
+        et = root_bound_exponent(c, m);
+        T = et >= DBL_MAX_EXP       ? INFINITY
+            : et >= DBL_MIN_EXP - 1 ? pow2(et)
+                                    : 0; /* (the exponents then) */
     }
     double k = 4.0 * n * DBL_EPSILON;
     double Tp = 1.0;
     for (int i = n - 1; i >= 0; i--) {
         Tp *= T; /* T^(n-i) */
-        if (c[i] != 0 && fabs(c[n]) * Tp <= k * fabs(c[i]))
+        if (c[i] == 0)
+            continue;
+        double lhs = fabs(c[n]) * Tp, rhs = k * fabs(c[i]);
+        if (Tp >= DBL_MIN && Tp <= DBL_MAX && lhs >= DBL_MIN && lhs <= DBL_MAX &&
+                    rhs >= DBL_MIN
+                ? lhs <= rhs
+                : scaled_le(c[n], T, et, n - i, k, c[i]))
             return 1;
     }
     return 0;
@@ -176,22 +222,8 @@ static int reduce(double c[], int n, double tmax)
 
 /* Exponent spread (largest minus smallest exponent of the nonzero
  * coefficients) up to which scaling the largest into [1/2, 1) leaves every
- * coefficient a normal number (>= 2^-1022). */
+ * coefficient a normal number (>= 2^-1022).  Beyond it: first_root_sliced. */
 #define MAX_SPREAD 1021
-
-/* max_i (e_i + k i) - min_i (e_i + k i) over the nonzero coefficients. */
-static int spread_after_shift(const int e[], const int nz[], int n, int k)
-{
-    int hi = INT_MIN, lo = INT_MAX;
-    for (int i = 0; i <= n; i++) {
-        if (!nz[i])
-            continue;
-        int v = e[i] + k * i;
-        hi = v > hi ? v : hi;
-        lo = v < lo ? v : lo;
-    }
-    return hi - lo;
-}
 
 /* floor(a / b) for b > 0 (C's division truncates toward zero). */
 static int floor_div(int a, int b)
@@ -200,81 +232,39 @@ static int floor_div(int a, int b)
     return q - (a % b != 0 && a < 0);
 }
 
-/* The k that makes the coefficients of p(2^k u) least spread: the spread is
- * convex and piecewise linear in k, so its minimum is next to a point where
- * two exponents e_i + k i, e_j + k j meet.  Ties: the smallest |k|, then the
- * smaller k.  Rare (only for spreads beyond MAX_SPREAD): integer work only. */
-static int balancing_shift(const int e[], const int nz[], int n)
+/* The exponents of c[0..n] (nz[i]: c[i] != 0) and the largest, *emax;
+ * returns the spread, or -1 when every coefficient is 0. */
+static int exponents(const double c[], int n, int e[], int nz[], int *emax)
 {
-    int best_k = 0, best = spread_after_shift(e, nz, n, 0);
-    for (int i = 0; i <= n; i++) {
-        for (int j = i + 1; j <= n && nz[i]; j++) {
-            if (!nz[j])
-                continue;
-            int k0 = floor_div(e[i] - e[j], j - i);
-            for (int k = k0; k <= k0 + 1; k++) {
-                int s = spread_after_shift(e, nz, n, k);
-                int ak = k < 0 ? -k : k, abk = best_k < 0 ? -best_k : best_k;
-                if (s < best || (s == best && (ak < abk || (ak == abk && k < best_k)))) {
-                    best = s;
-                    best_k = k;
-                }
-            }
-        }
-    }
-    return best_k;
-}
-
-/* Scale by a power of two (exact) so that max |c_i| is in [1/2, 1); *k = 0,
- * and 0 is returned.  When the coefficients are too spread for that (some
- * would fall below DBL_MIN), first substitute t = 2^k u with the k that
- * spreads them least (balancing_shift; exact), scale, flush what is still
- * below DBL_MIN to 0 (the documented tolerance: such a term is below 2^-1022
- * of the largest), and return 1: the caller reduces again, solves in u over
- * (0, tmax / 2^k], and multiplies the root by 2^k.  *e_out = E: the values
- * of p are scaled by 2^-E. */
-static int normalise(double c[], int n, int *k_out, int *e_out)
-{
-    int e[MAXN + 1], nz[MAXN + 1];
-    int emax = INT_MIN, emin = INT_MAX;
+    int hi = INT_MIN, lo = INT_MAX;
     for (int i = 0; i <= n; i++) {
         nz[i] = c[i] != 0;
         e[i] = nz[i] ? exponent_of(c[i]) : 0;
         if (nz[i]) {
-            emax = e[i] > emax ? e[i] : emax;
-            emin = e[i] < emin ? e[i] : emin;
+            hi = e[i] > hi ? e[i] : hi;
+            lo = e[i] < lo ? e[i] : lo;
         }
     }
-    *k_out = 0;
-    *e_out = 0;
-    if (emax == INT_MIN)
-        return 0;
-    int k = 0, E = emax + 1;
-    if (emax - emin > MAX_SPREAD) {
-        k = balancing_shift(e, nz, n);
-        int top = INT_MIN;
-        for (int i = 0; i <= n; i++)
-            if (nz[i] && e[i] + k * i > top)
-                top = e[i] + k * i;
-        E = top + 1;
-    }
-    if (k == 0 && E >= DBL_MIN_EXP && E <= DBL_MAX_EXP - 2) {
+    *emax = hi;
+    return hi == INT_MIN ? -1 : hi - lo;
+}
+
+/* Scale by a power of two (exact: the spread is at most MAX_SPREAD) so that
+ * max |c_i| (exponent emax) is in [1/2, 1); returns E: the values of p are
+ * scaled by 2^-E. */
+static int normalise(double c[], int n, int emax)
+{
+    int E = emax + 1;
+    if (E >= DBL_MIN_EXP && E <= DBL_MAX_EXP - 2) {
         /* multiplying by an exact power of two rounds as ldexp does */
         double f = pow2(-E);
         for (int i = 0; i <= n; i++)
             c[i] *= f;
     } else {
         for (int i = 0; i <= n; i++)
-            c[i] = ldexp(c[i], k * i - E);
+            c[i] = ldexp(c[i], -E);
     }
-    *e_out = E;
-    if (emax - emin <= MAX_SPREAD)
-        return 0;
-    for (int i = 0; i <= n; i++)
-        if (fabs(c[i]) < DBL_MIN)
-            c[i] = 0; /* also -0 -> 0 */
-    *k_out = k;
-    return 1;
+    return E;
 }
 
 /* ------------------------------------------------------------------ */
@@ -399,14 +389,15 @@ static int quad_roots(double a, double b, double c, double r[2], double *disc)
     return 2;
 }
 
-/* First root in (0, tmax] of c0 + c1 t + c2 t^2 (c2 != 0). */
-static int first_root_quadratic(const double c[3], double tmax, double skin,
-                                double *t, int *graze)
+/* First root in (lo, tmax] of c0 + c1 t + c2 t^2 (c2 != 0; lo >= 0: 0 but
+ * for first_root_sliced). */
+static int first_root_quadratic(const double c[3], double lo, double tmax,
+                                double skin, double *t, int *graze)
 {
     double r[2], disc;
     if (quad_roots(c[2], c[1], c[0], r, &disc) == 2) {
         for (int i = 0; i < 2; i++) {
-            if (r[i] > 0 && r[i] <= tmax) {
+            if (r[i] > lo && r[i] <= tmax) {
                 *t = r[i];
                 *graze = disc == 0;
                 return 1;
@@ -418,7 +409,7 @@ static int first_root_quadratic(const double c[3], double tmax, double skin,
         return 0; /* no graze check */
     /* No real root: does the parabola touch 0 within rounding at its vertex? */
     double x = -c[1] / (2 * c[2]);
-    if (x > 0 && x <= tmax && within_noise(c, 2, x, skin)) {
+    if (x > lo && x <= tmax && within_noise(c, 2, x, skin)) {
         *t = x;
         *graze = 1;
         return 1;
@@ -446,6 +437,15 @@ static int first_root_quadratic(const double c[3], double tmax, double skin,
 /* A rejected Newton step this small (relative) in the precise phase means the
  * evaluation is rounding noise: a few ulps, n u kappa for kappa ~ 2. */
 #define NOISE_STEP (32 * UNIT_ROUNDOFF)
+
+/* After this many iterations, a Newton step that moves x by more than 2^-10
+ * of it in a bracket spanning more than a factor 8 is replaced by a
+ * geometric bisection (from lo = 0: hi / 2^64).  Far from every root Newton
+ * converges only linearly: it halves x per step on a - b x^2 (from 1e-14 to
+ * a root at 1e-150 that is 450 steps, beyond MAX_ITER: it returned 1.5e-71)
+ * and takes x to 0.9 x on a degree-10 polynomial from 1e197.  Converging
+ * solves take fewer steps than this and are unchanged. */
+#define SLOW_AFTER 16
 
 /* Bisection point of [lo, hi] (0 <= lo < hi): geometric when the bracket
  * spans more than a factor 8, so roots near 0 (1e-12) are reached in a few
@@ -567,12 +567,15 @@ static double refine_root(const double P[], const double D[], int m,
         }
         double xn = x - (k ? ldexp(f / df, k) : f / df);
         double s = x - xn;
+        int slow = it >= SLOW_AFTER && (lo == 0 || hi > 8 * lo) &&
+                   fabs(s) > 0x1p-10 * fabs(xn);
         /* Newton must stay inside the bracket and at least halve the step
          * before last; otherwise bisect (rtsafe's rule). */
-        if (!(xn > lo && xn < hi) || fabs(s) > 0.5 * fabs(step_old)) {
+        if (!(xn > lo && xn < hi) || fabs(s) > 0.5 * fabs(step_old) || slow) {
             if (precise && fabs(s) <= NOISE_STEP * fabs(x))
                 return x;
-            xn = split_point(lo, hi);
+            double far = hi * 0x1p-64;
+            xn = slow && lo == 0 && far > DBL_MIN ? far : split_point(lo, hi);
             s = x - xn;
         }
         step_old = step;
@@ -709,7 +712,10 @@ static void point_at_zero(const double p[], int n, double e, double skin,
     pt->x = 0;
     pt->px = p[0];
     pt->dpx = p[1];
-    for (int i = 0; i <= n; i++) {
+    /* i = 0 apart: gcc (-Wmaybe-uninitialized) cannot see that n >= 1 */
+    pt->qt[0] = p[0] - e * fabs(p[0]);
+    pt->tol[0] = DBL_EPSILON * fabs(p[0]);
+    for (int i = 1; i <= n; i++) {
         pt->qt[i] = p[i] - e * fabs(p[i]);
         pt->tol[i] = DBL_EPSILON * fabs(p[i]);
     }
@@ -1037,6 +1043,107 @@ static int first_root_interval(const double c[], int n, double T,
             return r == ISOLATED;
     }
     return derivative_method(p, n, lo, T, skin, t, graze);
+}
+
+/* ------------------------------------------------------------------ */
+/* Extreme spreads                                                      */
+/* ------------------------------------------------------------------ */
+
+/* Coefficients spanning more than 2^MAX_SPREAD cannot all be normal numbers
+ * after one scaling, and one substitution t = 2^k u cannot fix that for
+ * roots of every magnitude.  So the window is cut into slices of t,
+ * (2^d, 2^(d + SLICE)] with d a multiple of SLICE, scanned upwards from
+ * Cauchy's lower bound on the roots, |c_0| / (|c_0| + max |c_i|) >
+ * 2^(e_0 - e_max - 2); the first root found is the answer.  A slice where
+ * one term beats each of the others by 2^6 at both ends beats their sum
+ * over the whole slice (the exponents are linear in log2 t): no root, and
+ * only integer work.  Any other slice is solved in u = t / 2^k, k = d +
+ * SLICE / 2, over (2^(-SLICE/2), 2^(SLICE/2)], with the coefficients
+ * c_i 2^(k i) scaled so the largest is in [1/2, 1) and those below DBL_MIN
+ * dropped: in the slice a dropped term is below 2^(-1022 + 16 SLICE) =
+ * 2^-510 of the largest term, far below rounding.  (The one-substitution
+ * scheme this replaces dropped terms that decide roots elsewhere: 2-8 % of
+ * the fuzz vectors at such spreads got a wrong root, tests/runtime/
+ * test_extremes.py.)  Every method takes this path at such spreads. */
+#define SLICE 32
+#define DOMINANCE 6
+
+/* The index of the term that beats every other by 2^DOMINANCE at t = 2^d,
+ * or -1. */
+static int dominant_term(const int e[], const int nz[], int n, int d)
+{
+    int best = -1, top = INT_MIN, second = INT_MIN;
+    for (int i = 0; i <= n; i++) {
+        if (!nz[i])
+            continue;
+        int v = e[i] + d * i;
+        if (v > top) {
+            second = top;
+            top = v;
+            best = i;
+        } else if (v > second) {
+            second = v;
+        }
+    }
+    return second == INT_MIN || top - second >= DOMINANCE ? best : -1;
+}
+
+/* First root in (0, tmax] of c (degree n >= 1, c[0] != 0, unnormalised,
+ * spread beyond MAX_SPREAD); skin as in solve() but in the units of c. */
+static int first_root_sliced(const double c[], int n, double tmax, double eps,
+                             int nograze, double *t, int *graze)
+{
+    int e[MAXN + 1], nz[MAXN + 1], emax;
+    exponents(c, n, e, nz, &emax);
+    /* u in [2^(-SLICE/2), 2^(SLICE/2)]: the lower end is closed, so a root
+     * that the slice below decided to be just beyond it (by a dropped term)
+     * is found at it; lo_open is the largest double below it */
+    const double lo = 0x1p-16, lo_open = 0x1.fffffffffffffp-17, hi = 0x1p16;
+    for (int d = floor_div(e[0] - emax - 2, SLICE) * SLICE; d < DBL_MAX_EXP; d += SLICE) {
+        if (d >= DBL_MIN_EXP - DBL_MANT_DIG && ldexp(1.0, d) >= tmax)
+            return 0; /* the slices left are beyond tmax */
+        int v = dominant_term(e, nz, n, d);
+        if (v >= 0 && v == dominant_term(e, nz, n, d + SLICE))
+            continue;
+        int k = d + SLICE / 2, top = INT_MIN;
+        for (int i = 0; i <= n; i++)
+            if (nz[i] && e[i] + k * i > top)
+                top = e[i] + k * i;
+        double q[MAXN + 1];
+        for (int i = 0; i <= n; i++) {
+            q[i] = nz[i] ? ldexp(c[i], k * i - top - 1) : 0;
+            if (fabs(q[i]) < DBL_MIN)
+                q[i] = 0; /* also -0 -> 0 */
+        }
+        int m = n;
+        while (m > 0 && q[m] == 0)
+            m--;
+        if (m == 0)
+            continue;
+        double tu = ldexp(tmax, -k);
+        double T = tu < hi ? tu : hi;
+        double skin = nograze ? -1 : eps == 0 ? 0 : ldexp(eps, -top - 1);
+        double root = 0;
+        int g = 0, found;
+        if (m == 1) {
+            root = -q[0] / q[1];
+            found = root > lo_open && root <= T;
+        } else if (m == 2) {
+            found = first_root_quadratic(q, lo_open, T, skin, &root, &g);
+        } else {
+            int s = sign_at(q, m, lo, 1);
+            for (int i = 0; i <= m && s < 0; i++)
+                q[i] = -q[i];
+            root = lo;
+            found = s == 0 || derivative_method(q, m, lo, T, skin, &root, &g);
+        }
+        if (found) {
+            *t = ldexp(root, k);
+            *graze = g;
+            return 1;
+        }
+    }
+    return 0;
 }
 
 /* ------------------------------------------------------------------ */
@@ -1496,6 +1603,32 @@ static int first_root_closed(const double c[], int n, double tmax, double *t,
 /* Entry points                                                         */
 /* ------------------------------------------------------------------ */
 
+/* solve() once the coefficients span at most 2^MAX_SPREAD (always, but for
+ * extremes): scaled exactly, then by degree and method. */
+static int solve_normalised(double c[], int n, int emax, double tu,
+                            int method, double eps, double *root, int *g)
+{
+    int E = normalise(c, n, emax);
+    /* skin < 0: no graze check; else the skin in the normalised units */
+    double skin = method == M2C_METHOD_INTERVAL_NOGRAZE ? -1
+                  : eps == 0                           ? 0
+                                                       : ldexp(eps, -E);
+    if (n == 1) {
+        *root = -c[0] / c[1];
+        return *root > 0 && *root <= tu;
+    }
+    if (n == 2)
+        return first_root_quadratic(c, 0, tu, skin, root, g);
+    if (method == M2C_METHOD_GSL)
+        return first_root_gsl(c, n, tu, root, g);
+    if (method == M2C_METHOD_CLOSED && n <= 4)
+        return first_root_closed(c, n, tu, root, g);
+    /* all roots lie below the bound: a smaller window, fewer steps */
+    double B = root_bound(c, n);
+    double T = tu < B ? tu : B; /* (fmin is a library call) */
+    return T > 0 && first_root_interval(c, n, T, skin, root, g);
+}
+
 /* The common path of every entry point: eps is the contact skin (>= 0, in
  * the units of c_in), ignored without the graze check. */
 static int solve(const double c_in[], int degree, double tmax, int method,
@@ -1519,45 +1652,15 @@ static int solve(const double c_in[], int degree, double tmax, int method,
     int n = reduce(c, degree, tmax);
     if (n <= 0)
         return 0;
-    /* tmax in the solver's variable u = t / 2^k (k = 0 but for extremes) */
-    double tu = tmax;
-    int k, E;
-    if (normalise(c, n, &k, &E)) {
-        tu = ldexp(tmax, -k);
-        n = reduce(c, n, tu); /* the flush may have made terms 0 */
-        if (n <= 0 || !(tu > 0))
-            return 0;
-        int k2, E2;
-        normalise(c, n, &k2, &E2); /* now within MAX_SPREAD: k2 = 0 */
-        E += E2;
-    }
-    /* skin < 0: no graze check; else the skin in the normalised units */
-    double skin = method == M2C_METHOD_INTERVAL_NOGRAZE ? -1
-                  : eps == 0                           ? 0
-                                                       : ldexp(eps, -E);
-
-    int g = 0, found = 0;
+    int e[MAXN + 1], nz[MAXN + 1], emax, g = 0, found;
     double root = 0;
-    if (n == 1) {
-        root = -c[0] / c[1];
-        found = root > 0 && root <= tu;
-    } else if (n == 2) {
-        found = first_root_quadratic(c, tu, skin, &root, &g);
-    } else if (method == M2C_METHOD_GSL) {
-        found = first_root_gsl(c, n, tu, &root, &g);
-    } else if (method == M2C_METHOD_CLOSED && n <= 4) {
-        found = first_root_closed(c, n, tu, &root, &g);
-    } else {
-        /* all roots lie below the bound: a smaller window, fewer steps */
-        double B = root_bound(c, n);
-        double T = tu < B ? tu : B; /* (fmin is a library call) */
-        if (T > 0)
-            found = first_root_interval(c, n, T, skin, &root, &g);
-    }
+    if (exponents(c, n, e, nz, &emax) > MAX_SPREAD)
+        found = first_root_sliced(c, n, tmax, eps,
+                                  method == M2C_METHOD_INTERVAL_NOGRAZE, &root, &g);
+    else
+        found = solve_normalised(c, n, emax, tmax, method, eps, &root, &g);
     if (!found)
         return 0;
-    if (k != 0)
-        root = ldexp(root, k);
     /* a root that underflows to 0 or overflows is not representable: none */
     if (!(root > 0 && root <= tmax && root < INFINITY))
         return 0;

@@ -36,17 +36,26 @@
  *   Steps 1-3 repeat until nothing changes; then the coefficients are scaled
  *   by a power of two (exact) so that the largest has magnitude in [1/2, 1).
  *   4. Extremes only: when the nonzero coefficients span more than 2^1021
- *      (some would fall below DBL_MIN after that scaling), the variable is
- *      changed first, t = 2^k u (exact), with the k that makes the exponents
- *      of the coefficients least spread; terms still below DBL_MIN after the
- *      scaling are dropped (the documented tolerance: a term below 2^-1022
- *      of the largest), steps 1-3 run again, the solver works in u over
- *      (0, tmax / 2^k], and the root is 2^k u.  Roots that depend on a
- *      dropped term can be missed or misplaced: measured on the fuzz vectors
- *      of tests/runtime/fuzz.py (coefficients of 1e+-100..1e+-308,
- *      subnormals, ...), about 2 % of the roots reported are not the true
- *      first root within its condition number, nearly all of them where the
- *      coefficients span more than the double range.
+ *      (some would fall below DBL_MIN after that scaling), no one scaling
+ *      serves roots of every magnitude.  Then (0, tmax] is cut into slices
+ *      (2^d, 2^(d+32)] of t (d a multiple of 32, from Cauchy's lower bound
+ *      on the roots upwards); a slice where one term beats each other by 2^6
+ *      at both ends holds no root and is skipped; any other is solved in
+ *      u = t / 2^(d+16) over [2^-16, 2^16] by the derivative method (below;
+ *      closed forms for degree 1 and 2), with the coefficients c_i 2^(k i)
+ *      scaled exactly and the terms below DBL_MIN dropped: in the slice such
+ *      a term is below 2^-510 of the largest, far below rounding.  The first
+ *      root found is the answer, whatever the method.  Tolerance, checked
+ *      against an exact integer-arithmetic oracle on the adversarial vectors
+ *      of tests/runtime/fuzz.py (tests/runtime/test_extremes.py): the first
+ *      root within max(2^-40, 64 n u kappa) relative (kappa its condition
+ *      number; at ordinary spreads the root is good to about an ulp), a
+ *      touch only where |p| is within 2^-40 of sum |c_i| t^i (or the skin),
+ *      no miss of a root that is representable and located within itself
+ *      (64 n u kappa < 1).
+ *      Steps 1-3 compare |c_n| T^(n-i) with 4 n eps |c_i| in exponents where
+ *      a side would leave the double range (T^2 underflowing to 0 made every
+ *      leading term look negligible).
  *   All four runtimes (C, Rust, Python, Modula-2) do exactly this.
  *
  * Methods

@@ -83,41 +83,40 @@ def _valid(cc: list[float], tmax: float, eps: float) -> bool:
             and all(math.isfinite(x) for x in cc) and 0 <= eps < math.inf)
 
 
+def _solve_normalised(c: list[float], n: int, emax: int, tu: float, method: str, eps: float
+                      ) -> tuple[float, bool] | None:
+    """The C runtime's solve_normalised (spread within 2^MAX_SPREAD)."""
+    E = solver.normalise(c, n, emax)
+    if method == "interval-nograze":
+        skin = -1.0
+    else:
+        skin = 0.0 if eps == 0 else solver._ldexp(eps, -E)
+    if n == 1:
+        r = solver._div(-c[0], c[1])
+        return (r, False) if 0 < r <= tu else None
+    if n == 2:
+        return solver.first_root_quadratic(c, tu, skin)
+    if method == "closed" and n <= 4:
+        return _first_root_closed(c, n, tu)
+    B = solver.root_bound(c, n)
+    T = tu if tu < B else B
+    return solver.first_root_interval(c, n, T, skin) if T > 0 else None
+
+
 def _solve_python(cc: list[float], tmax: float, method: str, eps: float) -> tuple[int, float, bool]:
     """The C runtime's solve(), on validated input."""
     c = cc + [0.0] * (MAX_DEGREE + 1 - len(cc))
     n = solver.reduce(c, len(cc) - 1, tmax)
     if n <= 0:
         return 0, math.nan, False
-    tu = tmax
-    flushed, k, E = solver.normalise(c, n)
-    if flushed:
-        tu = solver._ldexp(tmax, -k)
-        n = solver.reduce(c, n, tu)
-        if n <= 0 or not tu > 0:
-            return 0, math.nan, False
-        E += solver.normalise(c, n)[2]
-    if method == "interval-nograze":
-        skin = -1.0
+    _, _, spread, emax = solver.exponents(c, n)
+    if spread > solver.MAX_SPREAD:
+        found = solver.first_root_sliced(c, n, tmax, eps, method == "interval-nograze")
     else:
-        skin = 0.0 if eps == 0 else solver._ldexp(eps, -E)
-    found: tuple[float, bool] | None
-    if n == 1:
-        r = -c[0] / c[1]
-        found = (r, False) if 0 < r <= tu else None
-    elif n == 2:
-        found = solver.first_root_quadratic(c, tu, skin)
-    elif method == "closed" and n <= 4:
-        found = _first_root_closed(c, n, tu)
-    else:
-        B = solver.root_bound(c, n)
-        T = tu if tu < B else B
-        found = solver.first_root_interval(c, n, T, skin) if T > 0 else None
+        found = _solve_normalised(c, n, emax, tmax, method, eps)
     if found is None:
         return 0, math.nan, False
     t, graze = found
-    if k != 0:
-        t = solver._ldexp(t, k)
     if not (0 < t <= tmax and t < math.inf):
         return 0, math.nan, False
     return 1, t, graze

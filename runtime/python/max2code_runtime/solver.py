@@ -27,6 +27,10 @@ SAFE_HIGH = 2.0**60
 FAST_LIMIT_LOW = 2.0**100
 FAST_LIMIT_HIGH = 2.0**56
 MAX_ITER = 200
+# after this many iterations a Newton step moving x by over 2^-10 of it in a bracket spanning
+# more than a factor 8 becomes a geometric bisection (from lo = 0: hi / 2^64): far from every
+# root Newton converges only linearly (see the C runtime)
+SLOW_AFTER = 16
 TOL_CRITICAL = 2.0**-36
 TOL_LEVEL = 2.0**-28
 PRECISE_FROM = 2.0**-26
@@ -82,34 +86,67 @@ def _ceil_div(num: int, den: int) -> int:
 # ---------------------------------------------------------------------------
 
 
-def root_bound(c: Sequence[float], n: int) -> float:
+def _root_bound_exponent(c: Sequence[float], n: int) -> int | None:
+    """Every root is below 2^(the result) (C root_bound_exponent); None when c_0..c_{n-1} = 0."""
     en = ilogb(c[n])
     best = None
     for i in range(n):
         if c[i] != 0:
             e = _ceil_div(ilogb(c[i]) + 1 - en, n - i)
             best = e if best is None or e > best else best
-    if best is None:
+    return None if best is None else best + 1
+
+
+def root_bound(c: Sequence[float], n: int) -> float:
+    e = _root_bound_exponent(c, n)
+    if e is None:
         return 0.0
-    if best + 1 >= 1024:
+    if e >= 1024:
         return DBL_MAX
-    return math.ldexp(1.0, best + 1)
+    return math.ldexp(1.0, e)
+
+
+def _scaled_le(a: float, T: float, et: int | None, j: int, k: float, b: float) -> bool:
+    """|a| T^j <= k |b|, T = 2^et (or T itself when et is None), in mantissas and exponents
+    (C scaled_le)."""
+    mt = 1.0
+    if et is None:
+        et = ilogb(T)
+        mt = math.ldexp(T, -et)
+    ea, eb, ek = ilogb(a), ilogb(b), ilogb(k)
+    ma = math.ldexp(abs(a), -ea)
+    mb = math.ldexp(abs(b), -eb) * math.ldexp(k, -ek)
+    for _ in range(j):
+        ma *= mt
+        e = ma >= 2
+        ma = 0.5 * ma if e else ma
+        ea += et + e
+    e = mb >= 2
+    mb = 0.5 * mb if e else mb
+    eb += ek + e
+    return ea < eb or (ea == eb and ma <= mb)
 
 
 def _leading_negligible(c: Coeffs, n: int, tmax: float) -> bool:
-    T = tmax
+    """C leading_negligible (in exponents where a side leaves the normal range)."""
+    T, et = tmax, None
     if math.isinf(T):
         m = n - 1
         while m > 0 and c[m] == 0:
             m -= 1
         if m == 0:
             return False
-        T = root_bound(c, m)
+        et = _root_bound_exponent(c, m) or 0
+        T = INF if et >= 1024 else math.ldexp(1.0, et) if et >= -1022 else 0.0
     k = 4.0 * n * EPS
     Tp = 1.0
     for i in range(n - 1, -1, -1):
         Tp *= T
-        if c[i] != 0 and abs(c[n]) * Tp <= k * abs(c[i]):
+        if c[i] == 0:
+            continue
+        lhs, rhs = abs(c[n]) * Tp, k * abs(c[i])
+        normal = DBL_MIN <= Tp <= DBL_MAX and DBL_MIN <= lhs <= DBL_MAX and rhs >= DBL_MIN
+        if (lhs <= rhs) if normal else _scaled_le(c[n], T, et, n - i, k, c[i]):
             return True
     return False
 
@@ -134,53 +171,27 @@ def reduce(c: Coeffs, n: int, tmax: float) -> int:
         return n
 
 
-def _spread(e: list[int], nz: list[bool], n: int, k: int) -> int:
-    vals = [e[i] + k * i for i in range(n + 1) if nz[i]]
-    return max(vals) - min(vals)
-
-
-def _balancing_shift(e: list[int], nz: list[bool], n: int) -> int:
-    best_k, best = 0, _spread(e, nz, n, 0)
-    for i in range(n + 1):
-        if not nz[i]:
-            continue
-        for j in range(i + 1, n + 1):
-            if not nz[j]:
-                continue
-            k0 = (e[i] - e[j]) // (j - i)
-            for k in (k0, k0 + 1):
-                s = _spread(e, nz, n, k)
-                if s < best or (s == best and (abs(k) < abs(best_k) or (abs(k) == abs(best_k) and k < best_k))):
-                    best, best_k = s, k
-    return best_k
-
-
-def normalise(c: Coeffs, n: int) -> tuple[bool, int, int]:
-    """(flushed, k, E): the C runtime's normalise (see its comment)."""
+def exponents(c: Sequence[float], n: int) -> tuple[list[int], list[bool], int, int]:
+    """(e, nz, spread, emax) as C exponents(): spread -1 when every coefficient is 0."""
     nz = [c[i] != 0 for i in range(n + 1)]
     e = [ilogb(c[i]) if nz[i] else 0 for i in range(n + 1)]
     if not any(nz):
-        return False, 0, 0
+        return e, nz, -1, 0
     emax = max(e[i] for i in range(n + 1) if nz[i])
-    emin = min(e[i] for i in range(n + 1) if nz[i])
-    k, E = 0, emax + 1
-    spread = emax - emin > MAX_SPREAD
-    if spread:
-        k = _balancing_shift(e, nz, n)
-        E = max(e[i] + k * i for i in range(n + 1) if nz[i]) + 1
-    if k == 0 and -1021 <= E <= 1022:
+    return e, nz, emax - min(e[i] for i in range(n + 1) if nz[i]), emax
+
+
+def normalise(c: Coeffs, n: int, emax: int) -> int:
+    """C normalise: scale exactly so that max |c_i| (exponent emax) is in [1/2, 1); returns E."""
+    E = emax + 1
+    if -1021 <= E <= 1022:
         f = math.ldexp(1.0, -E)
         for i in range(n + 1):
             c[i] *= f
     else:
         for i in range(n + 1):
-            c[i] = _ldexp(c[i], k * i - E)
-    if not spread:
-        return False, 0, E
-    for i in range(n + 1):
-        if abs(c[i]) < DBL_MIN:
-            c[i] = 0.0
-    return True, k, E
+            c[i] = _ldexp(c[i], -E)
+    return E
 
 
 # ---------------------------------------------------------------------------
@@ -254,17 +265,18 @@ def quad_roots(a: float, b: float, c: float) -> tuple[tuple[float, float] | None
     return (min(r1, r2), max(r1, r2)), d
 
 
-def first_root_quadratic(c: Sequence[float], tmax: float, skin: float) -> tuple[float, bool] | None:
+def first_root_quadratic(c: Sequence[float], tmax: float, skin: float,
+                         lo: float = 0.0) -> tuple[float, bool] | None:
     roots, disc = quad_roots(c[2], c[1], c[0])
     if roots is not None:
         for r in roots:
-            if 0 < r <= tmax:
+            if lo < r <= tmax:
                 return r, disc == 0
         return None
     if skin < 0:
         return None
     x = _div(-c[1], 2 * c[2])
-    if 0 < x <= tmax and _within_noise(c, 2, x, skin):
+    if lo < x <= tmax and _within_noise(c, 2, x, skin):
         return x, True
     return None
 
@@ -317,7 +329,7 @@ def _refine_root(P: Sequence[float], D: Sequence[float], m: int, lo: float, hi: 
     step = step_old = hi - lo
     precise = False
     stop = tol if tol > 0 else PRECISE_FROM
-    for _ in range(MAX_ITER):
+    for it in range(MAX_ITER):
         k = _scale_exponent(x, m)
         f, df, size = _value_and_slope(P, D, m, x, k, precise)
         if tol == 0 and not precise and abs(f) <= noise_factor(m) * size:
@@ -341,10 +353,12 @@ def _refine_root(P: Sequence[float], D: Sequence[float], m: int, lo: float, hi: 
             stop = 2 * U
         xn = x - (_ldexp(_div(f, df), k) if k else _div(f, df))
         s = x - xn
-        if not (lo < xn < hi) or abs(s) > 0.5 * abs(step_old):
+        slow = it >= SLOW_AFTER and (lo == 0 or hi > 8 * lo) and abs(s) > 2.0**-10 * abs(xn)
+        if not (lo < xn < hi) or abs(s) > 0.5 * abs(step_old) or slow:
             if precise and abs(s) <= NOISE_STEP * abs(x):
                 return x
-            xn = _split_point(lo, hi)
+            far = hi * 2.0**-64
+            xn = far if slow and lo == 0 and far > DBL_MIN else _split_point(lo, hi)
             s = x - xn
         step_old = step
         step = s
@@ -596,3 +610,68 @@ def first_root_interval(c: Sequence[float], n: int, T: float, skin: float) -> tu
             return r
         lo = r
     return _derivative_method(p, n, lo, T, skin)
+
+
+# ---------------------------------------------------------------------------
+# Extreme spreads (see the C runtime's first_root_sliced)
+# ---------------------------------------------------------------------------
+
+SLICE = 32
+DOMINANCE = 6
+_LO = 2.0**-16
+_LO_OPEN = math.nextafter(_LO, 0.0)
+_HI = 2.0**16
+
+
+def _dominant_term(e: list[int], nz: list[bool], n: int, d: int) -> int | None:
+    best, top, second = None, None, None
+    for i in range(n + 1):
+        if not nz[i]:
+            continue
+        v = e[i] + d * i
+        if top is None or v > top:
+            second, top, best = top, v, i
+        elif second is None or v > second:
+            second = v
+    return best if second is None or top - second >= DOMINANCE else None
+
+
+def first_root_sliced(c: Sequence[float], n: int, tmax: float, eps: float,
+                      nograze: bool) -> tuple[float, bool] | None:
+    """Coefficients spanning more than 2^MAX_SPREAD (c[0] != 0, not normalised), slice by
+    slice of t: the C runtime's first_root_sliced."""
+    e, nz, _, emax = exponents(c, n)
+    d = (e[0] - emax - 2) // SLICE * SLICE
+    while d < 1024:
+        if d >= -1074 and math.ldexp(1.0, d) >= tmax:
+            return None
+        v = _dominant_term(e, nz, n, d)
+        if v is not None and v == _dominant_term(e, nz, n, d + SLICE):
+            d += SLICE
+            continue
+        k = d + SLICE // 2
+        top = max(e[i] + k * i for i in range(n + 1) if nz[i])
+        q = [_ldexp(c[i], k * i - top - 1) if nz[i] else 0.0 for i in range(n + 1)]
+        q = [x if abs(x) >= DBL_MIN else 0.0 for x in q]
+        m = n
+        while m > 0 and q[m] == 0:
+            m -= 1
+        if m > 0:
+            tu = _ldexp(tmax, -k)
+            T = tu if tu < _HI else _HI
+            skin = -1.0 if nograze else 0.0 if eps == 0 else _ldexp(eps, -top - 1)
+            hit: tuple[float, bool] | None
+            if m == 1:
+                r = _div(-q[0], q[1])
+                hit = (r, False) if _LO_OPEN < r <= T else None
+            elif m == 2:
+                hit = first_root_quadratic(q, T, skin, _LO_OPEN)
+            else:
+                s = _sign_at(q, m, _LO, True)
+                if s < 0:
+                    q = [-x for x in q]
+                hit = (_LO, False) if s == 0 else _derivative_method(q, m, _LO, T, skin)
+            if hit is not None:
+                return _ldexp(hit[0], k), hit[1]
+        d += SLICE
+    return None

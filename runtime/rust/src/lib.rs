@@ -153,23 +153,37 @@ fn solve(coef: &[f64], tmax: f64, method: Method, eps: f64) -> Status {
         return Status::Invalid;
     }
     let mut c: Coeffs = [0.0; MAXN + 1];
-    c[..coef.len()].copy_from_slice(coef);
+    // an element loop, as C's: copy_from_slice of a run-time length is a memcpy call
+    for (d, &v) in c.iter_mut().zip(coef) {
+        *d = v;
+    }
     let n = solver::reduce(&mut c, coef.len() - 1, tmax);
     if n <= 0 {
         return Status::NoRoot;
     }
-    let mut n = n as usize;
-    let mut tu = tmax;
-    let (flushed, k, mut e) = solver::normalise(&mut c, n);
-    if flushed {
-        tu = fp::ldexp(tmax, -i64::from(k));
-        let n2 = solver::reduce(&mut c, n, tu);
-        if n2 <= 0 || tu.is_nan() || tu <= 0.0 {
-            return Status::NoRoot;
-        }
-        n = n2 as usize;
-        e += solver::normalise(&mut c, n).2;
+    let n = n as usize;
+    let mut e = [0i32; MAXN + 1];
+    let mut nz = [false; MAXN + 1];
+    let (spread, emax) = solver::exponents(&c, n, &mut e, &mut nz);
+    let hit = if spread > solver::max_spread() {
+        solver::first_root_sliced(&c, n, tmax, eps, method == Method::IntervalNoGraze)
+    } else {
+        solve_normalised(&mut c, n, emax, tmax, method, eps)
+    };
+    let Some((t, graze)) = hit else {
+        return Status::NoRoot;
+    };
+    if t > 0.0 && t <= tmax && t < f64::INFINITY {
+        Status::Root { t, graze }
+    } else {
+        Status::NoRoot
     }
+}
+
+/// C `solve_normalised`: coefficients within 2^MAX_SPREAD, scaled exactly, then by degree and
+/// method.
+fn solve_normalised(c: &mut Coeffs, n: usize, emax: i32, tu: f64, method: Method, eps: f64) -> Option<(f64, bool)> {
+    let e = solver::normalise(c, n, emax);
     let skin = if method == Method::IntervalNoGraze {
         -1.0
     } else if eps == 0.0 {
@@ -177,33 +191,22 @@ fn solve(coef: &[f64], tmax: f64, method: Method, eps: f64) -> Status {
     } else {
         fp::ldexp(eps, -i64::from(e))
     };
-    let hit = match n {
+    match n {
         1 => {
             let r = -c[0] / c[1];
             (r > 0.0 && r <= tu).then_some((r, false))
         }
-        2 => solver::quadratic(&c, tu, skin),
+        2 => solver::quadratic(c, tu, skin),
         3 | 4 if method == Method::Closed => {
             let mut c9 = [0.0; 9];
             c9.copy_from_slice(&c[..9]);
             let res = if n == 3 { closed::cubic_first(&c9, tu) } else { closed::quartic_first(&c9, tu) };
             match res {
                 Ok(hit) => hit,
-                Err(()) => interval(&c, n, tu, skin),
+                Err(()) => interval(c, n, tu, skin),
             }
         }
-        _ => interval(&c, n, tu, skin),
-    };
-    let Some((mut t, graze)) = hit else {
-        return Status::NoRoot;
-    };
-    if k != 0 {
-        t = fp::ldexp(t, i64::from(k));
-    }
-    if t > 0.0 && t <= tmax && t < f64::INFINITY {
-        Status::Root { t, graze }
-    } else {
-        Status::NoRoot
+        _ => interval(c, n, tu, skin),
     }
 }
 

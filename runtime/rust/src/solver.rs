@@ -23,6 +23,10 @@ const SAFE_HIGH: f64 = 1.152_921_504_606_847e18; // 2^60
 const FAST_LIMIT_LOW: f64 = 1.267_650_600_228_229_4e30; // 2^100
 const FAST_LIMIT_HIGH: f64 = 7.205_759_403_792_794e16; // 2^56
 const MAX_ITER: usize = 200;
+/// After this many iterations a Newton step that moves x by over 2^-10 of it in a bracket
+/// spanning more than a factor 8 is replaced by a geometric bisection (from lo = 0: hi / 2^64):
+/// far from every root Newton converges only linearly (see the C runtime).
+const SLOW_AFTER: usize = 16;
 const TOL_CRITICAL: f64 = 1.455_191_522_836_685_2e-11; // 2^-36
 const TOL_LEVEL: f64 = 3.725_290_298_461_914e-9; // 2^-28
 const PRECISE_FROM: f64 = 1.490_116_119_384_765_6e-8; // 2^-26
@@ -64,38 +68,73 @@ const fn recip_table() -> [f64; MAXN + 1] {
 /// solve, and an integer division is slow).
 #[inline]
 fn ceil_div(num: i32, den: i32) -> i32 {
-    let mut q = (f64::from(num) * RECIP[den as usize]) as i32; // toward zero
+    debug_assert!((1..=MAXN as i32).contains(&den) && num.abs() < 1 << 13);
+    // SAFETY: 0 < den <= MAXN indexes RECIP, and |num / den| < 2^13 fits an i32.  Unchecked:
+    // C's plain truncation (`as i32` saturates, with NaN and range compares and selects, and
+    // the index is bounds-checked: a third of root_bound's time, which runs on every solve)
+    let mut q: i32 = unsafe { (f64::from(num) * *RECIP.get_unchecked(den as usize)).to_int_unchecked() };
     q += i32::from(q * den < num);
     q -= i32::from((q - 1) * den >= num);
     q
 }
 
-/// Fujiwara bound (C `root_bound`).
-pub(crate) fn root_bound(c: &[f64], n: usize) -> f64 {
+/// C `root_bound_exponent`: every root is below 2^(the result); `None` when all c_i (i < n)
+/// are 0.
+fn root_bound_exponent(c: &[f64], n: usize) -> Option<i32> {
     let en = exponent_of(c[n]);
     let mut best = i32::MIN;
-    for i in 0..n {
-        if c[i] == 0.0 {
-            continue;
+    for (i, &ci) in c[..n].iter().enumerate() {
+        if ci != 0.0 {
+            best = best.max(ceil_div(exponent_of(ci) + 1 - en, (n - i) as i32));
         }
-        let e = ceil_div(exponent_of(c[i]) + 1 - en, (n - i) as i32);
-        best = best.max(e);
     }
-    if best == i32::MIN {
-        return 0.0;
-    }
-    if best + 1 >= 1024 {
-        return f64::MAX;
-    }
-    if best + 1 >= -1022 {
-        pow2(best + 1)
-    } else {
-        ldexp(1.0, i64::from(best + 1))
+    (best != i32::MIN).then_some(best + 1)
+}
+
+/// Fujiwara bound (C `root_bound`).
+pub(crate) fn root_bound(c: &[f64], n: usize) -> f64 {
+    match root_bound_exponent(c, n) {
+        None => 0.0,
+        Some(e) if e >= 1024 => f64::MAX,
+        Some(e) if e >= -1022 => pow2(e),
+        Some(e) => ldexp(1.0, i64::from(e)),
     }
 }
 
+/// C `scaled_le`: |a| T^j <= k |b| with T = 2^et (or T itself when et is `None`), in
+/// mantissas and exponents.
+#[cold]
+fn scaled_le(a: f64, t: f64, et: Option<i32>, j: usize, k: f64, b: f64) -> bool {
+    let (mt, et) = match et {
+        Some(et) => (1.0, et),
+        None => {
+            let et = exponent_of(t);
+            (ldexp(t, -i64::from(et)), et)
+        }
+    };
+    let (mut ea, mut eb, ek) = (exponent_of(a), exponent_of(b), exponent_of(k));
+    let mut ma = ldexp(a.abs(), -i64::from(ea));
+    let mut mb = ldexp(b.abs(), -i64::from(eb)) * ldexp(k, -i64::from(ek));
+    for _ in 0..j {
+        ma *= mt;
+        let e = ma >= 2.0;
+        if e {
+            ma *= 0.5;
+        }
+        ea += et + i32::from(e);
+    }
+    let e = mb >= 2.0;
+    if e {
+        mb *= 0.5;
+    }
+    eb += ek + i32::from(e);
+    ea < eb || (ea == eb && ma <= mb)
+}
+
+/// C `leading_negligible` (in exponents where a side leaves the normal range).
 fn leading_negligible(c: &[f64], n: usize, tmax: f64) -> bool {
     let mut t = tmax;
+    let mut et = None; // T's exponent when T is a power of two beyond range
     if t.is_infinite() {
         let mut m = n - 1;
         while m > 0 && c[m] == 0.0 {
@@ -104,13 +143,28 @@ fn leading_negligible(c: &[f64], n: usize, tmax: f64) -> bool {
         if m == 0 {
             return false;
         }
-        t = root_bound(c, m);
+        let e = root_bound_exponent(c, m).unwrap_or(0);
+        et = Some(e);
+        t = if e >= 1024 {
+            f64::INFINITY
+        } else if e >= -1022 {
+            pow2(e)
+        } else {
+            0.0
+        };
     }
     let k = 4.0 * n as f64 * f64::EPSILON;
     let mut tp = 1.0;
     for i in (0..n).rev() {
         tp *= t;
-        if c[i] != 0.0 && c[n].abs() * tp <= k * c[i].abs() {
+        if c[i] == 0.0 {
+            continue;
+        }
+        let (lhs, rhs) = (c[n].abs() * tp, k * c[i].abs());
+        let normal = (f64::MIN_POSITIVE..=f64::MAX).contains(&tp)
+            && (f64::MIN_POSITIVE..=f64::MAX).contains(&lhs)
+            && rhs >= f64::MIN_POSITIVE;
+        if if normal { lhs <= rhs } else { scaled_le(c[n], t, et, n - i, k, c[i]) } {
             return true;
         }
     }
@@ -143,88 +197,40 @@ pub(crate) fn reduce(c: &mut Coeffs, mut n: usize, tmax: f64) -> i32 {
     }
 }
 
-fn spread_after_shift(e: &[i32], nz: &[bool], n: usize, k: i32) -> i32 {
-    let (mut hi, mut lo) = (i32::MIN, i32::MAX);
-    for i in 0..=n {
-        if nz[i] {
-            let v = e[i] + k * i as i32;
-            hi = hi.max(v);
-            lo = lo.min(v);
-        }
-    }
-    hi - lo
-}
-
-fn balancing_shift(e: &[i32], nz: &[bool], n: usize) -> i32 {
-    let (mut best_k, mut best): (i32, i32) = (0, spread_after_shift(e, nz, n, 0));
-    for i in 0..=n {
-        if !nz[i] {
-            continue;
-        }
-        for j in i + 1..=n {
-            if !nz[j] {
-                continue;
-            }
-            let k0 = (e[i] - e[j]).div_euclid((j - i) as i32);
-            for k in k0..=k0 + 1 {
-                let s = spread_after_shift(e, nz, n, k);
-                if s < best || (s == best && (k.abs() < best_k.abs() || (k.abs() == best_k.abs() && k < best_k))) {
-                    best = s;
-                    best_k = k;
-                }
-            }
-        }
-    }
-    best_k
-}
-
-/// C `normalise`: returns (flushed, k, E).
-pub(crate) fn normalise(c: &mut Coeffs, n: usize) -> (bool, i32, i32) {
-    let mut e = [0i32; MAXN + 1];
-    let mut nz = [false; MAXN + 1];
+/// C `exponents`: the exponents of c[0..=n] (nz: nonzero), the spread (-1: all zero) and the
+/// largest exponent.
+pub(crate) fn exponents(c: &[f64], n: usize, e: &mut [i32; MAXN + 1], nz: &mut [bool; MAXN + 1]) -> (i32, i32) {
     let (mut emax, mut emin) = (i32::MIN, i32::MAX);
-    for i in 0..=n {
+    for i in 0..=n.min(MAXN) {
         nz[i] = c[i] != 0.0;
+        e[i] = if nz[i] { exponent_of(c[i]) } else { 0 };
         if nz[i] {
-            e[i] = exponent_of(c[i]);
             emax = emax.max(e[i]);
             emin = emin.min(e[i]);
         }
     }
-    if emax == i32::MIN {
-        return (false, 0, 0);
-    }
-    let (mut k, mut big_e) = (0, emax + 1);
-    let spread = emax - emin > MAX_SPREAD;
-    if spread {
-        k = balancing_shift(&e, &nz, n);
-        let mut top = i32::MIN;
-        for i in 0..=n {
-            if nz[i] {
-                top = top.max(e[i] + k * i as i32);
-            }
-        }
-        big_e = top + 1;
-    }
-    if k == 0 && (-1021..=1022).contains(&big_e) {
+    (if emax == i32::MIN { -1 } else { emax - emin }, emax)
+}
+
+/// The spread above which `solve` takes `first_root_sliced`.
+pub(crate) const fn max_spread() -> i32 {
+    MAX_SPREAD
+}
+
+/// C `normalise`: scales exactly so that max |c_i| (exponent emax) is in [1/2, 1); returns E.
+pub(crate) fn normalise(c: &mut Coeffs, n: usize, emax: i32) -> i32 {
+    let big_e = emax + 1;
+    if (-1021..=1022).contains(&big_e) {
         let f = pow2(-big_e);
         for v in c.iter_mut().take(n + 1) {
             *v *= f;
         }
     } else {
-        for (i, v) in c.iter_mut().enumerate().take(n + 1) {
-            *v = ldexp(*v, i64::from(k) * i as i64 - i64::from(big_e));
+        for v in c.iter_mut().take(n + 1) {
+            *v = ldexp(*v, -i64::from(big_e));
         }
     }
-    if !spread {
-        return (false, 0, big_e);
-    }
-    for v in c.iter_mut().take(n + 1) {
-        if v.abs() < f64::MIN_POSITIVE {
-            *v = 0.0;
-        }
-    }
-    (true, k, big_e)
+    big_e
 }
 
 #[inline]
@@ -322,11 +328,11 @@ pub(crate) fn quad_roots(a: f64, b: f64, c: f64) -> (Option<[f64; 2]>, f64) {
     (Some([r1.min(r2), r1.max(r2)]), d)
 }
 
-fn first_root_quadratic(c: &[f64], tmax: f64, skin: f64) -> Option<(f64, bool)> {
+fn first_root_quadratic(c: &[f64], lo: f64, tmax: f64, skin: f64) -> Option<(f64, bool)> {
     let (roots, disc) = quad_roots(c[2], c[1], c[0]);
     if let Some(r) = roots {
         for x in r {
-            if x > 0.0 && x <= tmax {
+            if x > lo && x <= tmax {
                 return Some((x, disc == 0.0));
             }
         }
@@ -336,7 +342,7 @@ fn first_root_quadratic(c: &[f64], tmax: f64, skin: f64) -> Option<(f64, bool)> 
         return None;
     }
     let x = -c[1] / (2.0 * c[2]);
-    (x > 0.0 && x <= tmax && within_noise(c, 2, x, skin)).then_some((x, true))
+    (x > lo && x <= tmax && within_noise(c, 2, x, skin)).then_some((x, true))
 }
 
 fn split_point(lo: f64, hi: f64) -> f64 {
@@ -400,7 +406,7 @@ fn refine_root(p: &[f64], d: &[f64], m: usize, mut lo: f64, mut hi: f64, slo: i3
     let mut step_old = step;
     let mut precise = false;
     let mut stop = if tol > 0.0 { tol } else { PRECISE_FROM };
-    for _ in 0..MAX_ITER {
+    for it in 0..MAX_ITER {
         let k = scale_exponent(x, m);
         let (f, df, size) = value_and_slope(p, d, m, x, k, precise);
         if tol == 0.0 && !precise && f.abs() <= noise_factor(m) * size {
@@ -430,11 +436,14 @@ fn refine_root(p: &[f64], d: &[f64], m: usize, mut lo: f64, mut hi: f64, slo: i3
         }
         let mut xn = x - if k != 0 { ldexp(f / df, i64::from(k)) } else { f / df };
         let mut s = x - xn;
-        if !(xn > lo && xn < hi) || s.abs() > 0.5 * step_old.abs() {
+        // see SLOW_AFTER
+        let slow = it >= SLOW_AFTER && (lo == 0.0 || hi > 8.0 * lo) && s.abs() > 9.765_625e-4 * xn.abs(); // 2^-10
+        if !(xn > lo && xn < hi) || s.abs() > 0.5 * step_old.abs() || slow {
             if precise && s.abs() <= NOISE_STEP * x.abs() {
                 return x;
             }
-            xn = split_point(lo, hi);
+            let far = hi * f64::from_bits(0x3bf0_0000_0000_0000); // 2^-64
+            xn = if slow && lo == 0.0 && far > f64::MIN_POSITIVE { far } else { split_point(lo, hi) };
             s = x - xn;
         }
         step_old = step;
@@ -522,16 +531,6 @@ struct Point {
 }
 
 impl Point {
-    const EMPTY: Point = Point {
-        x: 0.0,
-        px: 0.0,
-        dpx: 0.0,
-        vp: 0,
-        vq: 0,
-        qt: [MaybeUninit::uninit(); MAXN + 1],
-        tol: [MaybeUninit::uninit(); MAXN + 1],
-    };
-
     /// q's Taylor coefficient k (k <= n: written by point_at / point_at_zero).
     #[inline]
     fn qt(&self, k: usize) -> f64 {
@@ -547,27 +546,36 @@ impl Point {
 }
 
 #[inline]
-fn point_at_zero(p: &[f64], n: usize, e: f64, skin: f64) -> Point {
-    let mut pt = Point::EMPTY;
-    let mut qt = [0.0f64; MAXN + 1];
-    pt.px = p[0];
-    pt.dpx = p[1];
-    for i in 0..=n {
-        qt[i] = p[i] - e * p[i].abs();
-        pt.tol[i].write(f64::EPSILON * p[i].abs());
+/// C `point_at_zero`, written in place into a slot (building a `Point` and returning it cost a
+/// memset and a 300-byte memcpy per solve: a tenth of a "no root" solve).
+fn point_at_zero<'a>(p: &[f64], n: usize, e: f64, skin: f64, slot: &'a mut MaybeUninit<Point>) -> &'a mut Point {
+    let n = n.min(MAXN);
+    let pt = slot.as_mut_ptr();
+    // SAFETY: field writes through the slot's pointer (no reference to uninitialised memory is
+    // made; the fields have no drop glue); every field is written before the reference is made
+    // (qt and tol entries 0..=n, all that is ever read).
+    unsafe {
+        (*pt).x = 0.0;
+        (*pt).px = p[0];
+        (*pt).dpx = p[1];
+        for i in 0..=n {
+            (*pt).qt[i] = MaybeUninit::new(p[i] - e * p[i].abs());
+            (*pt).tol[i] = MaybeUninit::new(f64::EPSILON * p[i].abs());
+        }
+        (*pt).vp = sign_changes(p, n);
+        (*pt).vq = (*pt).vp;
+        let pt = slot.assume_init_mut();
+        if skin > 0.0 {
+            pt.qt[0] = MaybeUninit::new(pt.qt(0) - skin);
+            pt.tol[0] = MaybeUninit::new(pt.tol(0) + f64::EPSILON * skin);
+            let mut qt = [0.0f64; MAXN + 1];
+            for (i, q) in qt.iter_mut().enumerate().take(n + 1) {
+                *q = pt.qt(i);
+            }
+            pt.vq = sign_changes(&qt, n);
+        }
+        pt
     }
-    pt.vp = sign_changes(p, n);
-    if skin > 0.0 {
-        qt[0] -= skin;
-        pt.tol[0].write(pt.tol(0) + f64::EPSILON * skin);
-        pt.vq = sign_changes(&qt, n);
-    } else {
-        pt.vq = pt.vp;
-    }
-    for i in 0..=n {
-        pt.qt[i].write(qt[i]);
-    }
-    pt
 }
 
 /// Writes the point x into `slot` (all of x, px, vp, vq and entries 0..=n of qt and tol) and
@@ -680,11 +688,12 @@ enum Isolation {
 fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64) -> Isolation {
     let e = if skin >= 0.0 { noise_factor(n) } else { 0.0 };
     let sk = if skin > 0.0 { skin } else { 0.0 };
-    let mut a = point_at_zero(p, n, e, sk);
+    let mut a_slot = MaybeUninit::<Point>::uninit();
+    let a = point_at_zero(p, n, e, sk, &mut a_slot);
     if !(a.qt(0) - a.tol(0) > 0.0) {
         return Isolation::Unresolved(0.0);
     }
-    if a.vq == 0 || clearly_positive(&a, n, t_end, 1) {
+    if a.vq == 0 || clearly_positive(a, n, t_end, 1) {
         return Isolation::Cleared;
     }
     let mut slot = MaybeUninit::<Taylor>::uninit();
@@ -704,8 +713,8 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64) -> Isolation {
         let b = unsafe { stack[top - 1].assume_init_ref() };
         let w = b.x - a.x;
         let odd = (a.vp - b.vp) % 2 != 0;
-        if a.vq == b.vq || (!odd && (clearly_positive(&a, n, w, 1) || clearly_positive(b, n, w, -1))) {
-            a = *b;
+        if a.vq == b.vq || (!odd && (clearly_positive(a, n, w, 1) || clearly_positive(b, n, w, -1))) {
+            *a = *b;
             top -= 1;
             if top == 0 {
                 return Isolation::Cleared;
@@ -742,7 +751,7 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64) -> Isolation {
         if !(b.qt(0) - b.tol(0) > 0.0) {
             return Isolation::Unresolved(b.x);
         }
-        a = *b;
+        *a = *b;
         top -= 1;
         if top == 0 {
             return Isolation::Cleared;
@@ -864,7 +873,109 @@ pub(crate) fn first_root_interval(c: &[f64], n: usize, t_end: f64, skin: f64) ->
 
 /// The quadratic, for the entry point.
 pub(crate) fn quadratic(c: &[f64], tmax: f64, skin: f64) -> Option<(f64, bool)> {
-    first_root_quadratic(c, tmax, skin)
+    first_root_quadratic(c, 0.0, tmax, skin)
+}
+
+const SLICE: i32 = 32;
+const DOMINANCE: i32 = 6;
+
+/// C `dominant_term`: the term that beats every other by 2^DOMINANCE at t = 2^d.
+fn dominant_term(e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n: usize, d: i32) -> Option<usize> {
+    let (mut best, mut top, mut second) = (None, i32::MIN, i32::MIN);
+    for i in 0..=n {
+        if !nz[i] {
+            continue;
+        }
+        let v = e[i] + d * i as i32;
+        if v > top {
+            second = top;
+            top = v;
+            best = Some(i);
+        } else if v > second {
+            second = v;
+        }
+    }
+    if second == i32::MIN || top - second >= DOMINANCE {
+        best
+    } else {
+        None
+    }
+}
+
+/// C `first_root_sliced`: coefficients spanning more than 2^MAX_SPREAD, solved slice by slice
+/// of t (see the C runtime); c has c[0] != 0 and is not normalised.
+pub(crate) fn first_root_sliced(c: &[f64], n: usize, tmax: f64, eps: f64, nograze: bool) -> Option<(f64, bool)> {
+    let mut e = [0i32; MAXN + 1];
+    let mut nz = [false; MAXN + 1];
+    let (_, emax) = exponents(c, n, &mut e, &mut nz);
+    let lo = pow2(-16);
+    let lo_open = f64::from_bits(lo.to_bits() - 1);
+    let hi = pow2(16);
+    let mut d = (e[0] - emax - 2).div_euclid(SLICE) * SLICE;
+    while d < 1024 {
+        if d >= -1074 && ldexp(1.0, i64::from(d)) >= tmax {
+            return None;
+        }
+        let v = dominant_term(&e, &nz, n, d);
+        if v.is_some() && v == dominant_term(&e, &nz, n, d + SLICE) {
+            d += SLICE;
+            continue;
+        }
+        let k = d + SLICE / 2;
+        let mut top = i32::MIN;
+        for i in 0..=n {
+            if nz[i] {
+                top = top.max(e[i] + k * i as i32);
+            }
+        }
+        let mut q = [0.0f64; MAXN + 1];
+        for i in 0..=n {
+            q[i] = if nz[i] { ldexp(c[i], i64::from(k * i as i32 - top - 1)) } else { 0.0 };
+            if q[i].abs() < f64::MIN_POSITIVE {
+                q[i] = 0.0;
+            }
+        }
+        let mut m = n;
+        while m > 0 && q[m] == 0.0 {
+            m -= 1;
+        }
+        if m > 0 {
+            let tu = ldexp(tmax, -i64::from(k));
+            let t_end = if tu < hi { tu } else { hi };
+            let skin = if nograze {
+                -1.0
+            } else if eps == 0.0 {
+                0.0
+            } else {
+                ldexp(eps, -i64::from(top + 1))
+            };
+            let hit = match m {
+                1 => {
+                    let r = -q[0] / q[1];
+                    (r > lo_open && r <= t_end).then_some((r, false))
+                }
+                2 => first_root_quadratic(&q, lo_open, t_end, skin),
+                _ => {
+                    let s = sign_at(&q, m, lo, true);
+                    if s < 0 {
+                        for v in q.iter_mut().take(m + 1) {
+                            *v = -*v;
+                        }
+                    }
+                    if s == 0 {
+                        Some((lo, false))
+                    } else {
+                        derivative_method(&q, m, lo, t_end, skin)
+                    }
+                }
+            };
+            if let Some((r, g)) = hit {
+                return Some((ldexp(r, i64::from(k)), g));
+            }
+        }
+        d += SLICE;
+    }
+    None
 }
 
 static BINOM: [[f64; MAXN + 1]; MAXN + 1] = binom_table();
