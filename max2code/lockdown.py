@@ -164,8 +164,7 @@ def _scan(text: str, start: Pos, folder: str, whole: str,
 
 def _called(text: str, i: int) -> bool:
     """Is the name ending at `i` applied: followed by `(` (blanks between)?"""
-    j = _BLANK.match(text, i)
-    return j is not None and text.startswith("(", j.end())
+    return text.startswith("(", _BLANK.match(text, i).end())  # type: ignore[union-attr]
 
 
 def _statement_start(text: str, i: int, start: Pos) -> int:

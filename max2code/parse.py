@@ -108,17 +108,24 @@ def stand_in(text: str, path: str) -> str:
 
 
 # Where the grammar wants a NAME, `begin` is one (a parameter may be called BEGIN): after a
-# comma, an `=`, or a section keyword that a name follows.
-_NAME_BEFORE = re.compile(r"(?:[,=]|(?<![\w])(?:function|parameters|variable|role|initialise"
-                          r"|term|finalise))[ \t\r\n]*\Z", re.I)
+# comma, an `=`, or a section keyword that a name follows (the word ends the text it is
+# matched against: the header up to the blanks before this `begin`).
+_NAME_BEFORE = re.compile(r"(?:[,=]|(?<![\w])(?:function|parameters|variable|role|initialise|term"
+                          r"|finalise))\Z", re.I)
+_WORD_BEFORE = 10  # the longest keyword above, `parameters`
 
 
 def _begin_is_a_name(text: str, m: re.Match[str]) -> bool:
-    """Is this `begin` a name in a header list rather than the program's start? Only the last
-    64 characters before it are looked at, so the pre-pass stays linear."""
+    """Is this `begin` a name in a header list rather than the program's start? The blanks
+    before it are walked back over (each text position at most once in the whole pre-pass:
+    blanks before one `begin` are not before another), then a word of bounded length is
+    matched, so the pre-pass stays linear."""
     if m.group() == "{":
         return False
-    return _NAME_BEFORE.search(text, max(0, m.start() - 64), m.start()) is not None
+    i = m.start()
+    while i > 0 and text[i - 1] in " \t\r\n":
+        i -= 1
+    return _NAME_BEFORE.search(text, max(0, i - _WORD_BEFORE - 1), i) is not None
 
 
 def _block_end(text: str, start: int, path: str) -> int:

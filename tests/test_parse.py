@@ -124,3 +124,6 @@ def test_a_parameter_named_begin_is_a_name_not_the_program() -> None:
     assert list(spec.parameters.value) == ["a", "BEGIN"]
     assert [st.text.strip() for st in spec.program.statements] == ["a*t - BEGIN;"]
     assert spec.program.pos.line == 4
+    # however many blanks stand between the comma and the name
+    spec = parse_text("parameters a,\n" + " " * 200 + "BEGIN\nbegin\na*t - BEGIN;\nend\n", "b.mxm")
+    assert list(spec.parameters.value) == ["a", "BEGIN"]
