@@ -63,12 +63,7 @@ static int input_is_valid(const double c[], int degree, double tmax,
 {
     if (c == NULL || t == NULL || degree < 0 || degree > MAXN)
         return 0;
-    if (isnan(tmax) || tmax <= 0)
-        return 0;
-    for (int i = 0; i <= degree; i++)
-        if (!isfinite(c[i]))
-            return 0;
-    return 1;
+    return !isnan(tmax) && tmax > 0; /* the coefficients: load_coefficients */
 }
 
 /* ilogb(x) for finite nonzero x, read from the bits: it runs for every
@@ -90,47 +85,75 @@ static double pow2(int e)
     return x;
 }
 
-/* ceil(num / den) for 0 < den <= MAXN and |num| < 2^12.  The product with
- * the rounded reciprocal is within 1 of it, and the integer checks fix that:
- * this runs 2n times per solve, and an integer division is slow. */
+/* ceil(num / den) for 0 < den <= MAXN and |num| < 2^12, without a division:
+ * this runs n times per solve (twice with tmax = inf), and an integer
+ * division is slow.  num + 2^12 den + den - 1 = x is positive and below
+ * 2^17, and for such x, floor(x / den) = floor(x ceil(2^32 / den) / 2^32)
+ * (the excess of den ceil(2^32 / den) over 2^32 is below den, and x den <
+ * 2^32).  Checked for every num and den in tests/runtime (the C unit). */
 static int ceil_div(int num, int den)
 {
-    static const double RECIP[MAXN + 1] = {
-        0,        1,        1.0 / 2,  1.0 / 3,  1.0 / 4,  1.0 / 5,
-        1.0 / 6,  1.0 / 7,  1.0 / 8,  1.0 / 9,  1.0 / 10, 1.0 / 11,
-        1.0 / 12, 1.0 / 13, 1.0 / 14, 1.0 / 15, 1.0 / 16};
-    int q = (int)(num * RECIP[den]); /* toward zero */
-    q += q * den < num;                /* (no branches: unpredictable) */
-    q -= (q - 1) * den >= num;
-    return q;
+#define M(d) ((0x100000000ULL + (d) - 1) / (d))
+    static const uint64_t MAGIC[MAXN + 1] = {
+        0,     M(1),  M(2),  M(3),  M(4),  M(5),  M(6),  M(7),  M(8),
+        M(9),  M(10), M(11), M(12), M(13), M(14), M(15), M(16)};
+#undef M
+    uint64_t x = (uint64_t)(num + 4096 * den + den - 1);
+    return (int)((x * MAGIC[den]) >> 32) - 4096;
+}
+
+/* Copies src[0..n] to c (which may be src) and reads the exponents from the
+ * bits in the same pass: e[i] = ilogb(c[i]) and nz[i] = (c[i] != 0), e[i] = 0
+ * for zeros.  Returns 0 when a coefficient is not finite (invalid input).
+ * The preparation below works on these integers: a solve that is cleared at
+ * once is mostly preparation, and the floating-point forms of these tests
+ * cost a dozen Horner evaluations.  (A plain copy loop became `rep movsq`,
+ * a sixth of such a solve.) */
+static int load_coefficients(const double src[], int n, double c[], int e[],
+                             int nz[])
+{
+    int bad = 0;
+    for (int i = 0; i <= n; i++) {
+        double x = src[i];
+        uint64_t b;
+        memcpy(&b, &x, sizeof b);
+        c[i] = x;
+        int be = (int)((b >> 52) & 0x7ff);
+        bad |= be == 0x7ff;
+        nz[i] = (b << 1) != 0;
+        e[i] = be != 0 ? be - 1023 : nz[i] ? ilogb(x) : 0; /* subnormal: rare */
+    }
+    return !bad;
 }
 
 /* Fujiwara bound 2 max |c_i/c_n|^(1/(n-i)), each ratio rounded up to a power
  * of two using exponents only (no overflow, no logs): every root z has
- * |z| < 2^(the result).  c[n] != 0.  INT_MIN when all c_i (i < n) are 0. */
-static int root_bound_exponent(const double c[], int n)
+ * |z| < 2^(the result).  e, nz: the exponents of c[0..n] (load_coefficients;
+ * only their differences matter, so any common power-of-two scaling of c
+ * gives the same bound); nz[n].  INT_MIN when all c_i (i < n) are 0.
+ * (Branch-free: which term gives the maximum is data.) */
+static int root_bound_exponent(const int e[], const int nz[], int n)
 {
-    int en = exponent_of(c[n]);
+    int en = e[n];
     int best = INT_MIN;
     for (int i = 0; i < n; i++) {
-        if (c[i] == 0)
-            continue;
-        /* |c_i / c_n| < 2^(ilogb(c_i) + 1 - en) */
-        int e = ceil_div(exponent_of(c[i]) + 1 - en, n - i);
-        best = e > best ? e : best;
+        /* |c_i / c_n| < 2^(e_i + 1 - e_n) */
+        int q = ceil_div(e[i] + 1 - en, n - i);
+        q = nz[i] ? q : INT_MIN;
+        best = q > best ? q : best;
     }
     return best == INT_MIN ? INT_MIN : best + 1;
 }
 
 /* The bound as a double (DBL_MAX beyond it); 0 when all c_i (i < n) are 0. */
-static double root_bound(const double c[], int n)
+static double root_bound(const int e[], const int nz[], int n)
 {
-    int e = root_bound_exponent(c, n);
-    if (e == INT_MIN)
+    int b = root_bound_exponent(e, nz, n);
+    if (b == INT_MIN)
         return 0;
-    if (e >= DBL_MAX_EXP)
+    if (b >= DBL_MAX_EXP)
         return DBL_MAX;
-    return e >= DBL_MIN_EXP - 1 ? pow2(e) : ldexp(1.0, e);
+    return b >= DBL_MIN_EXP - 1 ? pow2(b) : ldexp(1.0, b);
 }
 
 /* |a| T^j <= k |b| (a, b, k nonzero; T = 2^et, or T itself when et is
@@ -163,8 +186,11 @@ static int scaled_le(double a, double T, int et, int j, double k, double b)
  * term as |c_n| T^(n-i) <= k |c_i|; where a side leaves the normal range
  * (T^2 underflowed to 0 for T = 2^-1020, and every leading term looked
  * negligible; a bound beyond 2^1024 was taken as DBL_MAX), in exponents
- * (scaled_le). */
-static int leading_negligible(const double c[], int n, double tmax)
+ * (scaled_le).  Almost always no term comes near: when the exponents alone
+ * show |c_n| T^(n-i) above k |c_i| by a factor 8 for every i (beyond all the
+ * roundings of the comparison), the answer is no without the loop. */
+static int leading_negligible(const double c[], const int e[], const int nz[],
+                              int n, double tmax)
 {
     double T = tmax;
     int et = INT_MIN; /* T's exponent when T is a power of two beyond range */
@@ -174,12 +200,21 @@ static int leading_negligible(const double c[], int n, double tmax)
             m--;
         if (m == 0)
             return 0; /* the rest is a constant: no scale to compare with */
-        et = root_bound_exponent(c, m);
+        et = root_bound_exponent(e, nz, m);
         T = et >= DBL_MAX_EXP       ? INFINITY
             : et >= DBL_MIN_EXP - 1 ? pow2(et)
                                     : 0; /* (the exponents then) */
     }
     double k = 4.0 * n * DBL_EPSILON;
+    if (T >= DBL_MIN && T <= DBL_MAX) {
+        /* T >= 2^eT, k < 2^(ek + 1), |c| in [2^e, 2^(e + 1)) */
+        int eT = exponent_of(T), ek = exponent_of(k), far = 1;
+        int lhs = e[n] + eT; /* a lower bound on log2 |c_n| T^(n-i) */
+        for (int i = n - 1; i >= 0; i--, lhs += eT)
+            far &= !nz[i] | (lhs >= e[i] + ek + 5); /* (no branches) */
+        if (far)
+            return 0;
+    }
     double Tp = 1.0;
     for (int i = n - 1; i >= 0; i--) {
         Tp *= T; /* T^(n-i) */
@@ -196,8 +231,9 @@ static int leading_negligible(const double c[], int n, double tmax)
 }
 
 /* Drop zero/negligible leading terms and factors of t; returns the degree
- * left, or -1 for the zero polynomial.  c is modified in place. */
-static int reduce(double c[], int n, double tmax)
+ * left, or -1 for the zero polynomial.  c and its exponents (e, nz) are
+ * modified in place. */
+static int reduce(double c[], int e[], int nz[], int n, double tmax)
 {
     for (;;) {
         while (n > 0 && c[n] == 0)
@@ -205,14 +241,19 @@ static int reduce(double c[], int n, double tmax)
         if (n == 0)
             return c[0] == 0 ? -1 : 0;
         if (c[0] == 0) { /* touching now: divide by t */
-            for (int i = 0; i < n; i++)
+            for (int i = 0; i < n; i++) {
                 c[i] = c[i + 1];
+                e[i] = e[i + 1];
+                nz[i] = nz[i + 1];
+            }
             c[n] = 0;
+            e[n] = nz[n] = 0;
             n--;
             continue;
         }
-        if (leading_negligible(c, n, tmax)) {
+        if (leading_negligible(c, e, nz, n, tmax)) {
             c[n] = 0;
+            e[n] = nz[n] = 0;
             n--;
             continue;
         }
@@ -232,14 +273,12 @@ static int floor_div(int a, int b)
     return q - (a % b != 0 && a < 0);
 }
 
-/* The exponents of c[0..n] (nz[i]: c[i] != 0) and the largest, *emax;
- * returns the spread, or -1 when every coefficient is 0. */
-static int exponents(const double c[], int n, int e[], int nz[], int *emax)
+/* The spread of the exponents e of c[0..n] (load_coefficients) and the largest,
+ * *emax; -1 when every coefficient is 0. */
+static int spread(const int e[], const int nz[], int n, int *emax)
 {
     int hi = INT_MIN, lo = INT_MAX;
     for (int i = 0; i <= n; i++) {
-        nz[i] = c[i] != 0;
-        e[i] = nz[i] ? exponent_of(c[i]) : 0;
         if (nz[i]) {
             hi = e[i] > hi ? e[i] : hi;
             lo = e[i] < lo ? e[i] : lo;
@@ -247,6 +286,14 @@ static int exponents(const double c[], int n, int e[], int nz[], int *emax)
     }
     *emax = hi;
     return hi == INT_MIN ? -1 : hi - lo;
+}
+
+/* The exponents of c[0..n] (finite) and their spread (above). */
+static int exponents(const double c[], int n, int e[], int nz[], int *emax)
+{
+    double copy[MAXN + 1];
+    load_coefficients(c, n, copy, e, nz);
+    return spread(e, nz, n, emax);
 }
 
 /* Scale by a power of two (exact: the spread is at most MAX_SPREAD) so that
@@ -701,7 +748,7 @@ static void taylor_table(const double p[], int n, double e, double skin,
 typedef struct {
     double x, px, dpx; /* x, p(x), p'(x) */
     int vp, vq;
-    double qt[MAXN + 1], tol[MAXN + 1];
+    double pt[MAXN + 1], qt[MAXN + 1], tol[MAXN + 1];
 } Point;
 
 /* The point 0: the coefficients themselves (q_i = p_i - e |p_i| has the sign
@@ -713,9 +760,11 @@ static void point_at_zero(const double p[], int n, double e, double skin,
     pt->px = p[0];
     pt->dpx = p[1];
     /* i = 0 apart: gcc (-Wmaybe-uninitialized) cannot see that n >= 1 */
+    pt->pt[0] = p[0];
     pt->qt[0] = p[0] - e * fabs(p[0]);
     pt->tol[0] = DBL_EPSILON * fabs(p[0]);
     for (int i = 1; i <= n; i++) {
+        pt->pt[i] = p[i];
         pt->qt[i] = p[i] - e * fabs(p[i]);
         pt->tol[i] = DBL_EPSILON * fabs(p[i]);
     }
@@ -758,6 +807,7 @@ static int point_at(const Taylor *tb, int n, double x, Point *pt)
         }
         if (!(fabs(a[k]) > tol && fabs(b) > tol))
             return 0; /* also catches NaN/Inf */
+        pt->pt[k] = a[k];
         pt->qt[k] = b;
         pt->tol[k] = tol;
         s[k] = b; /* q's Taylor coefficients, for the count */
@@ -815,6 +865,113 @@ static int clearly_positive(const Point *pt, int n, double w, int dir)
     return m > 2 * rel * size;
 }
 
+/* The Bernstein coefficients of p and q on [x, x + w] (x = pt->x), from their
+ * Taylor coefficients at x: with t_k the k-th of them and s = (y - x) / w,
+ * the j-th coefficient is sum_{k <= j} C(j, k) t_k w^k / C(n, k), formed by
+ * (binomial_sums).  Descartes' rule in this basis (the number of sign changes
+ * bounds the roots in (x, x + w) and has their parity) is never weaker than
+ * Budan-Fourier's V(x) - V(x + w) and is often much sharper: an interval
+ * that Budan-Fourier sees two roots in, on account of a complex pair
+ * nearby, is typically cleared, and one it must split is typically found to
+ * hold a single root -- without the Taylor shift at a new point that a split
+ * costs ((n + 1)(n + 2) multiply-adds).  Each coefficient's sign is trusted
+ * only beyond a bound on its error: the Taylor coefficient's own (tol), and
+ * the conversion's (w^k and the two products: k + 3 roundings; the sums: n),
+ * taken twice.  Returns BERN_CLEAR when q's coefficients are all certainly
+ * positive (q > 0 on the interval: nothing in it), BERN_ONE when every sign
+ * of p and q is certain and each changes sign once (so, as with counts 1 and
+ * 1 above, exactly one simple root of p and nothing before it but noise),
+ * else BERN_UNKNOWN.  *pend gets p(x + w) (the last coefficient). */
+#define BERN_UNKNOWN 0
+#define BERN_CLEAR 1
+#define BERN_ONE 2
+
+/* b_j = sum_{k <= j} C(j, k) a_k, j = 0..n: as n + 1 dot products with the
+ * binomials (independent chains: the triangle of running sums is one long
+ * chain of stores and loads, measured 3 times slower). */
+static void binomial_sums(const double a[], int n, double b[])
+{
+    for (int j = 0; j <= n; j++) {
+        double s = 0;
+        for (int k = 0; k <= j; k++)
+            s += BINOM[k][j - k] * a[k];
+        b[j] = s;
+    }
+}
+
+static int bernstein_test(const Point *pt, int n, double w, double *pend)
+{
+    static const double INV_BINOM[MAXN + 1][MAXN + 1] = {
+        {1},
+        {1, 1},
+        {1, 1.0 / 2, 1},
+        {1, 1.0 / 3, 1.0 / 3, 1},
+        {1, 1.0 / 4, 1.0 / 6, 1.0 / 4, 1},
+        {1, 1.0 / 5, 1.0 / 10, 1.0 / 10, 1.0 / 5, 1},
+        {1, 1.0 / 6, 1.0 / 15, 1.0 / 20, 1.0 / 15, 1.0 / 6, 1},
+        {1, 1.0 / 7, 1.0 / 21, 1.0 / 35, 1.0 / 35, 1.0 / 21, 1.0 / 7, 1},
+        {1, 1.0 / 8, 1.0 / 28, 1.0 / 56, 1.0 / 70, 1.0 / 56, 1.0 / 28, 1.0 / 8, 1},
+        {1, 1.0 / 9, 1.0 / 36, 1.0 / 84, 1.0 / 126, 1.0 / 126, 1.0 / 84, 1.0 / 36, 1.0 / 9, 1},
+        {1, 1.0 / 10, 1.0 / 45, 1.0 / 120, 1.0 / 210, 1.0 / 252, 1.0 / 210, 1.0 / 120, 1.0 / 45,
+         1.0 / 10, 1},
+        {1, 1.0 / 11, 1.0 / 55, 1.0 / 165, 1.0 / 330, 1.0 / 462, 1.0 / 462, 1.0 / 330, 1.0 / 165,
+         1.0 / 55, 1.0 / 11, 1},
+        {1, 1.0 / 12, 1.0 / 66, 1.0 / 220, 1.0 / 495, 1.0 / 792, 1.0 / 924, 1.0 / 792, 1.0 / 495,
+         1.0 / 220, 1.0 / 66, 1.0 / 12, 1},
+        {1, 1.0 / 13, 1.0 / 78, 1.0 / 286, 1.0 / 715, 1.0 / 1287, 1.0 / 1716, 1.0 / 1716,
+         1.0 / 1287, 1.0 / 715, 1.0 / 286, 1.0 / 78, 1.0 / 13, 1},
+        {1, 1.0 / 14, 1.0 / 91, 1.0 / 364, 1.0 / 1001, 1.0 / 2002, 1.0 / 3003, 1.0 / 3432,
+         1.0 / 3003, 1.0 / 2002, 1.0 / 1001, 1.0 / 364, 1.0 / 91, 1.0 / 14, 1},
+        {1, 1.0 / 15, 1.0 / 105, 1.0 / 455, 1.0 / 1365, 1.0 / 3003, 1.0 / 5005, 1.0 / 6435,
+         1.0 / 6435, 1.0 / 5005, 1.0 / 3003, 1.0 / 1365, 1.0 / 455, 1.0 / 105, 1.0 / 15, 1},
+        {1, 1.0 / 16, 1.0 / 120, 1.0 / 560, 1.0 / 1820, 1.0 / 4368, 1.0 / 8008, 1.0 / 11440,
+         1.0 / 12870, 1.0 / 11440, 1.0 / 8008, 1.0 / 4368, 1.0 / 1820, 1.0 / 560, 1.0 / 120,
+         1.0 / 16, 1},
+    };
+    COUNT(9);
+    COUNT_MADDS((n + 1) * (n + 2) / 2 + 4 * n);
+    double ap[MAXN + 1], aq[MAXN + 1];
+    double rel = 4.0 * (2 * n + 4) * UNIT_ROUNDOFF;
+    double wk = 1, g = 0;
+    for (int k = 0; k <= n; k++) {
+        double f = wk * INV_BINOM[n][k];
+        ap[k] = pt->pt[k] * f;
+        aq[k] = pt->qt[k] * f;
+        g += (pt->tol[k] + rel * (fabs(pt->pt[k]) + fabs(pt->qt[k]))) * wk;
+        wk *= w;
+    }
+    /* sum_k C(j, k) / C(n, k) |.| w^k <= sum_k |.| w^k: one bound serves
+     * every coefficient */
+    double tol = 2 * g + DBL_MIN;
+    double b[MAXN + 1];
+    binomial_sums(aq, n, b);
+    /* (branch-free: the signs are data) */
+    int clear = 1, certain = 1, vq = 0, last = 0;
+    for (int j = 0; j <= n; j++) {
+        int s = (b[j] > 0) - (b[j] < 0);
+        certain &= fabs(b[j]) > tol;
+        vq += s * last < 0;
+        last = s;
+        clear &= s > 0;
+    }
+    if (clear && certain)
+        return BERN_CLEAR;
+    if (!certain || vq != 1)
+        return BERN_UNKNOWN;
+    COUNT_MADDS((n + 1) * (n + 2) / 2);
+    binomial_sums(ap, n, b);
+    *pend = b[n];
+    int vp = 0;
+    last = 0;
+    for (int j = 0; j <= n; j++) {
+        int s = (b[j] > 0) - (b[j] < 0);
+        certain &= fabs(b[j]) > tol;
+        vp += s * last < 0;
+        last = s;
+    }
+    return certain && vp == 1 ? BERN_ONE : BERN_UNKNOWN;
+}
+
 /* A point of (a, b) to split at: the midpoint, geometric when the interval
  * spans more than a factor 8 (roots near 0), b / 16 from a = 0. */
 static double isolation_split(double a, double b)
@@ -832,6 +989,21 @@ static double isolation_split(double a, double b)
 
 static int derivative_method(const double c[], int n, double lo, double T,
                              double skin, double *t, int *graze);
+
+/* The one simple root of p in (a, b), p(a) = pa > 0 > pb = p(b): safeguarded
+ * Newton from the regula falsi point. */
+static double polish_isolated(const double p[], int n, double a, double b,
+                              double pa, double pb)
+{
+    double dp[MAXN];
+    for (int i = 0; i < n; i++)
+        dp[i] = (i + 1) * p[i + 1];
+    double x0 = a + (b - a) * (pa / (pa - pb));
+    if (!(x0 > a && x0 < b))
+        x0 = split_point(a, b);
+    PHASE(2);
+    return refine_root(p, dp, n, a, b, 1, 0, x0);
+}
 
 /* First event in (0, T] for p (T <= FAST_LIMIT, p(0) > 0) by Budan-Fourier
  * bisection.  Returns ISOLATED with *t (and *graze) set, CLEARED when there
@@ -851,10 +1023,20 @@ static int isolate_first_root(const double p[], int n, double skin,
         return UNRESOLVED; /* within the skin at 0: no envelope to count */
     if (a.vq == 0 || clearly_positive(&a, n, T, 1))
         return CLEARED; /* Descartes, or q(0) beats every negative term */
+    double pT;
+    int bern = bernstein_test(&a, n, T, &pT);
+    if (bern == BERN_CLEAR)
+        return CLEARED;
+    if (bern == BERN_ONE) {
+        *t = polish_isolated(p, n, 0, T, a.px, pT);
+        *graze = 0;
+        return ISOLATED;
+    }
     Taylor tb;
     taylor_table(p, n, e, sk, &tb);
     if (!point_at(&tb, n, T, &stack[top++]))
         return UNRESOLVED;
+    int tested = 1; /* (0, T] has had its Bernstein test */
     for (;;) {
         const Point *b = &stack[top - 1];
         double w = b->x - a.x;
@@ -864,20 +1046,30 @@ static int isolate_first_root(const double p[], int n, double skin,
                                        clearly_positive(b, n, w, -1)))) {
             /* nothing in (a, b]: on to the next interval */
             a = *b;
+            tested = 0;
             if (--top == 0)
                 return CLEARED;
             continue;
         }
         if (a.vp - b->vp == 1 && a.vq - b->vq == 1) {
-            double dp[MAXN];
-            for (int i = 0; i < n; i++)
-                dp[i] = (i + 1) * p[i + 1];
-            /* regula falsi start: p(a) > 0 > p(b) */
-            double x0 = a.x + w * (a.px / (a.px - b->px));
-            if (!(x0 > a.x && x0 < b->x))
-                x0 = split_point(a.x, b->x);
-            PHASE(2);
-            *t = refine_root(p, dp, n, a.x, b->x, 1, 0, x0);
+            *t = polish_isolated(p, n, a.x, b->x, a.px, b->px);
+            *graze = 0;
+            return ISOLATED;
+        }
+#ifndef NOLOOP
+        bern = tested || !odd ? BERN_UNKNOWN : bernstein_test(&a, n, w, &pT);
+#else
+        bern = BERN_UNKNOWN; (void)tested;
+#endif
+        tested = 0;
+        if (bern == BERN_CLEAR) {
+            a = *b;
+            if (--top == 0)
+                return CLEARED;
+            continue;
+        }
+        if (bern == BERN_ONE) {
+            *t = polish_isolated(p, n, a.x, b->x, a.px, b->px);
             *graze = 0;
             return ISOLATED;
         }
@@ -1605,8 +1797,9 @@ static int first_root_closed(const double c[], int n, double tmax, double *t,
 
 /* solve() once the coefficients span at most 2^MAX_SPREAD (always, but for
  * extremes): scaled exactly, then by degree and method. */
-static int solve_normalised(double c[], int n, int emax, double tu,
-                            int method, double eps, double *root, int *g)
+static int solve_normalised(double c[], const int e[], const int nz[], int n,
+                            int emax, double tu, int method, double eps,
+                            double *root, int *g)
 {
     int E = normalise(c, n, emax);
     /* skin < 0: no graze check; else the skin in the normalised units */
@@ -1624,8 +1817,8 @@ static int solve_normalised(double c[], int n, int emax, double tu,
     if (method == M2C_METHOD_CLOSED && n <= 4)
         return first_root_closed(c, n, tu, root, g);
     /* all roots lie below the bound: a smaller window, fewer steps */
-    double B = root_bound(c, n);
-    double T = tu < B ? tu : B; /* (fmin is a library call) */
+    double B = root_bound(e, nz, n); /* (the exponents before scaling: the same) */
+    double T = tu < B ? tu : B;      /* (fmin is a library call) */
     return T > 0 && first_root_interval(c, n, T, skin, root, g);
 }
 
@@ -1645,20 +1838,20 @@ static int solve(const double c_in[], int degree, double tmax, int method,
     if (!(eps >= 0 && eps < INFINITY))
         return -1;
     double c[MAXN + 1];
-    for (int i = 0; i <= degree; i++)
-        c[i] = c_in[i];
+    int e[MAXN + 1], nz[MAXN + 1], emax, g = 0, found;
+    if (!load_coefficients(c_in, degree, c, e, nz))
+        return -1; /* a NaN or an infinity */
     PHASE(0);
     COUNT(8);
-    int n = reduce(c, degree, tmax);
+    int n = reduce(c, e, nz, degree, tmax);
     if (n <= 0)
         return 0;
-    int e[MAXN + 1], nz[MAXN + 1], emax, g = 0, found;
     double root = 0;
-    if (exponents(c, n, e, nz, &emax) > MAX_SPREAD)
+    if (spread(e, nz, n, &emax) > MAX_SPREAD)
         found = first_root_sliced(c, n, tmax, eps,
                                   method == M2C_METHOD_INTERVAL_NOGRAZE, &root, &g);
     else
-        found = solve_normalised(c, n, emax, tmax, method, eps, &root, &g);
+        found = solve_normalised(c, e, nz, n, emax, tmax, method, eps, &root, &g);
     if (!found)
         return 0;
     /* a root that underflows to 0 or overflows is not representable: none */
