@@ -1056,23 +1056,16 @@ static int isolate_first_root(const double p[], int n, double skin,
             *graze = 0;
             return ISOLATED;
         }
-#ifndef NOLOOP
-        bern = tested || !odd ? BERN_UNKNOWN : bernstein_test(&a, n, w, &pT);
-#else
-        bern = BERN_UNKNOWN; (void)tested;
-#endif
-        tested = 0;
-        if (bern == BERN_CLEAR) {
-            a = *b;
-            if (--top == 0)
-                return CLEARED;
-            continue;
-        }
-        if (bern == BERN_ONE) {
+        /* Descartes in the Bernstein basis, where the counts fail: only for
+         * an odd count, where a root is certain and the test may find it
+         * alone (measured: testing even counts too -- grazes, complex pairs
+         * -- cost more than it saved); (0, T] had it before the loop */
+        if (odd && !tested && bernstein_test(&a, n, w, &pT) == BERN_ONE) {
             *t = polish_isolated(p, n, a.x, b->x, a.px, b->px);
             *graze = 0;
             return ISOLATED;
         }
+        tested = 0;
         /* Split at twice the distance to where p's tangent at a meets 0 when
          * that is inside: the first root is usually near it, so the left part
          * holds it alone more often than a half does (measured: 6-15 % fewer

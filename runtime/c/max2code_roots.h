@@ -72,7 +72,11 @@
  *        roots of p and of q in subintervals of (0, T] (sign changes of the
  *        Taylor coefficients, each trusted only beyond its rounding bound;
  *        any doubt goes to step 2), plus a lower bound on q from the Taylor
- *        coefficients at an end of the interval.  An interval where q has no
+ *        coefficients at an end of the interval, and Descartes' rule in the
+ *        Bernstein basis (the sign changes of the Bernstein coefficients of
+ *        p and q on the interval, formed from the Taylor coefficients at its
+ *        left end, each sign trusted only beyond an error bound): first on
+ *        the whole of (0, T], then where a count is odd.  An interval where q has no
  *        root is cleared; one where p and q have exactly one root each holds
  *        one simple root of p (with nothing before it but, possibly, a
  *        stretch where p stays within the noise): it is polished; otherwise
