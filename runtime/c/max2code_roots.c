@@ -881,7 +881,11 @@ static int clearly_positive(const Point *pt, int n, double w, int dir)
  * positive (q > 0 on the interval: nothing in it), BERN_ONE when every sign
  * of p and q is certain and each changes sign once (so, as with counts 1 and
  * 1 above, exactly one simple root of p and nothing before it but noise),
- * else BERN_UNKNOWN.  *pend gets p(x + w) (the last coefficient). */
+ * else BERN_UNKNOWN.  *pend gets p(x + w) (the last coefficient) when p's
+ * coefficients were formed: always when guess is not NULL; then *guess gets
+ * where p's control polygon (the points (x + j w / n, b_j)) first crosses
+ * 0, or -1 (a start for speculate_first_root: the polygon tends to the graph
+ * as intervals shrink). */
 #define BERN_UNKNOWN 0
 #define BERN_CLEAR 1
 #define BERN_ONE 2
@@ -899,7 +903,8 @@ static void binomial_sums(const double a[], int n, double b[])
     }
 }
 
-static int bernstein_test(const Point *pt, int n, double w, double *pend)
+static int bernstein_test(const Point *pt, int n, double w, double *pend,
+                          double *guess)
 {
     static const double INV_BINOM[MAXN + 1][MAXN + 1] = {
         {1},
@@ -956,20 +961,31 @@ static int bernstein_test(const Point *pt, int n, double w, double *pend)
     }
     if (clear && certain)
         return BERN_CLEAR;
-    if (!certain || vq != 1)
+    int one = certain && vq == 1;
+    if (!one && guess == NULL)
         return BERN_UNKNOWN;
     COUNT_MADDS((n + 1) * (n + 2) / 2);
     binomial_sums(ap, n, b);
     *pend = b[n];
-    int vp = 0;
+    int vp = 0, jl = 0, cross = -1;
     last = 0;
     for (int j = 0; j <= n; j++) {
         int s = (b[j] > 0) - (b[j] < 0);
         certain &= fabs(b[j]) > tol;
-        vp += s * last < 0;
-        last = s;
+        if (s * last < 0) {
+            vp++;
+            if (cross < 0)
+                cross = j;
+        }
+        if (s != 0 && cross < 0) {
+            jl = j;
+        }
+        last = s != 0 ? s : last;
     }
-    return certain && vp == 1 ? BERN_ONE : BERN_UNKNOWN;
+    if (guess != NULL) /* where the control polygon first crosses 0 */
+        *guess = cross < 0 ? -1
+                           : pt->x + w * ((jl + (cross - jl) * (b[jl] / (b[jl] - b[cross]))) / n);
+    return one && certain && vp == 1 ? BERN_ONE : BERN_UNKNOWN;
 }
 
 /* A point of (a, b) to split at: the midpoint, geometric when the interval
@@ -1005,6 +1021,45 @@ static double polish_isolated(const double p[], int n, double a, double b,
     return refine_root(p, dp, n, a, b, 1, 0, x0);
 }
 
+/* A guess at the first root: plain Newton from x (where the Bernstein control
+ * polygon of p on (0, T] first crosses 0), until the step is below
+ * PRECISE_FROM; gives up (0) when it leaves (0, T), when p' = 0, when a step
+ * from the fourth on has not halved, or after SPECULATE_STEPS.  Nothing is
+ * certain about the guess: it is trusted only once a Bernstein test on
+ * (0, r (1 + 2^-20)] finds exactly one root of p and of q there (then r is
+ * the first root, polished as any isolated root).  Measured on the
+ * benchmark families: this settles about 40 % of generic octics and half
+ * the quartics without a single Taylor shift (generic octics 0.83 and
+ * quartics 0.81 of the time without it); where it fails (complex pairs near
+ * the window, no root) it costs a few Newton steps. */
+#define SPECULATE_STEPS 8
+static int speculate_first_root(const double p[], const double dp[], int n,
+                                double T, double x, double *r)
+{
+    PHASE(2);
+    double last = 0;
+    for (int it = 0; it < SPECULATE_STEPS; it++) {
+        if (!(x > 0 && x < T))
+            return 0;
+        double df, size, f = value_and_slope(p, dp, n, x, 0, 0, &df, &size);
+        (void)size;
+        if (df == 0)
+            return 0;
+        double s = f / df;
+        x -= s;
+        if (fabs(s) <= PRECISE_FROM * x) {
+            *r = x;
+            return x > 0 && x < T;
+        }
+        /* converging to a simple root, the steps shrink fast from the
+         * second on; near a complex pair they wander */
+        if (it >= 3 && !(fabs(s) <= 0.5 * fabs(last)))
+            return 0;
+        last = s;
+    }
+    return 0;
+}
+
 /* First event in (0, T] for p (T <= FAST_LIMIT, p(0) > 0) by Budan-Fourier
  * bisection.  Returns ISOLATED with *t (and *graze) set, CLEARED when there
  * is nothing in (0, T], or UNRESOLVED with *a the left end of what is left
@@ -1024,13 +1079,31 @@ static int isolate_first_root(const double p[], int n, double skin,
     if (a.vq == 0 || clearly_positive(&a, n, T, 1))
         return CLEARED; /* Descartes, or q(0) beats every negative term */
     double pT;
-    int bern = bernstein_test(&a, n, T, &pT);
+    double guess;
+    int bern = bernstein_test(&a, n, T, &pT, &guess);
     if (bern == BERN_CLEAR)
         return CLEARED;
     if (bern == BERN_ONE) {
         *t = polish_isolated(p, n, 0, T, a.px, pT);
         *graze = 0;
         return ISOLATED;
+    }
+    if (guess > 0) { /* a guess, then a certificate */
+        double dp[MAXN], r;
+        for (int i = 0; i < n; i++)
+            dp[i] = (i + 1) * p[i + 1];
+        if (speculate_first_root(p, dp, n, T, guess, &r)) {
+            double w = r + r * 0x1p-20;
+            w = w < T ? w : T;
+            PHASE(1);
+            if (bernstein_test(&a, n, w, &pT, NULL) == BERN_ONE) {
+                PHASE(2);
+                *t = refine_root(p, dp, n, 0, w, 1, 0, r);
+                *graze = 0;
+                return ISOLATED;
+            }
+        }
+        PHASE(1);
     }
     Taylor tb;
     taylor_table(p, n, e, sk, &tb);
@@ -1060,7 +1133,7 @@ static int isolate_first_root(const double p[], int n, double skin,
          * an odd count, where a root is certain and the test may find it
          * alone (measured: testing even counts too -- grazes, complex pairs
          * -- cost more than it saved); (0, T] had it before the loop */
-        if (odd && !tested && bernstein_test(&a, n, w, &pT) == BERN_ONE) {
+        if (odd && !tested && bernstein_test(&a, n, w, &pT, NULL) == BERN_ONE) {
             *t = polish_isolated(p, n, a.x, b->x, a.px, b->px);
             *graze = 0;
             return ISOLATED;
