@@ -19,6 +19,13 @@
 
 #define MAXN M2C_MAX_DEGREE
 
+/* Rare paths kept out of the hot function's frame and registers. */
+#if defined(__GNUC__)
+#define NOINLINE __attribute__((noinline))
+#else
+#define NOINLINE
+#endif
+
 /* Cost accounting for the benchmark (bench/roots.py --counts), compiled in only with
  * -DM2C_COUNT: multiply-adds by phase (0 preparation, 1 Budan-Fourier counts and exclusion
  * tests, 2 Newton polishing of an isolated root, 3 the derivative method), Newton steps
@@ -738,6 +745,9 @@ static void taylor_table(const double p[], int n, double e, double skin,
             tb->ta[k][j] = fabs(tb->tk[k][j]);
         }
     }
+    for (int k = 0; k <= 8; k++) /* (zeros up to degree 8: point_at) */
+        for (int j = n + 1 - k > 0 ? n + 1 - k : 0; j + k <= 8; j++)
+            tb->tk[k][j] = tb->ta[k][j] = 0;
     tb->e = e;
     tb->skin = skin;
 }
@@ -788,10 +798,37 @@ static int point_at(const Taylor *tb, int n, double x, Point *pt)
     COUNT(6);
     COUNT_MADDS((n + 1) * (n + 2)); /* two triangles of n(n+1)/2 + (n+1) */
     double a[MAXN + 1] = {0}, s[MAXN + 1] = {0};
-    for (int d = n; d >= 0; d--) {
-        for (int k = 0; k <= n - d; k++) {
-            a[k] = a[k] * x + tb->tk[k][d];
-            s[k] = s[k] * x + tb->ta[k][d];
+    if (n <= 8) {
+        /* written out for degree 8 (the table is 0 above degree n, and 0 x +
+         * 0 = 0 for x > 0: the same values as the loop below, bit for bit):
+         * the loop's bounds vary with n, and its control and memory traffic
+         * cost more than the arithmetic */
+        double a0 = 0, a1 = 0, a2 = 0, a3 = 0, a4 = 0, a5 = 0, a6 = 0, a7 = 0, a8 = 0;
+        double s0 = 0, s1 = 0, s2 = 0, s3 = 0, s4 = 0, s5 = 0, s6 = 0, s7 = 0, s8 = 0;
+#define TS(k, d)                               \
+    a##k = a##k * x + tb->tk[k][d];            \
+    s##k = s##k * x + tb->ta[k][d]
+        TS(0, 8);
+        TS(0, 7); TS(1, 7);
+        TS(0, 6); TS(1, 6); TS(2, 6);
+        TS(0, 5); TS(1, 5); TS(2, 5); TS(3, 5);
+        TS(0, 4); TS(1, 4); TS(2, 4); TS(3, 4); TS(4, 4);
+        TS(0, 3); TS(1, 3); TS(2, 3); TS(3, 3); TS(4, 3); TS(5, 3);
+        TS(0, 2); TS(1, 2); TS(2, 2); TS(3, 2); TS(4, 2); TS(5, 2); TS(6, 2);
+        TS(0, 1); TS(1, 1); TS(2, 1); TS(3, 1); TS(4, 1); TS(5, 1); TS(6, 1); TS(7, 1);
+        TS(0, 0); TS(1, 0); TS(2, 0); TS(3, 0); TS(4, 0); TS(5, 0); TS(6, 0); TS(7, 0);
+        TS(8, 0);
+#undef TS
+        a[0] = a0; a[1] = a1; a[2] = a2; a[3] = a3; a[4] = a4; a[5] = a5; a[6] = a6;
+        a[7] = a7; a[8] = a8;
+        s[0] = s0; s[1] = s1; s[2] = s2; s[3] = s3; s[4] = s4; s[5] = s5; s[6] = s6;
+        s[7] = s7; s[8] = s8;
+    } else {
+        for (int d = n; d >= 0; d--) {
+            for (int k = 0; k <= n - d; k++) {
+                a[k] = a[k] * x + tb->tk[k][d];
+                s[k] = s[k] * x + tb->ta[k][d];
+            }
         }
     }
     double rel = 8.0 * (n + 1) * UNIT_ROUNDOFF;
@@ -887,24 +924,66 @@ static int clearly_positive(const Point *pt, int n, double w, int dir)
  * 0, or -1 (a start for speculate_first_root: the polygon tends to the graph
  * as intervals shrink). */
 #define BERN_UNKNOWN 0
+/* q's Bernstein coefficients on an interval, a bound on their errors, and
+ * whether their signs are certain with an even number of changes. */
+typedef struct {
+    double b[MAXN + 1];
+    double err;
+    int even;
+} BernQ;
 #define BERN_CLEAR 1
 #define BERN_ONE 2
 
-/* b_j = sum_{k <= j} C(j, k) a_k, j = 0..n: as n + 1 dot products with the
- * binomials (independent chains: the triangle of running sums is one long
- * chain of stores and loads, measured 3 times slower). */
-static void binomial_sums(const double a[], int n, double b[])
+/* b_j = sum_{k <= j} C(j, k) a_k, j = 0..n, in place: n rounds of running
+ * sums (round r adds each entry j >= r's left neighbour, j descending), so
+ * additions only.  Up to degree 8 written out in full for 9 entries (the
+ * entries above n only take sums of those below and never feed back, so the
+ * entries 0..n are the same as the loop's, bit for bit): with loop bounds
+ * that vary with n the compiler keeps loop control and memory traffic in
+ * the way, measured 5 times slower. */
+static void binomial_sums(double a[], int n)
 {
-    for (int j = 0; j <= n; j++) {
-        double s = 0;
-        for (int k = 0; k <= j; k++)
-            s += BINOM[k][j - k] * a[k];
-        b[j] = s;
+    if (n <= 8) {
+        double b0 = a[0], b1 = a[1], b2 = a[2], b3 = a[3], b4 = a[4], b5 = a[5],
+               b6 = a[6], b7 = a[7], b8 = a[8];
+#define ROUND(from)                                                        \
+    do {                                                                   \
+        if (8 >= from) b8 += b7;                                           \
+        if (7 >= from) b7 += b6;                                           \
+        if (6 >= from) b6 += b5;                                           \
+        if (5 >= from) b5 += b4;                                           \
+        if (4 >= from) b4 += b3;                                           \
+        if (3 >= from) b3 += b2;                                           \
+        if (2 >= from) b2 += b1;                                           \
+        if (1 >= from) b1 += b0;                                           \
+    } while (0)
+        ROUND(1);
+        ROUND(2);
+        ROUND(3);
+        ROUND(4);
+        ROUND(5);
+        ROUND(6);
+        ROUND(7);
+        ROUND(8);
+#undef ROUND
+        a[0] = b0;
+        a[1] = b1;
+        a[2] = b2;
+        a[3] = b3;
+        a[4] = b4;
+        a[5] = b5;
+        a[6] = b6;
+        a[7] = b7;
+        a[8] = b8;
+        return;
     }
+    for (int r = 1; r <= n; r++)
+        for (int j = n; j >= r; j--)
+            a[j] += a[j - 1];
 }
 
 static int bernstein_test(const Point *pt, int n, double w, double *pend,
-                          double *guess)
+                          double *guess, BernQ *qb)
 {
     static const double INV_BINOM[MAXN + 1][MAXN + 1] = {
         {1},
@@ -936,6 +1015,8 @@ static int bernstein_test(const Point *pt, int n, double w, double *pend,
     COUNT(9);
     COUNT_MADDS((n + 1) * (n + 2) / 2 + 4 * n);
     double ap[MAXN + 1], aq[MAXN + 1];
+    for (int k = n + 1; k <= 8; k++)
+        ap[k] = aq[k] = 0; /* (binomial_sums reads 9) */
     double rel = 4.0 * (2 * n + 4) * UNIT_ROUNDOFF;
     double wk = 1, g = 0;
     for (int k = 0; k <= n; k++) {
@@ -948,8 +1029,8 @@ static int bernstein_test(const Point *pt, int n, double w, double *pend,
     /* sum_k C(j, k) / C(n, k) |.| w^k <= sum_k |.| w^k: one bound serves
      * every coefficient */
     double tol = 2 * g + DBL_MIN;
-    double b[MAXN + 1];
-    binomial_sums(aq, n, b);
+    double *b = aq;
+    binomial_sums(aq, n);
     /* (branch-free: the signs are data) */
     int clear = 1, certain = 1, vq = 0, last = 0;
     for (int j = 0; j <= n; j++) {
@@ -961,11 +1042,18 @@ static int bernstein_test(const Point *pt, int n, double w, double *pend,
     }
     if (clear && certain)
         return BERN_CLEAR;
+    if (qb != NULL) {
+        for (int j = 0; j <= n; j++)
+            qb->b[j] = b[j];
+        qb->err = tol;
+        qb->even = certain && vq % 2 == 0;
+    }
     int one = certain && vq == 1;
     if (!one && guess == NULL)
         return BERN_UNKNOWN;
     COUNT_MADDS((n + 1) * (n + 2) / 2);
-    binomial_sums(ap, n, b);
+    binomial_sums(ap, n);
+    b = ap;
     *pend = b[n];
     int vp = 0, jl = 0, cross = -1;
     last = 0;
@@ -985,6 +1073,8 @@ static int bernstein_test(const Point *pt, int n, double w, double *pend,
     if (guess != NULL) /* where the control polygon first crosses 0 */
         *guess = cross < 0 ? -1
                            : pt->x + w * ((jl + (cross - jl) * (b[jl] / (b[jl] - b[cross]))) / n);
+    if (qb != NULL) /* an odd count for p: a root is certain, q cannot be cleared */
+        qb->even &= vp % 2 == 0;
     return one && certain && vp == 1 ? BERN_ONE : BERN_UNKNOWN;
 }
 
@@ -1019,6 +1109,78 @@ static double polish_isolated(const double p[], int n, double a, double b,
         x0 = split_point(a, b);
     PHASE(2);
     return refine_root(p, dp, n, a, b, 1, 0, x0);
+}
+
+/* Is q > 0 on the interval of qb (its Bernstein coefficients, certain signs,
+ * an even count)?  Bisection in the Bernstein basis: de Casteljau's
+ * midpoint steps give both halves' coefficients by n(n + 1)/2 averages each
+ * (no Taylor shift), a piece is cleared when its coefficients are certainly
+ * positive, and the answer is no (0: not known) at the first piece whose
+ * signs are uncertain or change an odd number of times (q crosses 0 there)
+ * or beyond CLEAR_DEPTH halvings.  Each average rounds once, by at most u
+ * times the largest coefficient M of the parent (the children's are convex
+ * combinations of its), and the parent's errors are averaged: a child's
+ * bound is the parent's plus 2 n u M (twice, for safety) plus DBL_MIN (for
+ * underflow).  Aimed at windows with no root but complex roots near the
+ * axis, where Descartes' count stays 2 on every interval around them until
+ * the intervals are about as narrow as the imaginary parts. */
+#define CLEAR_DEPTH 12
+NOINLINE static int bernstein_clear(const BernQ *qb, int n)
+{
+    double st[CLEAR_DEPTH + 2][MAXN + 1], err[CLEAR_DEPTH + 2];
+    int depth[CLEAR_DEPTH + 2];
+    int top = 0;
+    for (int j = 0; j <= n; j++)
+        st[0][j] = qb->b[j];
+    err[0] = qb->err;
+    depth[0] = 0;
+    top = 1;
+    while (top > 0) {
+        top--;
+        double *b = st[top], e = err[top];
+        int d = depth[top];
+        int certain = 1, v = 0, last = 0, pos = 1;
+        double M = 0;
+        for (int j = 0; j <= n; j++) {
+            int sg = (b[j] > 0) - (b[j] < 0);
+            certain &= fabs(b[j]) > e;
+            v += sg * last < 0;
+            last = sg;
+            pos &= sg > 0;
+            M = fabs(b[j]) > M ? fabs(b[j]) : M;
+        }
+        if (!certain || v % 2 != 0)
+            return 0;
+        if (pos)
+            continue;
+        if (d == CLEAR_DEPTH)
+            return 0;
+        /* halves: the left one over b's slot, the right one above it */
+        COUNT_MADDS(n * (n + 1) / 2);
+        double *r = st[top + 1];
+        double w[MAXN + 1];
+        for (int j = 0; j <= n; j++)
+            w[j] = b[j];
+        r[n] = w[n];
+        b[0] = w[0];
+        for (int k = 1; k <= n; k++) {
+            for (int j = 0; j <= n - k; j++)
+                w[j] = (w[j] + w[j + 1]) * 0.5;
+            b[k] = w[0];
+            r[n - k] = w[n - k];
+        }
+        double ec = e + 2 * n * UNIT_ROUNDOFF * M + DBL_MIN;
+        /* right half first on the stack, so the left is looked at first */
+        for (int j = 0; j <= n; j++) {
+            double t = b[j];
+            b[j] = r[j];
+            r[j] = t;
+        }
+        err[top] = err[top + 1] = ec;
+        depth[top] = depth[top + 1] = d + 1;
+        top += 2;
+    }
+    return 1;
 }
 
 /* A guess at the first root: plain Newton from x (where the Bernstein control
@@ -1080,7 +1242,8 @@ static int isolate_first_root(const double p[], int n, double skin,
         return CLEARED; /* Descartes, or q(0) beats every negative term */
     double pT;
     double guess;
-    int bern = bernstein_test(&a, n, T, &pT, &guess);
+    BernQ qb;
+    int bern = bernstein_test(&a, n, T, &pT, &guess, &qb);
     if (bern == BERN_CLEAR)
         return CLEARED;
     if (bern == BERN_ONE) {
@@ -1088,6 +1251,8 @@ static int isolate_first_root(const double p[], int n, double skin,
         *graze = 0;
         return ISOLATED;
     }
+    if (guess <= 0 && qb.even && bernstein_clear(&qb, n))
+        return CLEARED;
     if (guess > 0) { /* a guess, then a certificate */
         double dp[MAXN], r;
         for (int i = 0; i < n; i++)
@@ -1096,7 +1261,7 @@ static int isolate_first_root(const double p[], int n, double skin,
             double w = r + r * 0x1p-20;
             w = w < T ? w : T;
             PHASE(1);
-            if (bernstein_test(&a, n, w, &pT, NULL) == BERN_ONE) {
+            if (bernstein_test(&a, n, w, &pT, NULL, NULL) == BERN_ONE) {
                 PHASE(2);
                 *t = refine_root(p, dp, n, 0, w, 1, 0, r);
                 *graze = 0;
@@ -1104,6 +1269,8 @@ static int isolate_first_root(const double p[], int n, double skin,
             }
         }
         PHASE(1);
+        if (qb.even && bernstein_clear(&qb, n))
+            return CLEARED;
     }
     Taylor tb;
     taylor_table(p, n, e, sk, &tb);
@@ -1133,7 +1300,7 @@ static int isolate_first_root(const double p[], int n, double skin,
          * an odd count, where a root is certain and the test may find it
          * alone (measured: testing even counts too -- grazes, complex pairs
          * -- cost more than it saved); (0, T] had it before the loop */
-        if (odd && !tested && bernstein_test(&a, n, w, &pT, NULL) == BERN_ONE) {
+        if (odd && !tested && bernstein_test(&a, n, w, &pT, NULL, NULL) == BERN_ONE) {
             *t = polish_isolated(p, n, a.x, b->x, a.px, b->px);
             *graze = 0;
             return ISOLATED;
