@@ -1111,13 +1111,60 @@ static double polish_isolated(const double p[], int n, double a, double b,
     return refine_root(p, dp, n, a, b, 1, 0, x0);
 }
 
+/* The Bernstein coefficients of the left half of the interval (de
+ * Casteljau at 1/2: n rounds of averages of neighbours; out[k] is the
+ * first entry after round k); out may be in.  The right half is the left
+ * half of the reversed coefficients, reversed (the same averages, each with
+ * its two terms swapped: the same values).  Written out up to degree 8
+ * (entries above n never reach out[0..n]) for the reason of binomial_sums. */
+static void left_half(const double in[], int n, double out[])
+{
+    if (n <= 8) {
+        double w0 = in[0], w1 = n >= 1 ? in[1] : 0, w2 = n >= 2 ? in[2] : 0,
+               w3 = n >= 3 ? in[3] : 0, w4 = n >= 4 ? in[4] : 0, w5 = n >= 5 ? in[5] : 0,
+               w6 = n >= 6 ? in[6] : 0, w7 = n >= 7 ? in[7] : 0, w8 = n >= 8 ? in[8] : 0;
+        double o[9];
+        o[0] = w0;
+#define AVG(j, k) w##j = (w##j + w##k) * 0.5
+        AVG(0, 1); AVG(1, 2); AVG(2, 3); AVG(3, 4); AVG(4, 5); AVG(5, 6); AVG(6, 7); AVG(7, 8);
+        o[1] = w0;
+        AVG(0, 1); AVG(1, 2); AVG(2, 3); AVG(3, 4); AVG(4, 5); AVG(5, 6); AVG(6, 7);
+        o[2] = w0;
+        AVG(0, 1); AVG(1, 2); AVG(2, 3); AVG(3, 4); AVG(4, 5); AVG(5, 6);
+        o[3] = w0;
+        AVG(0, 1); AVG(1, 2); AVG(2, 3); AVG(3, 4); AVG(4, 5);
+        o[4] = w0;
+        AVG(0, 1); AVG(1, 2); AVG(2, 3); AVG(3, 4);
+        o[5] = w0;
+        AVG(0, 1); AVG(1, 2); AVG(2, 3);
+        o[6] = w0;
+        AVG(0, 1); AVG(1, 2);
+        o[7] = w0;
+        AVG(0, 1);
+        o[8] = w0;
+#undef AVG
+        for (int j = 0; j <= n; j++)
+            out[j] = o[j];
+        return;
+    }
+    double w[MAXN + 1];
+    for (int j = 0; j <= n; j++)
+        w[j] = in[j];
+    out[0] = w[0];
+    for (int k = 1; k <= n; k++) {
+        for (int j = 0; j <= n - k; j++)
+            w[j] = (w[j] + w[j + 1]) * 0.5;
+        out[k] = w[0];
+    }
+}
+
 /* Is q > 0 on the interval of qb (its Bernstein coefficients, certain signs,
  * an even count)?  Bisection in the Bernstein basis: de Casteljau's
  * midpoint steps give both halves' coefficients by n(n + 1)/2 averages each
  * (no Taylor shift), a piece is cleared when its coefficients are certainly
  * positive, and the answer is no (0: not known) at the first piece whose
  * signs are uncertain or change an odd number of times (q crosses 0 there)
- * or beyond CLEAR_DEPTH halvings.  Each average rounds once, by at most u
+ * or beyond CLEAR_DEPTH halvings (left_half).  Each average rounds once, by at most u
  * times the largest coefficient M of the parent (the children's are convex
  * combinations of its), and the parent's errors are averaged: a child's
  * bound is the parent's plus 2 n u M (twice, for safety) plus DBL_MIN (for
@@ -1139,43 +1186,32 @@ NOINLINE static int bernstein_clear(const BernQ *qb, int n)
         top--;
         double *b = st[top], e = err[top];
         int d = depth[top];
-        int certain = 1, v = 0, last = 0, pos = 1;
-        double M = 0;
-        for (int j = 0; j <= n; j++) {
-            int sg = (b[j] > 0) - (b[j] < 0);
-            certain &= fabs(b[j]) > e;
-            v += sg * last < 0;
-            last = sg;
-            pos &= sg > 0;
-            M = fabs(b[j]) > M ? fabs(b[j]) : M;
+        /* with every sign certain (no zeros), the number of sign changes
+         * is odd exactly when the end signs differ */
+        double lo = b[0], hi = b[0], amin = fabs(b[0]);
+        for (int j = 1; j <= n; j++) {
+            lo = b[j] < lo ? b[j] : lo;
+            hi = b[j] > hi ? b[j] : hi;
+            amin = fabs(b[j]) < amin ? fabs(b[j]) : amin;
         }
-        if (!certain || v % 2 != 0)
+        if (!(amin > e) || (b[0] > 0) != (b[n] > 0))
             return 0;
-        if (pos)
+        if (lo > 0)
             continue;
+        double M = -lo > hi ? -lo : hi;
         if (d == CLEAR_DEPTH)
             return 0;
-        /* halves: the left one over b's slot, the right one above it */
-        COUNT_MADDS(n * (n + 1) / 2);
-        double *r = st[top + 1];
-        double w[MAXN + 1];
+        /* halves: the right one over b's slot, the left one above it (so
+         * it is looked at first) */
+        COUNT_MADDS(n * (n + 1));
+        double rev[MAXN + 1];
         for (int j = 0; j <= n; j++)
-            w[j] = b[j];
-        r[n] = w[n];
-        b[0] = w[0];
-        for (int k = 1; k <= n; k++) {
-            for (int j = 0; j <= n - k; j++)
-                w[j] = (w[j] + w[j + 1]) * 0.5;
-            b[k] = w[0];
-            r[n - k] = w[n - k];
-        }
+            rev[j] = b[n - j];
+        left_half(b, n, st[top + 1]);
+        left_half(rev, n, rev); /* the right half, reversed */
+        for (int j = 0; j <= n; j++)
+            b[j] = rev[n - j];
         double ec = e + 2 * n * UNIT_ROUNDOFF * M + DBL_MIN;
-        /* right half first on the stack, so the left is looked at first */
-        for (int j = 0; j <= n; j++) {
-            double t = b[j];
-            b[j] = r[j];
-            r[j] = t;
-        }
         err[top] = err[top + 1] = ec;
         depth[top] = depth[top + 1] = d + 1;
         top += 2;
