@@ -1,0 +1,150 @@
+"""The C runtime's written-out kernels against plain loops and exact integer arithmetic.
+
+Up to degree 8 the solver's inner kernels are written out (no loop bounds that vary with the
+degree): the Bernstein conversion's running sums, de Casteljau halving and the Taylor shift at a
+point.  Each promises the same values as the obvious loop, bit for bit, so that the Rust and
+Python ports (which use the loops) agree with C exactly.  The preparation reads exponents from
+the bits and rounds a quotient up by a multiply instead of a division.  A program that includes
+max2code_roots.c checks each against its definition on random and edge data; any difference is
+printed and fails the test.
+"""
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+C_DIR = ROOT / "runtime" / "c"
+
+PROGRAM = r"""
+#include "max2code_roots.c"
+#include <stdio.h>
+#include <stdlib.h>
+
+static unsigned long long state = 0x9E3779B97F4A7C15ULL;
+static double rnd(void) /* wide range, both signs, some exact zeros */
+{
+    state ^= state << 13; state ^= state >> 7; state ^= state << 17;
+    int kind = (int)(state % 16);
+    double m = (double)(state >> 11) / 9007199254740992.0 - 0.5;
+    if (kind == 0)
+        return 0.0;
+    return ldexp(m, (int)((state >> 5) % 60) - 30);
+}
+
+static int bad = 0;
+#define CHECK(cond, ...) do { if (!(cond)) { bad++; if (bad < 20) printf(__VA_ARGS__); } } while (0)
+
+int main(void)
+{
+    /* ceil_div: every numerator and denominator it is used for */
+    for (int den = 1; den <= MAXN; den++)
+        for (int num = -4095; num <= 4095; num++) {
+            int q = num >= 0 ? (num + den - 1) / den : -((-num) / den);
+            CHECK(ceil_div(num, den) == q, "ceil_div(%d, %d) = %d, not %d\n", num, den,
+                  ceil_div(num, den), q);
+        }
+    for (int trial = 0; trial < 20000; trial++) {
+        int n = 1 + trial % MAXN;
+        double a[MAXN + 1], b[MAXN + 1], ref[MAXN + 1];
+        for (int j = 0; j <= MAXN; j++)
+            a[j] = rnd();
+        /* binomial_sums: the running sums, round by round */
+        for (int j = 0; j <= MAXN; j++)
+            b[j] = ref[j] = a[j];
+        binomial_sums(b, n);
+        for (int r = 1; r <= n; r++)
+            for (int j = n; j >= r; j--)
+                ref[j] += ref[j - 1];
+        for (int j = 0; j <= n; j++)
+            CHECK(memcmp(&b[j], &ref[j], sizeof(double)) == 0, "binomial_sums n=%d j=%d\n", n, j);
+        /* left_half and the right half by reversal: de Casteljau at 1/2 */
+        double w[MAXN + 1], left[MAXN + 1], right[MAXN + 1], l2[MAXN + 1], rev[MAXN + 1];
+        for (int j = 0; j <= n; j++)
+            w[j] = a[j];
+        left[0] = w[0];
+        right[n] = w[n];
+        for (int k = 1; k <= n; k++) {
+            for (int j = 0; j <= n - k; j++)
+                w[j] = (w[j] + w[j + 1]) * 0.5;
+            left[k] = w[0];
+            right[n - k] = w[n - k];
+        }
+        left_half(a, n, l2);
+        for (int j = 0; j <= n; j++)
+            rev[j] = a[n - j];
+        left_half(rev, n, rev);
+        for (int j = 0; j <= n; j++) {
+            CHECK(memcmp(&l2[j], &left[j], sizeof(double)) == 0, "left_half n=%d j=%d\n", n, j);
+            CHECK(memcmp(&rev[n - j], &right[j], sizeof(double)) == 0, "right half n=%d j=%d\n", n, j);
+        }
+        /* point_at: the Taylor shift of p and |p| at x > 0 */
+        double p[MAXN + 1];
+        for (int j = 0; j <= n; j++)
+            p[j] = a[j];
+        if (p[n] == 0)
+            p[n] = 0.75;
+        Taylor tb;
+        taylor_table(p, n, 0, 0, &tb);
+        double x = ldexp(1 + fabs(rnd()), (int)(state % 9) - 4);
+        double ta[MAXN + 1] = {0}, sa[MAXN + 1] = {0};
+        for (int d = n; d >= 0; d--)
+            for (int k = 0; k <= n - d; k++) {
+                ta[k] = ta[k] * x + tb.tk[k][d];
+                sa[k] = sa[k] * x + tb.ta[k][d];
+            }
+        Point pt;
+        if (point_at(&tb, n, x, &pt))
+            for (int k = 0; k <= n; k++)
+                CHECK(memcmp(&pt.pt[k], &ta[k], sizeof(double)) == 0, "point_at n=%d k=%d\n", n, k);
+        /* root_bound_exponent: 1 + max ceil((e_i + 1 - e_n) / (n - i)) over nonzero c_i */
+        int e[MAXN + 1], nz[MAXN + 1];
+        double cp[MAXN + 1];
+        if (!load_coefficients(p, n, cp, e, nz)) {
+            CHECK(0, "load_coefficients refused finite data\n");
+            continue;
+        }
+        int want = INT_MIN;
+        for (int i = 0; i < n; i++) {
+            if (p[i] == 0)
+                continue;
+            int num = ilogb(p[i]) + 1 - ilogb(p[n]), den = n - i;
+            int q = num >= 0 ? (num + den - 1) / den : -((-num) / den);
+            want = q > want ? q : want;
+        }
+        want = want == INT_MIN ? INT_MIN : want + 1;
+        CHECK(root_bound_exponent(e, nz, n) == want, "root_bound_exponent n=%d\n", n);
+    }
+    /* load_coefficients: an infinity or a NaN anywhere is refused */
+    double c[3] = {1, 2, 3}, out[3];
+    int e[3], nz[3];
+    c[1] = INFINITY;
+    CHECK(!load_coefficients(c, 2, out, e, nz), "infinity accepted\n");
+    c[1] = NAN;
+    CHECK(!load_coefficients(c, 2, out, e, nz), "NaN accepted\n");
+    c[1] = 0x1p-1070; /* subnormal */
+    CHECK(load_coefficients(c, 2, out, e, nz) && e[1] == -1070 && nz[1], "subnormal exponent\n");
+    printf("%d differences\n", bad);
+    return bad != 0;
+}
+"""
+
+
+def test_kernels_match_their_definitions(tmp_path: Path) -> None:
+    gcc = shutil.which("gcc")
+    if gcc is None:
+        if os.environ.get("CI"):
+            pytest.fail("gcc not found (CI is set: a missing tool is a failure)")
+        pytest.skip("gcc not found")
+    src = tmp_path / "kernels.c"
+    src.write_text(PROGRAM)
+    exe = tmp_path / "kernels"
+    r = subprocess.run([gcc, "-O2", "-std=c11", "-DM2C_NO_GSL", "-I", str(C_DIR), str(src), "-o", str(exe),
+                        "-lm"], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    run = subprocess.run([str(exe)], capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0 and run.stdout.strip().endswith("0 differences"), run.stdout
