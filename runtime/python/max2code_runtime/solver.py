@@ -508,27 +508,28 @@ def _bernstein_test(pt: _Point, n: int, w: float) -> tuple[int, float]:
         g += (pt.tol[k] + rel * (abs(pt.pt[k]) + abs(pt.qt[k]))) * wk
         wk *= w
     tol = 2 * g + DBL_MIN
-    b = _binomial_sums(aq, n)
-    clear = certain = True
-    vq = last = 0
-    for j in range(n + 1):
-        s = (b[j] > 0) - (b[j] < 0)
-        certain = certain and abs(b[j]) > tol
-        vq += s * last < 0
-        last = s
-        clear = clear and s > 0
+    certain, vq, clear = _bernstein_signs(_binomial_sums(aq, n), tol)
     if clear and certain:
         return BERN_CLEAR, math.nan
     if not certain or vq != 1:
         return BERN_UNKNOWN, math.nan
     b = _binomial_sums(ap, n)
-    vp = last = 0
-    for j in range(n + 1):
-        s = (b[j] > 0) - (b[j] < 0)
-        certain = certain and abs(b[j]) > tol
-        vp += s * last < 0
-        last = s
+    certain, vp, _ = _bernstein_signs(b, tol)
     return (BERN_ONE if certain and vp == 1 else BERN_UNKNOWN), b[n]
+
+
+def _bernstein_signs(b: Sequence[float], tol: float) -> tuple[bool, int, bool]:
+    """(every |b_j| > tol, sign changes, every b_j > 0) -- zeros not skipped (unlike
+    _sign_changes: a certain coefficient is never 0)."""
+    certain, clear = True, True
+    changes = last = 0
+    for v in b:
+        s = (v > 0) - (v < 0)
+        certain = certain and abs(v) > tol
+        changes += s * last < 0
+        last = s
+        clear = clear and s > 0
+    return certain, changes, clear
 
 
 def _polish_isolated(p: Sequence[float], n: int, a: float, b: float, pa: float,
