@@ -390,11 +390,13 @@ BINOM = [[float(math.comb(j + k, k)) if j + k <= MAXN else 0.0 for j in range(MA
 
 
 class _Point:
-    __slots__ = ("x", "px", "dpx", "vp", "vq", "qt", "tol")
+    """C's Point: p's and q's Taylor coefficients at x (pt, qt), their error bounds (tol)."""
+    __slots__ = ("x", "px", "dpx", "vp", "vq", "pt", "qt", "tol")
 
-    def __init__(self, x: float, px: float, dpx: float, vp: int, vq: int, qt: list[float],
-                 tol: list[float]):
-        self.x, self.px, self.dpx, self.vp, self.vq, self.qt, self.tol = x, px, dpx, vp, vq, qt, tol
+    def __init__(self, x: float, px: float, dpx: float, vp: int, vq: int, pt: list[float],
+                 qt: list[float], tol: list[float]):
+        self.x, self.px, self.dpx, self.vp, self.vq = x, px, dpx, vp, vq
+        self.pt, self.qt, self.tol = pt, qt, tol
 
 
 def _point_at_zero(p: Sequence[float], n: int, e: float, skin: float) -> _Point:
@@ -407,7 +409,7 @@ def _point_at_zero(p: Sequence[float], n: int, e: float, skin: float) -> _Point:
         vq = _sign_changes(qt, n)
     else:
         vq = vp
-    return _Point(0.0, p[0], p[1], vp, vq, qt, tol)
+    return _Point(0.0, p[0], p[1], vp, vq, [p[i] for i in range(n + 1)], qt, tol)
 
 
 def _point_at(tk: list[list[float]], ta: list[list[float]], e: float, skin: float, n: int,
@@ -419,6 +421,7 @@ def _point_at(tk: list[list[float]], ta: list[list[float]], e: float, skin: floa
             a[k] = a[k] * x + tk[k][d]
             s[k] = s[k] * x + ta[k][d]
     rel = 8.0 * (n + 1) * U
+    pt = [0.0] * (n + 1)
     qt = [0.0] * (n + 1)
     tols = [0.0] * (n + 1)
     for k in range(n + 1):
@@ -429,10 +432,11 @@ def _point_at(tk: list[list[float]], ta: list[list[float]], e: float, skin: floa
             tol += rel * skin
         if not (abs(a[k]) > tol and abs(b) > tol):
             return None
+        pt[k] = a[k]
         qt[k] = b
         tols[k] = tol
         s[k] = b
-    return _Point(x, a[0], a[1], _sign_changes(a, n), _sign_changes(s, n), qt, tols)
+    return _Point(x, a[0], a[1], _sign_changes(a, n), _sign_changes(s, n), pt, qt, tols)
 
 
 def _clearly_positive(pt: _Point, n: int, w: float, direction: int) -> bool:
@@ -468,6 +472,77 @@ def _clearly_positive(pt: _Point, n: int, w: float, direction: int) -> bool:
     return m > 2 * rel * size
 
 
+# bernstein_test's answers
+BERN_UNKNOWN = 0
+BERN_CLEAR = 1
+BERN_ONE = 2
+# INV_BINOM[n][k] = 1.0 / C(n, k), rounded once as C's constant expressions `1.0 / 3` are
+# (the integer is exact as a double; tests compare the table with the C source's)
+INV_BINOM = [[1.0 / math.comb(n, k) for k in range(n + 1)] for n in range(MAXN + 1)]
+
+
+def _binomial_sums(a: Sequence[float], n: int) -> list[float]:
+    """b_j = sum_{k <= j} C(j, k) a_k, each sum accumulated from k = 0 up (C binomial_sums)."""
+    b = [0.0] * (n + 1)
+    for j in range(n + 1):
+        s = 0.0
+        for k in range(j + 1):
+            s += BINOM[k][j - k] * a[k]
+        b[j] = s
+    return b
+
+
+def _bernstein_test(pt: _Point, n: int, w: float) -> tuple[int, float]:
+    """(BERN_CLEAR / BERN_ONE / BERN_UNKNOWN, p(x + w)): Descartes' rule on the Bernstein
+    coefficients of q, then p, on [x, x + w] (C bernstein_test, which says why).  p(x + w) is
+    only computed (else NaN) when q's coefficients are certain and change sign once."""
+    inv = INV_BINOM[n]
+    ap = [0.0] * (n + 1)
+    aq = [0.0] * (n + 1)
+    rel = 4.0 * (2 * n + 4) * U
+    wk, g = 1.0, 0.0
+    for k in range(n + 1):
+        f = wk * inv[k]
+        ap[k] = pt.pt[k] * f
+        aq[k] = pt.qt[k] * f
+        g += (pt.tol[k] + rel * (abs(pt.pt[k]) + abs(pt.qt[k]))) * wk
+        wk *= w
+    tol = 2 * g + DBL_MIN
+    certain, vq, clear = _bernstein_signs(_binomial_sums(aq, n), tol)
+    if clear and certain:
+        return BERN_CLEAR, math.nan
+    if not certain or vq != 1:
+        return BERN_UNKNOWN, math.nan
+    b = _binomial_sums(ap, n)
+    certain, vp, _ = _bernstein_signs(b, tol)
+    return (BERN_ONE if certain and vp == 1 else BERN_UNKNOWN), b[n]
+
+
+def _bernstein_signs(b: Sequence[float], tol: float) -> tuple[bool, int, bool]:
+    """(every |b_j| > tol, sign changes, every b_j > 0) -- zeros not skipped (unlike
+    _sign_changes: a certain coefficient is never 0)."""
+    certain, clear = True, True
+    changes = last = 0
+    for v in b:
+        s = (v > 0) - (v < 0)
+        certain = certain and abs(v) > tol
+        changes += s * last < 0
+        last = s
+        clear = clear and s > 0
+    return certain, changes, clear
+
+
+def _polish_isolated(p: Sequence[float], n: int, a: float, b: float, pa: float,
+                     pb: float) -> float:
+    """The one simple root of p in (a, b), p(a) = pa > 0 > pb = p(b): safeguarded Newton from
+    the regula falsi point (C polish_isolated)."""
+    dp = [(i + 1) * p[i + 1] for i in range(n)]
+    x0 = a + (b - a) * _div(pa, pa - pb)
+    if not (a < x0 < b):
+        x0 = _split_point(a, b)
+    return _refine_root(p, dp, n, a, b, 1, 0.0, x0)
+
+
 def _isolation_split(a: float, b: float) -> float:
     if a == 0:
         return b * 0.0625
@@ -488,6 +563,11 @@ def _isolate_first_root(p: Sequence[float], n: int, skin: float, T: float):
         return 0.0
     if a.vq == 0 or _clearly_positive(a, n, T, 1):
         return _CLEARED
+    bern, pT = _bernstein_test(a, n, T)
+    if bern == BERN_CLEAR:
+        return _CLEARED
+    if bern == BERN_ONE:
+        return _polish_isolated(p, n, 0.0, T, a.px, pT), False
     tk = [[BINOM[k][j] * p[j + k] if j + k <= n else 0.0 for j in range(n + 1)] for k in range(n + 1)]
     ta = [[abs(v) for v in row] for row in tk]
     first = _point_at(tk, ta, e, sk, n, T)
@@ -495,21 +575,23 @@ def _isolate_first_root(p: Sequence[float], n: int, skin: float, T: float):
         return 0.0
     stack = [first]
     splits = 0
+    tested = True  # (0, T] has had its Bernstein test
     while True:
         b = stack[-1]
         w = b.x - a.x
         odd = (a.vp - b.vp) % 2 != 0
         if a.vq == b.vq or (not odd and (_clearly_positive(a, n, w, 1) or _clearly_positive(b, n, w, -1))):
             a = stack.pop()
+            tested = False
             if not stack:
                 return _CLEARED
             continue
         if a.vp - b.vp == 1 and a.vq - b.vq == 1:
-            dp = [(i + 1) * p[i + 1] for i in range(n)]
-            x0 = a.x + w * _div(a.px, a.px - b.px)
-            if not (a.x < x0 < b.x):
-                x0 = _split_point(a.x, b.x)
-            return _refine_root(p, dp, n, a.x, b.x, 1, 0.0, x0), False
+            return _polish_isolated(p, n, a.x, b.x, a.px, b.px), False
+        # Bernstein only for an odd count (a root certain), and not again on (0, T]
+        if odd and not tested and _bernstein_test(a, n, w)[0] == BERN_ONE:
+            return _polish_isolated(p, n, a.x, b.x, a.px, b.px), False
+        tested = False
         m = _isolation_split(a.x, b.x)
         mt = a.x + SPLIT_NEWTON * _div(-a.px, a.dpx)
         if a.dpx < 0 and a.x < mt < b.x and mt - a.x > MIN_WIDTH * b.x:
