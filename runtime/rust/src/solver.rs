@@ -104,9 +104,9 @@ pub(crate) fn load_coefficients(src: &[f64], c: &mut Coeffs, e: &mut [i32; MAXN 
 fn root_bound_exponent(e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n: usize) -> Option<i32> {
     let en = e[n];
     let mut best = i32::MIN;
-    for ((&ei, &nzi), den) in e[..n].iter().zip(&nz[..n]).zip((1..=n as i32).rev()) {
-        let q = ceil_div(ei + 1 - en, den);
-        let q = if nzi { q } else { i32::MIN };
+    for i in 0..n {
+        let q = ceil_div(e[i] + 1 - en, (n - i) as i32);
+        let q = if nz[i] { q } else { i32::MIN };
         best = if q > best { q } else { best };
     }
     (best != i32::MIN).then_some(best + 1)
@@ -1065,11 +1065,11 @@ fn derivative_method(c: &[f64], n: usize, lo: f64, t_end: f64, skin: f64) -> Opt
 }
 
 /// First root in (0, T] of c (degree n >= 3, normalised, c[0] != 0).
-pub(crate) fn first_root_interval(c: &[f64], n: usize, t_end: f64, skin: f64) -> Option<(f64, bool)> {
+pub(crate) fn first_root_interval(c: &Coeffs, n: usize, t_end: f64, skin: f64) -> Option<(f64, bool)> {
     let mut p = [0.0f64; MAXN + 1];
     let s = if c[0] > 0.0 { 1.0 } else { -1.0 };
-    for i in 0..=n {
-        p[i] = s * c[i];
+    for (pi, &ci) in p.iter_mut().zip(c).take(n + 1) {
+        *pi = s * ci;
     }
     let mut lo = 0.0;
     if t_end <= if n <= 8 { FAST_LIMIT_LOW } else { FAST_LIMIT_HIGH } {
