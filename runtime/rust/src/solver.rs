@@ -555,8 +555,8 @@ fn taylor_table<'a>(p: &[f64], n: usize, e: f64, skin: f64, slot: &'a mut MaybeU
     unsafe {
         (*tb).e = e;
         (*tb).skin = skin;
-        for k in 0..=n {
-            for j in 0..=n - k {
+        for k in 0..n + 1 {
+            for j in 0..n - k + 1 {
                 let v = BINOM[k][j] * p[j + k];
                 (*tb).tk[k][j] = MaybeUninit::new(v);
                 (*tb).ta[k][j] = MaybeUninit::new(v.abs());
@@ -628,12 +628,12 @@ fn point_at_zero<'a>(p: &[f64], n: usize, e: f64, skin: f64, slot: &'a mut Maybe
     let pt = slot.as_mut_ptr();
     // SAFETY: field writes through the slot's pointer (no reference to uninitialised memory is
     // made; the fields have no drop glue); every field is written before the reference is made
-    // (qt and tol entries 0..=n, all that is ever read).
+    // (pt, qt and tol entries 0..=n, all that is ever read).
     unsafe {
         (*pt).x = 0.0;
         (*pt).px = p[0];
         (*pt).dpx = p[1];
-        for i in 0..=n {
+        for i in 0..n + 1 {
             (*pt).pt[i] = MaybeUninit::new(p[i]);
             (*pt).qt[i] = MaybeUninit::new(p[i] - e * p[i].abs());
             (*pt).tol[i] = MaybeUninit::new(f64::EPSILON * p[i].abs());
@@ -661,8 +661,8 @@ fn point_at(tb: &Taylor, n: usize, x: f64, slot: &mut MaybeUninit<Point>) -> boo
     let mut a = [0.0f64; MAXN + 1];
     let mut s = [0.0f64; MAXN + 1];
     assert!(n <= MAXN);
-    for d in (0..=n).rev() {
-        for k in 0..=n - d {
+    for d in (0..n + 1).rev() {
+        for k in 0..n - d + 1 {
             // SAFETY: k + d <= n <= MAXN (asserted), so every index is in bounds, and
             // [k][d] is an entry taylor_table wrote.  (Unchecked: this double loop is the
             // solver's hottest code, and the bounds checks cost 30 % of it.)
@@ -678,7 +678,7 @@ fn point_at(tb: &Taylor, n: usize, x: f64, slot: &mut MaybeUninit<Point>) -> boo
     }
     let rel = 8.0 * (n + 1) as f64 * U;
     let tiny = f64::MIN_POSITIVE;
-    for k in 0..=n {
+    for k in 0..n + 1 {
         let mut b = a[k] - tb.e * s[k];
         let mut tol = rel * s[k] + tiny;
         if k == 0 && tb.skin > 0.0 {
@@ -714,7 +714,7 @@ fn clearly_positive(pt: &Point, n: usize, w: f64, dir: i32) -> bool {
     let rel = 4.0 * (n + 1) as f64 * U;
     let l = |k: usize| (if dir < 0 && k % 2 == 1 { -pt.qt(k) } else { pt.qt(k) }) - pt.tol(k);
     let mut r3 = 0.0;
-    for k in (3..=n).rev() {
+    for k in (3..n + 1).rev() {
         let lk = l(k);
         r3 = r3 * w + if lk < 0.0 { -lk } else { 0.0 };
     }
@@ -723,7 +723,7 @@ fn clearly_positive(pt: &Point, n: usize, w: f64, dir: i32) -> bool {
         *v = l(k);
     }
     let mut neg = r3;
-    for k in (1..=n.min(2)).rev() {
+    for k in (1..n.min(2) + 1).rev() {
         neg = neg * w + if lk[k] < 0.0 { -lk[k] } else { 0.0 };
     }
     neg *= w;
