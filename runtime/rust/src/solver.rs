@@ -748,19 +748,17 @@ fn clearly_positive(pt: &Point, n: usize, w: f64, dir: i32) -> bool {
 
 /// 1 / C(n, k) (C's INV_BINOM): each the correctly rounded quotient of exact integers, as C's
 /// constant expressions `1.0 / 6` are.
-static INV_BINOM: [[f64; MAXN + 1]; MAXN + 1] = inv_binom_table();
+static INV_BINOM: [[f64; MAXN + 1]; MAXN + 1] = reciprocals(pascal_table());
 
-const fn inv_binom_table() -> [[f64; MAXN + 1]; MAXN + 1] {
-    let binom = binom_table();
-    let mut t = [[0.0; MAXN + 1]; MAXN + 1];
-    let mut n = 0;
-    while n <= MAXN {
-        let mut k = 0;
-        while k <= n {
-            t[n][k] = 1.0 / binom[k][n - k]; // C(n, k) = BINOM[k][n - k]
-            k += 1;
+/// 1 / x for the nonzero entries (0 stays 0).
+const fn reciprocals(mut t: [[f64; MAXN + 1]; MAXN + 1]) -> [[f64; MAXN + 1]; MAXN + 1] {
+    let mut i = 0;
+    while i < (MAXN + 1) * (MAXN + 1) {
+        let x = t[i / (MAXN + 1)][i % (MAXN + 1)];
+        if x != 0.0 {
+            t[i / (MAXN + 1)][i % (MAXN + 1)] = 1.0 / x;
         }
-        n += 1;
+        i += 1;
     }
     t
 }
