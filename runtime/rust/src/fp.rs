@@ -50,6 +50,10 @@ fn pow2(k: i32) -> f64 {
 
 /// `x * 2^k` without intermediate overflow or double rounding: exact unless the result
 /// is subnormal (one rounding), overflows (±inf) or underflows (±0).
+///
+/// Never inlined (C's is a libm call): the solver calls it only off its hot paths, and
+/// inlined there, its bit tricks were hoisted into the Newton loop and computed on every step.
+#[inline(never)]
 pub(crate) fn ldexp(x: f64, k: i64) -> f64 {
     if x == 0.0 || !x.is_finite() || k == 0 {
         return x;

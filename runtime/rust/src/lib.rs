@@ -143,32 +143,26 @@ pub fn first_roots(c: &[f64], degree: usize, tmax: f64, eps: f64, out: &mut [f64
 
 /// The C runtime's `solve`.
 fn solve(coef: &[f64], tmax: f64, method: Method, eps: f64) -> Status {
-    if coef.is_empty()
-        || coef.len() > MAX_DEGREE + 1
-        || tmax.is_nan()
-        || tmax <= 0.0
-        || coef.iter().any(|v| !v.is_finite())
-        || !(0.0..f64::INFINITY).contains(&eps)
-    {
+    if coef.is_empty() || coef.len() > MAX_DEGREE + 1 || tmax.is_nan() || tmax <= 0.0 || !(0.0..f64::INFINITY).contains(&eps) {
         return Status::Invalid;
     }
     let mut c: Coeffs = [0.0; MAXN + 1];
-    // an element loop, as C's: copy_from_slice of a run-time length is a memcpy call
-    for (d, &v) in c.iter_mut().zip(coef) {
-        *d = v;
+    let mut e = [0i32; MAXN + 1];
+    let mut nz = [false; MAXN + 1];
+    // the copy and the exponents in one pass, as C's (a NaN or an infinity: invalid)
+    if !solver::load_coefficients(coef, &mut c, &mut e, &mut nz) {
+        return Status::Invalid;
     }
-    let n = solver::reduce(&mut c, coef.len() - 1, tmax);
+    let n = solver::reduce(&mut c, &mut e, &mut nz, coef.len() - 1, tmax);
     if n <= 0 {
         return Status::NoRoot;
     }
     let n = n as usize;
-    let mut e = [0i32; MAXN + 1];
-    let mut nz = [false; MAXN + 1];
-    let (spread, emax) = solver::exponents(&c, n, &mut e, &mut nz);
+    let (spread, emax) = solver::spread(&e, &nz, n);
     let hit = if spread > solver::max_spread() {
         solver::first_root_sliced(&c, n, tmax, eps, method == Method::IntervalNoGraze)
     } else {
-        solve_normalised(&mut c, n, emax, tmax, method, eps)
+        solve_normalised(&mut c, &e, &nz, n, emax, tmax, method, eps)
     };
     let Some((t, graze)) = hit else {
         return Status::NoRoot;
@@ -181,15 +175,17 @@ fn solve(coef: &[f64], tmax: f64, method: Method, eps: f64) -> Status {
 }
 
 /// C `solve_normalised`: coefficients within 2^MAX_SPREAD, scaled exactly, then by degree and
-/// method.
-fn solve_normalised(c: &mut Coeffs, n: usize, emax: i32, tu: f64, method: Method, eps: f64) -> Option<(f64, bool)> {
-    let e = solver::normalise(c, n, emax);
+/// method.  e, nz: the exponents of c before scaling (the root bound depends only on their
+/// differences, which scaling by a power of two keeps).
+#[allow(clippy::too_many_arguments)]
+fn solve_normalised(c: &mut Coeffs, e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n: usize, emax: i32, tu: f64, method: Method, eps: f64) -> Option<(f64, bool)> {
+    let big_e = solver::normalise(c, n, emax);
     let skin = if method == Method::IntervalNoGraze {
         -1.0
     } else if eps == 0.0 {
         0.0
     } else {
-        fp::ldexp(eps, -i64::from(e))
+        fp::ldexp(eps, -i64::from(big_e))
     };
     match n {
         1 => {
@@ -203,15 +199,15 @@ fn solve_normalised(c: &mut Coeffs, n: usize, emax: i32, tu: f64, method: Method
             let res = if n == 3 { closed::cubic_first(&c9, tu) } else { closed::quartic_first(&c9, tu) };
             match res {
                 Ok(hit) => hit,
-                Err(()) => interval(c, n, tu, skin),
+                Err(()) => interval(c, e, nz, n, tu, skin),
             }
         }
-        _ => interval(c, n, tu, skin),
+        _ => interval(c, e, nz, n, tu, skin),
     }
 }
 
-fn interval(c: &Coeffs, n: usize, tu: f64, skin: f64) -> Option<(f64, bool)> {
-    let b = solver::root_bound(c, n);
+fn interval(c: &Coeffs, e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n: usize, tu: f64, skin: f64) -> Option<(f64, bool)> {
+    let b = solver::root_bound(e, nz, n);
     let t_end = if tu < b { tu } else { b };
     if t_end > 0.0 {
         solver::first_root_interval(c, n, t_end, skin)

@@ -50,54 +50,75 @@ fn pow2(e: i32) -> f64 {
     f64::from_bits(((e + 1023) as u64) << 52)
 }
 
-/// 1/den for the ceiling division below.
-static RECIP: [f64; MAXN + 1] = recip_table();
+/// ceil(2^32 / d) for the ceiling division below; 32 entries so that an index masked to 5 bits
+/// needs no bounds check (entries beyond MAXN are never used).
+static MAGIC: [u64; 32] = magic_table();
 
-const fn recip_table() -> [f64; MAXN + 1] {
-    let mut t = [0.0; MAXN + 1];
+const fn magic_table() -> [u64; 32] {
+    let mut t = [0u64; 32];
     let mut d = 1;
-    while d <= MAXN {
-        t[d] = 1.0 / d as f64;
+    while d < 32 {
+        t[d] = (1u64 << 32).div_ceil(d as u64);
         d += 1;
     }
     t
 }
 
-/// ceil(num / den) for 0 < den <= 16 and |num| < 2^12, as C computes it: the product with the
-/// rounded reciprocal is within 1 of it and the integer checks fix that (it runs 2n times per
-/// solve, and an integer division is slow).
+/// ceil(num / den) for 0 < den <= 16 and |num| < 2^12, as C computes it, without a division
+/// (C `ceil_div`): x = num + 2^12 den + den - 1 is positive and below 2^17, and for such x
+/// floor(x / den) = floor(x ceil(2^32 / den) / 2^32).
 #[inline]
 fn ceil_div(num: i32, den: i32) -> i32 {
-    debug_assert!((1..=MAXN as i32).contains(&den) && num.abs() < 1 << 13);
-    // SAFETY: 0 < den <= MAXN indexes RECIP, and |num / den| < 2^13 fits an i32.  Unchecked:
-    // C's plain truncation (`as i32` saturates, with NaN and range compares and selects, and
-    // the index is bounds-checked: a third of root_bound's time, which runs on every solve)
-    let mut q: i32 = unsafe { (f64::from(num) * *RECIP.get_unchecked(den as usize)).to_int_unchecked() };
-    q += i32::from(q * den < num);
-    q -= i32::from((q - 1) * den >= num);
-    q
+    debug_assert!((1..=MAXN as i32).contains(&den) && num.abs() < 1 << 12);
+    let x = (num + 4096 * den + den - 1) as u64;
+    ((x * MAGIC[den as usize & 31]) >> 32) as i32 - 4096
+}
+
+/// C `load_coefficients`: copies `src` (n + 1 = src.len() <= 17 entries) to c and reads the
+/// exponents from the bits in the same pass: e[i] = ilogb(c[i]), nz[i] = (c[i] != 0), e[i] = 0
+/// for zeros.  False when a coefficient is not finite (invalid input).
+#[inline]
+pub(crate) fn load_coefficients(src: &[f64], c: &mut Coeffs, e: &mut [i32; MAXN + 1], nz: &mut [bool; MAXN + 1]) -> bool {
+    let mut bad = false;
+    for (((&x, ci), ei), nzi) in src.iter().zip(c.iter_mut()).zip(e.iter_mut()).zip(nz.iter_mut()) {
+        let b = x.to_bits();
+        *ci = x;
+        let be = ((b >> 52) & 0x7ff) as i32;
+        bad |= be == 0x7ff;
+        *nzi = (b << 1) != 0;
+        *ei = if be != 0 {
+            be - 1023
+        } else if *nzi {
+            ilogb(x) // subnormal: rare
+        } else {
+            0
+        };
+    }
+    !bad
 }
 
 /// C `root_bound_exponent`: every root is below 2^(the result); `None` when all c_i (i < n)
-/// are 0.
-fn root_bound_exponent(c: &[f64], n: usize) -> Option<i32> {
-    let en = exponent_of(c[n]);
+/// are 0.  e, nz: the exponents of c[0..=n] (`load_coefficients`; only their differences
+/// matter).  Branch-free, as in C: which term gives the maximum is data.
+#[inline]
+fn root_bound_exponent(e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n: usize) -> Option<i32> {
+    let en = e[n];
     let mut best = i32::MIN;
-    for (i, &ci) in c[..n].iter().enumerate() {
-        if ci != 0.0 {
-            best = best.max(ceil_div(exponent_of(ci) + 1 - en, (n - i) as i32));
-        }
+    for i in 0..n {
+        let q = ceil_div(e[i] + 1 - en, (n - i) as i32);
+        let q = if nz[i] { q } else { i32::MIN };
+        best = if q > best { q } else { best };
     }
     (best != i32::MIN).then_some(best + 1)
 }
 
-/// Fujiwara bound (C `root_bound`).
-pub(crate) fn root_bound(c: &[f64], n: usize) -> f64 {
-    match root_bound_exponent(c, n) {
+/// Fujiwara bound (C `root_bound`): 0 when all c_i (i < n) are 0, f64::MAX beyond the range.
+pub(crate) fn root_bound(e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n: usize) -> f64 {
+    match root_bound_exponent(e, nz, n) {
         None => 0.0,
-        Some(e) if e >= 1024 => f64::MAX,
-        Some(e) if e >= -1022 => pow2(e),
-        Some(e) => ldexp(1.0, i64::from(e)),
+        Some(b) if b >= 1024 => f64::MAX,
+        Some(b) if b >= -1022 => pow2(b),
+        Some(b) => ldexp(1.0, i64::from(b)),
     }
 }
 
@@ -131,8 +152,10 @@ fn scaled_le(a: f64, t: f64, et: Option<i32>, j: usize, k: f64, b: f64) -> bool 
     ea < eb || (ea == eb && ma <= mb)
 }
 
-/// C `leading_negligible` (in exponents where a side leaves the normal range).
-fn leading_negligible(c: &[f64], n: usize, tmax: f64) -> bool {
+/// C `leading_negligible` (in exponents where a side leaves the normal range).  e, nz: the
+/// exponents of c (`load_coefficients`).  When the exponents alone show |c_n| T^(n-i) above
+/// k |c_i| by a factor 8 for every i, the answer is no without the floating-point loop.
+fn leading_negligible(c: &Coeffs, e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n: usize, tmax: f64) -> bool {
     let mut t = tmax;
     let mut et = None; // T's exponent when T is a power of two beyond range
     if t.is_infinite() {
@@ -143,17 +166,31 @@ fn leading_negligible(c: &[f64], n: usize, tmax: f64) -> bool {
         if m == 0 {
             return false;
         }
-        let e = root_bound_exponent(c, m).unwrap_or(0);
-        et = Some(e);
-        t = if e >= 1024 {
+        // (never None: reduce calls this with c[0] != 0)
+        let b = root_bound_exponent(e, nz, m).unwrap_or(0);
+        et = Some(b);
+        t = if b >= 1024 {
             f64::INFINITY
-        } else if e >= -1022 {
-            pow2(e)
+        } else if b >= -1022 {
+            pow2(b)
         } else {
             0.0
         };
     }
     let k = 4.0 * n as f64 * f64::EPSILON;
+    if (f64::MIN_POSITIVE..=f64::MAX).contains(&t) {
+        // T >= 2^eT, k < 2^(ek + 1), |c| in [2^e, 2^(e + 1)); branch-free, as in C
+        let (e_t, ek) = (exponent_of(t), exponent_of(k));
+        let mut far = true;
+        let mut lhs = e[n] + e_t; // a lower bound on log2 |c_n| T^(n-i)
+        for i in (0..n).rev() {
+            far &= !nz[i] | (lhs >= e[i] + ek + 5);
+            lhs += e_t;
+        }
+        if far {
+            return false;
+        }
+    }
     let mut tp = 1.0;
     for i in (0..n).rev() {
         tp *= t;
@@ -171,8 +208,9 @@ fn leading_negligible(c: &[f64], n: usize, tmax: f64) -> bool {
     false
 }
 
-/// Drop zero/negligible leading terms and factors of t; the degree left, or -1.
-pub(crate) fn reduce(c: &mut Coeffs, mut n: usize, tmax: f64) -> i32 {
+/// Drop zero/negligible leading terms and factors of t; the degree left, or -1.  c and its
+/// exponents (e, nz) are modified in place.
+pub(crate) fn reduce(c: &mut Coeffs, e: &mut [i32; MAXN + 1], nz: &mut [bool; MAXN + 1], mut n: usize, tmax: f64) -> i32 {
     loop {
         while n > 0 && c[n] == 0.0 {
             n -= 1;
@@ -183,13 +221,19 @@ pub(crate) fn reduce(c: &mut Coeffs, mut n: usize, tmax: f64) -> i32 {
         if c[0] == 0.0 {
             for i in 0..n {
                 c[i] = c[i + 1];
+                e[i] = e[i + 1];
+                nz[i] = nz[i + 1];
             }
             c[n] = 0.0;
+            e[n] = 0;
+            nz[n] = false;
             n -= 1;
             continue;
         }
-        if leading_negligible(c, n, tmax) {
+        if leading_negligible(c, e, nz, n, tmax) {
             c[n] = 0.0;
+            e[n] = 0;
+            nz[n] = false;
             n -= 1;
             continue;
         }
@@ -197,19 +241,24 @@ pub(crate) fn reduce(c: &mut Coeffs, mut n: usize, tmax: f64) -> i32 {
     }
 }
 
-/// C `exponents`: the exponents of c[0..=n] (nz: nonzero), the spread (-1: all zero) and the
-/// largest exponent.
-pub(crate) fn exponents(c: &[f64], n: usize, e: &mut [i32; MAXN + 1], nz: &mut [bool; MAXN + 1]) -> (i32, i32) {
-    let (mut emax, mut emin) = (i32::MIN, i32::MAX);
-    for i in 0..=n.min(MAXN) {
-        nz[i] = c[i] != 0.0;
-        e[i] = if nz[i] { exponent_of(c[i]) } else { 0 };
-        if nz[i] {
-            emax = emax.max(e[i]);
-            emin = emin.min(e[i]);
+/// C `spread`: the spread of the exponents e of c[0..=n] (-1: all zero) and the largest.
+pub(crate) fn spread(e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n: usize) -> (i32, i32) {
+    let (mut hi, mut lo) = (i32::MIN, i32::MAX);
+    for (&ei, &nzi) in e[..=n].iter().zip(&nz[..=n]) {
+        if nzi {
+            hi = hi.max(ei);
+            lo = lo.min(ei);
         }
     }
-    (if emax == i32::MIN { -1 } else { emax - emin }, emax)
+    (if hi == i32::MIN { -1 } else { hi - lo }, hi)
+}
+
+/// C `exponents`: the exponents of c[0..=n] (finite; nz: nonzero), their spread (-1: all zero)
+/// and the largest exponent.
+pub(crate) fn exponents(c: &[f64], n: usize, e: &mut [i32; MAXN + 1], nz: &mut [bool; MAXN + 1]) -> (i32, i32) {
+    let mut copy: Coeffs = [0.0; MAXN + 1];
+    load_coefficients(&c[..=n], &mut copy, e, nz);
+    spread(e, nz, n)
 }
 
 /// The spread above which `solve` takes `first_root_sliced`.
@@ -506,8 +555,8 @@ fn taylor_table<'a>(p: &[f64], n: usize, e: f64, skin: f64, slot: &'a mut MaybeU
     unsafe {
         (*tb).e = e;
         (*tb).skin = skin;
-        for k in 0..=n {
-            for j in 0..=n - k {
+        for k in 0..n + 1 {
+            for j in 0..n - k + 1 {
                 let v = BINOM[k][j] * p[j + k];
                 (*tb).tk[k][j] = MaybeUninit::new(v);
                 (*tb).ta[k][j] = MaybeUninit::new(v.abs());
@@ -517,8 +566,9 @@ fn taylor_table<'a>(p: &[f64], n: usize, e: f64, skin: f64, slot: &'a mut MaybeU
     }
 }
 
-/// What is known at a point of the window (C's Point).  `qt` and `tol` hold entries 0..=n
-/// only, as in C: writing all 17 of each for every point would cost more than the counts.
+/// What is known at a point of the window (C's Point): p's Taylor coefficients there (`pt`),
+/// q's (`qt`) and bounds on their errors (`tol`).  The arrays hold entries 0..=n only, as in
+/// C: writing all 17 of each for every point would cost more than the counts.
 #[derive(Clone, Copy)]
 struct Point {
     x: f64,
@@ -526,11 +576,19 @@ struct Point {
     dpx: f64,
     vp: i32,
     vq: i32,
+    pt: [MaybeUninit<f64>; MAXN + 1],
     qt: [MaybeUninit<f64>; MAXN + 1],
     tol: [MaybeUninit<f64>; MAXN + 1],
 }
 
 impl Point {
+    /// p's Taylor coefficient k (k <= n: written by point_at / point_at_zero).
+    #[inline]
+    fn pt(&self, k: usize) -> f64 {
+        // SAFETY: every Point in use had entries 0..=n written, and k <= n here.
+        unsafe { self.pt[k].assume_init() }
+    }
+
     /// q's Taylor coefficient k (k <= n: written by point_at / point_at_zero).
     #[inline]
     fn qt(&self, k: usize) -> f64 {
@@ -543,6 +601,23 @@ impl Point {
         // SAFETY: as for qt.
         unsafe { self.tol[k].assume_init() }
     }
+
+    /// C's `a = *b`, the entries in use only (0..=n), one double at a time: a struct copy is a
+    /// memcpy of 440 bytes whose wide loads wait for point_at's 8-byte stores to retire (a
+    /// store-forwarding stall), measured at 7 % of the benchmark's Rust time.
+    #[inline]
+    fn assign(&mut self, b: &Point, n: usize) {
+        self.x = b.x;
+        self.px = b.px;
+        self.dpx = b.dpx;
+        self.vp = b.vp;
+        self.vq = b.vq;
+        for k in 0..n.min(MAXN) + 1 {
+            self.pt[k] = b.pt[k];
+            self.qt[k] = b.qt[k];
+            self.tol[k] = b.tol[k];
+        }
+    }
 }
 
 #[inline]
@@ -553,12 +628,13 @@ fn point_at_zero<'a>(p: &[f64], n: usize, e: f64, skin: f64, slot: &'a mut Maybe
     let pt = slot.as_mut_ptr();
     // SAFETY: field writes through the slot's pointer (no reference to uninitialised memory is
     // made; the fields have no drop glue); every field is written before the reference is made
-    // (qt and tol entries 0..=n, all that is ever read).
+    // (pt, qt and tol entries 0..=n, all that is ever read).
     unsafe {
         (*pt).x = 0.0;
         (*pt).px = p[0];
         (*pt).dpx = p[1];
-        for i in 0..=n {
+        for i in 0..n + 1 {
+            (*pt).pt[i] = MaybeUninit::new(p[i]);
             (*pt).qt[i] = MaybeUninit::new(p[i] - e * p[i].abs());
             (*pt).tol[i] = MaybeUninit::new(f64::EPSILON * p[i].abs());
         }
@@ -578,15 +654,15 @@ fn point_at_zero<'a>(p: &[f64], n: usize, e: f64, skin: f64, slot: &'a mut Maybe
     }
 }
 
-/// Writes the point x into `slot` (all of x, px, vp, vq and entries 0..=n of qt and tol) and
+/// Writes the point x into `slot` (all of x, px, dpx, vp, vq and entries 0..=n of pt, qt and tol) and
 /// returns true, or returns false (slot not to be used) when a sign is not certain.
 fn point_at(tb: &Taylor, n: usize, x: f64, slot: &mut MaybeUninit<Point>) -> bool {
     let pt = slot.as_mut_ptr();
     let mut a = [0.0f64; MAXN + 1];
     let mut s = [0.0f64; MAXN + 1];
     assert!(n <= MAXN);
-    for d in (0..=n).rev() {
-        for k in 0..=n - d {
+    for d in (0..n + 1).rev() {
+        for k in 0..n - d + 1 {
             // SAFETY: k + d <= n <= MAXN (asserted), so every index is in bounds, and
             // [k][d] is an entry taylor_table wrote.  (Unchecked: this double loop is the
             // solver's hottest code, and the bounds checks cost 30 % of it.)
@@ -602,7 +678,7 @@ fn point_at(tb: &Taylor, n: usize, x: f64, slot: &mut MaybeUninit<Point>) -> boo
     }
     let rel = 8.0 * (n + 1) as f64 * U;
     let tiny = f64::MIN_POSITIVE;
-    for k in 0..=n {
+    for k in 0..n + 1 {
         let mut b = a[k] - tb.e * s[k];
         let mut tol = rel * s[k] + tiny;
         if k == 0 && tb.skin > 0.0 {
@@ -615,6 +691,7 @@ fn point_at(tb: &Taylor, n: usize, x: f64, slot: &mut MaybeUninit<Point>) -> boo
         // SAFETY: field writes through the slot's pointer (no reference to uninitialised
         // memory is made; the fields have no drop glue).
         unsafe {
+            (*pt).pt[k] = MaybeUninit::new(a[k]);
             (*pt).qt[k] = MaybeUninit::new(b);
             (*pt).tol[k] = MaybeUninit::new(tol);
         }
@@ -637,7 +714,7 @@ fn clearly_positive(pt: &Point, n: usize, w: f64, dir: i32) -> bool {
     let rel = 4.0 * (n + 1) as f64 * U;
     let l = |k: usize| (if dir < 0 && k % 2 == 1 { -pt.qt(k) } else { pt.qt(k) }) - pt.tol(k);
     let mut r3 = 0.0;
-    for k in (3..=n).rev() {
+    for k in (3..n + 1).rev() {
         let lk = l(k);
         r3 = r3 * w + if lk < 0.0 { -lk } else { 0.0 };
     }
@@ -646,7 +723,7 @@ fn clearly_positive(pt: &Point, n: usize, w: f64, dir: i32) -> bool {
         *v = l(k);
     }
     let mut neg = r3;
-    for k in (1..=n.min(2)).rev() {
+    for k in (1..n.min(2) + 1).rev() {
         neg = neg * w + if lk[k] < 0.0 { -lk[k] } else { 0.0 };
     }
     neg *= w;
@@ -669,6 +746,119 @@ fn clearly_positive(pt: &Point, n: usize, w: f64, dir: i32) -> bool {
     m > 2.0 * rel * size
 }
 
+/// 1 / C(n, k) (C's INV_BINOM): each the correctly rounded quotient of exact integers, as C's
+/// constant expressions `1.0 / 6` are.
+static INV_BINOM: [[f64; MAXN + 1]; MAXN + 1] = reciprocals(pascal_table());
+
+/// 1 / x for the nonzero entries (0 stays 0).
+const fn reciprocals(mut t: [[f64; MAXN + 1]; MAXN + 1]) -> [[f64; MAXN + 1]; MAXN + 1] {
+    let mut i = 0;
+    while i < (MAXN + 1) * (MAXN + 1) {
+        let x = t[i / (MAXN + 1)][i % (MAXN + 1)];
+        if x != 0.0 {
+            t[i / (MAXN + 1)][i % (MAXN + 1)] = 1.0 / x;
+        }
+        i += 1;
+    }
+    t
+}
+
+/// What Descartes' rule in the Bernstein basis says about an interval (C's BERN_*).
+enum Bernstein {
+    /// q's coefficients all certainly positive: q > 0 on the interval, nothing in it.
+    Clear,
+    /// Every sign of p and q certain, each changing once: exactly one simple root of p and
+    /// nothing before it but noise.  Holds p at the right end (the last coefficient).
+    One(f64),
+    Unknown,
+}
+
+/// PASCAL[j][k] = C(j, k) = BINOM[k][j - k]: the rows of Pascal's triangle, so that the dot
+/// products below run over contiguous memory (the same exact integers as C's BINOM lookups).
+static PASCAL: [[f64; MAXN + 1]; MAXN + 1] = pascal_table();
+
+const fn pascal_table() -> [[f64; MAXN + 1]; MAXN + 1] {
+    let binom = binom_table();
+    let mut t = [[0.0; MAXN + 1]; MAXN + 1];
+    let mut j = 0;
+    while j <= MAXN {
+        let mut k = 0;
+        while k <= j {
+            t[j][k] = binom[k][j - k];
+            k += 1;
+        }
+        j += 1;
+    }
+    t
+}
+
+/// b_j = sum_{k <= j} C(j, k) a_k, j = 0..=n, as n + 1 dot products with the binomials (C
+/// `binomial_sums`: independent chains, each summed from k = 0 up, as in C).
+#[inline]
+fn binomial_sums(a: &[f64; MAXN + 1], n: usize, b: &mut [f64; MAXN + 1]) {
+    for ((bj, row), len) in b.iter_mut().zip(&PASCAL).zip(1..n + 2) {
+        let mut s = 0.0;
+        for (&c, &ak) in row[..len].iter().zip(&a[..len]) {
+            s += c * ak;
+        }
+        *bj = s;
+    }
+}
+
+/// C `bernstein_test`: the Bernstein coefficients of p and q on [x, x + w] (x = pt.x) from
+/// their Taylor coefficients at x, each sign trusted only beyond one scalar error bound (see
+/// the C source for why it serves every coefficient); q's first, p's only when q's allow
+/// `One`.
+fn bernstein_test(pt: &Point, n: usize, w: f64) -> Bernstein {
+    let n = n.min(MAXN);
+    let mut ap = [0.0f64; MAXN + 1];
+    let mut aq = [0.0f64; MAXN + 1];
+    let rel = 4.0 * (2 * n + 4) as f64 * U;
+    let inv = &INV_BINOM[n];
+    let (mut wk, mut g) = (1.0, 0.0);
+    for k in 0..n + 1 {
+        let f = wk * inv[k];
+        let (p, q) = (pt.pt(k), pt.qt(k));
+        ap[k] = p * f;
+        aq[k] = q * f;
+        g += (pt.tol(k) + rel * (p.abs() + q.abs())) * wk;
+        wk *= w;
+    }
+    let tol = 2.0 * g + f64::MIN_POSITIVE;
+    let mut b = [0.0f64; MAXN + 1];
+    binomial_sums(&aq, n, &mut b);
+    // (branch-free, as in C: the signs are data)
+    let (mut clear, mut certain, mut vq, mut last) = (true, true, 0, 0);
+    for &bj in &b[..=n] {
+        let s = i32::from(bj > 0.0) - i32::from(bj < 0.0);
+        certain &= bj.abs() > tol;
+        vq += i32::from(s * last < 0);
+        last = s;
+        clear &= s > 0;
+    }
+    if clear && certain {
+        return Bernstein::Clear;
+    }
+    if !certain || vq != 1 {
+        return Bernstein::Unknown;
+    }
+    binomial_sums(&ap, n, &mut b);
+    let pend = b[n];
+    let mut vp = 0;
+    last = 0;
+    for &bj in &b[..=n] {
+        let s = i32::from(bj > 0.0) - i32::from(bj < 0.0);
+        certain &= bj.abs() > tol;
+        vp += i32::from(s * last < 0);
+        last = s;
+    }
+    if certain && vp == 1 {
+        Bernstein::One(pend)
+    } else {
+        Bernstein::Unknown
+    }
+}
+
 fn isolation_split(a: f64, b: f64) -> f64 {
     if a == 0.0 {
         return b * 0.0625;
@@ -677,6 +867,20 @@ fn isolation_split(a: f64, b: f64) -> f64 {
         return a.sqrt() * b.sqrt();
     }
     a + 0.5 * (b - a)
+}
+
+/// C `polish_isolated`: the one simple root of p in (a, b), p(a) = pa > 0 > pb = p(b), by
+/// safeguarded Newton from the regula falsi point.
+fn polish_isolated(p: &[f64], n: usize, a: f64, b: f64, pa: f64, pb: f64) -> f64 {
+    let mut dp = [0.0f64; MAXN];
+    for i in 0..n {
+        dp[i] = (i + 1) as f64 * p[i + 1];
+    }
+    let mut x0 = a + (b - a) * (pa / (pa - pb));
+    if !(x0 > a && x0 < b) {
+        x0 = split_point(a, b);
+    }
+    refine_root(p, &dp, n, a, b, 1, 0.0, x0)
 }
 
 enum Isolation {
@@ -696,6 +900,11 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64) -> Isolation {
     if a.vq == 0 || clearly_positive(a, n, t_end, 1) {
         return Isolation::Cleared;
     }
+    match bernstein_test(a, n, t_end) {
+        Bernstein::Clear => return Isolation::Cleared,
+        Bernstein::One(p_end) => return Isolation::Isolated(polish_isolated(p, n, 0.0, t_end, a.px, p_end), false),
+        Bernstein::Unknown => {}
+    }
     let mut slot = MaybeUninit::<Taylor>::uninit();
     let tb = taylor_table(p, n, e, sk, &mut slot);
     // The right ends, as in C an uninitialised array of which stack[..top] is in use (zeroing
@@ -707,6 +916,7 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64) -> Isolation {
         return Isolation::Unresolved(0.0);
     }
     top += 1;
+    let mut tested = true; // (0, T] has had its Bernstein test
     loop {
         // SAFETY: stack[..top] was written by point_at (every field: x, px, vp, vq; the arrays
         // are MaybeUninit, their entries 0..=n written).
@@ -714,7 +924,8 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64) -> Isolation {
         let w = b.x - a.x;
         let odd = (a.vp - b.vp) % 2 != 0;
         if a.vq == b.vq || (!odd && (clearly_positive(a, n, w, 1) || clearly_positive(b, n, w, -1))) {
-            *a = *b;
+            a.assign(b, n);
+            tested = false;
             top -= 1;
             if top == 0 {
                 return Isolation::Cleared;
@@ -722,16 +933,14 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64) -> Isolation {
             continue;
         }
         if a.vp - b.vp == 1 && a.vq - b.vq == 1 {
-            let mut dp = [0.0f64; MAXN];
-            for i in 0..n {
-                dp[i] = (i + 1) as f64 * p[i + 1];
-            }
-            let mut x0 = a.x + w * (a.px / (a.px - b.px));
-            if !(x0 > a.x && x0 < b.x) {
-                x0 = split_point(a.x, b.x);
-            }
-            return Isolation::Isolated(refine_root(p, &dp, n, a.x, b.x, 1, 0.0, x0), false);
+            return Isolation::Isolated(polish_isolated(p, n, a.x, b.x, a.px, b.px), false);
         }
+        // Descartes in the Bernstein basis where the counts fail: only for an odd count (a
+        // root certain), and not again for (0, T] (see the C source)
+        if odd && !tested && matches!(bernstein_test(a, n, w), Bernstein::One(_)) {
+            return Isolation::Isolated(polish_isolated(p, n, a.x, b.x, a.px, b.px), false);
+        }
+        tested = false;
         let bx = b.x;
         let mut m = isolation_split(a.x, bx);
         let mt = a.x + SPLIT_NEWTON * (-a.px / a.dpx);
@@ -751,7 +960,7 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64) -> Isolation {
         if !(b.qt(0) - b.tol(0) > 0.0) {
             return Isolation::Unresolved(b.x);
         }
-        *a = *b;
+        a.assign(b, n);
         top -= 1;
         if top == 0 {
             return Isolation::Cleared;
@@ -854,11 +1063,11 @@ fn derivative_method(c: &[f64], n: usize, lo: f64, t_end: f64, skin: f64) -> Opt
 }
 
 /// First root in (0, T] of c (degree n >= 3, normalised, c[0] != 0).
-pub(crate) fn first_root_interval(c: &[f64], n: usize, t_end: f64, skin: f64) -> Option<(f64, bool)> {
+pub(crate) fn first_root_interval(c: &Coeffs, n: usize, t_end: f64, skin: f64) -> Option<(f64, bool)> {
     let mut p = [0.0f64; MAXN + 1];
     let s = if c[0] > 0.0 { 1.0 } else { -1.0 };
-    for i in 0..=n {
-        p[i] = s * c[i];
+    for (pi, &ci) in p.iter_mut().zip(c).take(n + 1) {
+        *pi = s * ci;
     }
     let mut lo = 0.0;
     if t_end <= if n <= 8 { FAST_LIMIT_LOW } else { FAST_LIMIT_HIGH } {
@@ -1018,10 +1227,59 @@ mod check {
 mod ceil {
     #[test]
     fn ceil_div_is_the_ceiling() {
+        // every den and every num of the documented domain (|num| < 2^12)
         for den in 1..=16 {
-            for num in -4100..4100 {
-                assert_eq!(super::ceil_div(num, den), num.div_euclid(den) + i32::from(num.rem_euclid(den) != 0));
+            for num in -4095..=4095 {
+                assert_eq!(super::ceil_div(num, den), num.div_euclid(den) + i32::from(num.rem_euclid(den) != 0), "{num} / {den}");
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod preparation {
+    use super::{load_coefficients, root_bound, Coeffs, MAXN};
+
+    #[test]
+    fn inverse_binomials_are_the_rounded_quotients() {
+        // against C(n, k) from the product formula and a division at run time
+        for n in 0..=MAXN {
+            let mut c = 1u64;
+            for k in 0..=n {
+                let q = std::hint::black_box(1.0) / c as f64;
+                assert_eq!(super::INV_BINOM[n][k].to_bits(), q.to_bits(), "1 / C({n}, {k})");
+                c = c * (n - k) as u64 / (k + 1) as u64;
+            }
+        }
+        assert_eq!(super::INV_BINOM[16][8], 1.0 / 12870.0);
+    }
+
+    #[test]
+    fn exponents_from_the_bits() {
+        let src = [1.0, -0.75, 0.0, -0.0, 5e-324, 3.0e-310, f64::MAX, -f64::MIN_POSITIVE];
+        let (mut c, mut e, mut nz): (Coeffs, _, _) = ([9.0; MAXN + 1], [9; MAXN + 1], [true; MAXN + 1]);
+        assert!(load_coefficients(&src, &mut c, &mut e, &mut nz));
+        assert_eq!(&c[..src.len()], &src);
+        assert_eq!(&e[..src.len()], &[0, -1, 0, 0, -1074, -1029, 1023, -1022]);
+        assert_eq!(&nz[..src.len()], &[true, true, false, false, true, true, true, true]);
+        // 3.0e-310 is in [2^-1029, 2^-1028) (subnormals: 2^k = bit 1074 + k)
+        assert!(f64::from_bits(1 << 45) <= 3.0e-310 && 3.0e-310 < f64::from_bits(1 << 46));
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            assert!(!load_coefficients(&[1.0, bad, 2.0], &mut c, &mut e, &mut nz));
+        }
+    }
+
+    #[test]
+    fn root_bound_bounds_the_roots() {
+        // (t - 3)(t + 5)(t - 0.25) = t^3 + 1.75 t^2 - 15.5 t + 3.75: |c_1 / c_3| < 2^4 gives
+        // 2^(ceil(4 / 2) + 1) = 8, above the largest root (5); the other terms give less
+        let src = [3.75, -15.5, 1.75, 1.0];
+        let (mut c, mut e, mut nz): (Coeffs, _, _) = ([0.0; MAXN + 1], [0; MAXN + 1], [false; MAXN + 1]);
+        assert!(load_coefficients(&src, &mut c, &mut e, &mut nz));
+        assert_eq!(root_bound(&e, &nz, 3), 8.0);
+        // only the leading term: no bound
+        let (mut e2, mut nz2) = ([0; MAXN + 1], [false; MAXN + 1]);
+        assert!(load_coefficients(&[0.0, 0.0, 2.0], &mut c, &mut e2, &mut nz2));
+        assert_eq!(root_bound(&e2, &nz2, 2), 0.0);
     }
 }
