@@ -8,7 +8,9 @@
  * Each output line:  STATUS T GRAZE PLAIN PRECISE POINTS DERIVATIVE BERNSTEIN
  * with T as %a (0 unless STATUS is 1) and the counters of m2c_count: Newton steps with
  * plain and with compensated evaluation, Taylor points, derivative-method calls and
- * Bernstein tests.
+ * Bernstein tests; with the argument --madds, followed by the multiply-adds by phase
+ * (m2c_count[0..3]: preparation, counts and exclusion tests, Newton polishing and speculation,
+ * derivative method).
  */
 #include <math.h>
 #include <stdio.h>
@@ -19,8 +21,9 @@
 
 extern double m2c_count[10];
 
-int main(void)
+int main(int argc, char **argv)
 {
+    int madds = argc > 1 && strcmp(argv[1], "--madds") == 0;
     char line[8192];
     while (fgets(line, sizeof line, stdin) != NULL) {
         char *p = line, *end;
@@ -44,8 +47,11 @@ int main(void)
         int graze = 0;
         int st = eps != 0 ? m2c_first_root_skin(c, degree, tmax, eps, &t, &graze)
                           : m2c_first_root_ex(c, degree, tmax, &t, method, &graze);
-        printf("%d %a %d %.0f %.0f %.0f %.0f %.0f\n", st, st == 1 ? t : 0.0, st == 1 ? graze : 0,
+        printf("%d %a %d %.0f %.0f %.0f %.0f %.0f", st, st == 1 ? t : 0.0, st == 1 ? graze : 0,
                m2c_count[4], m2c_count[5], m2c_count[6], m2c_count[7], m2c_count[9]);
+        if (madds)
+            printf(" %.0f %.0f %.0f %.0f", m2c_count[0], m2c_count[1], m2c_count[2], m2c_count[3]);
+        printf("\n");
     }
     return 0;
 }

@@ -74,13 +74,15 @@ def cargo_env() -> dict[str, str]:
     return env
 
 
-def build_cli(cargo: str) -> Path:
+def build_cli(cargo: str, example: str = "roots_cli", features: Sequence[str] = ()) -> Path:
+    """Builds an example of the crate (release) and returns its path."""
+    feat = ["--features", ",".join(features)] if features else []
     proc = subprocess.run(
-        [cargo, "build", "--quiet", "--release", "--example", "roots_cli"],
+        [cargo, "build", "--quiet", "--release", "--example", example, *feat],
         cwd=CRATE, env=cargo_env(), capture_output=True, text=True, timeout=600,
     )
     assert proc.returncode == 0, f"cargo build failed:\n{proc.stdout}\n{proc.stderr}"
-    exe = TARGET / "release" / "examples" / ("roots_cli.exe" if os.name == "nt" else "roots_cli")
+    exe = TARGET / "release" / "examples" / (f"{example}.exe" if os.name == "nt" else example)
     assert exe.exists(), exe
     return exe
 

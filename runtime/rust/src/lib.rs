@@ -43,10 +43,17 @@
 //! Never NaN, never a panic, never an unbounded loop (all iterations are capped).
 
 mod closed;
+mod count;
 mod fp;
 mod solver;
 
 use solver::{Coeffs, MAXN};
+
+/// The cost accounting of the C runtime's `-DM2C_COUNT` build, for the control-flow test
+/// (feature `count` only; see `src/count.rs`).
+#[cfg(feature = "count")]
+#[doc(hidden)]
+pub use count::take as take_counts;
 
 /// Highest supported degree (so at most `MAX_DEGREE + 1` coefficients).
 pub const MAX_DEGREE: usize = MAXN;
@@ -153,6 +160,8 @@ fn solve(coef: &[f64], tmax: f64, method: Method, eps: f64) -> Status {
     if !solver::load_coefficients(coef, &mut c, &mut e, &mut nz) {
         return Status::Invalid;
     }
+    count::phase(0);
+    count::event(8);
     let n = solver::reduce(&mut c, &mut e, &mut nz, coef.len() - 1, tmax);
     if n <= 0 {
         return Status::NoRoot;

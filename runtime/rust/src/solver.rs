@@ -14,6 +14,7 @@
 
 use std::mem::MaybeUninit;
 
+use crate::count;
 use crate::fp::{ilogb, ldexp};
 
 pub(crate) const MAXN: usize = 16;
@@ -292,6 +293,7 @@ fn scale_exponent(x: f64, m: usize) -> i32 {
 }
 
 fn horner(c: &[f64], n: usize, x: f64, k: i32, precise: bool) -> f64 {
+    count::madds(n);
     let c = &c[..=n];
     let mut acc = c[n];
     if k == 0 {
@@ -317,6 +319,7 @@ fn horner(c: &[f64], n: usize, x: f64, k: i32, precise: bool) -> f64 {
 }
 
 fn horner_abs(c: &[f64], n: usize, x: f64, k: i32) -> f64 {
+    count::madds(n);
     let ax = x.abs();
     let mut acc = c[n].abs();
     let xs = if k != 0 { ldexp(ax, -i64::from(k)) } else { ax };
@@ -405,6 +408,7 @@ fn split_point(lo: f64, hi: f64) -> f64 {
 }
 
 fn horner_compensated(p: &[f64], m: usize, x: f64) -> f64 {
+    count::madds(10 * m);
     const SPLIT: f64 = 134_217_729.0;
     let p = &p[..=m];
     let tx = SPLIT * x;
@@ -433,6 +437,7 @@ fn value_and_slope(p: &[f64], d: &[f64], m: usize, x: f64, k: i32, precise: bool
         let size = horner_abs(p, m, x, k);
         return (horner(p, m, x, k, precise), slope, size);
     }
+    count::madds(3 * m - 1);
     let (p, d) = (&p[..=m], &d[..m]);
     let mut f = p[m];
     let mut df = d[m - 1];
@@ -456,6 +461,7 @@ fn refine_root(p: &[f64], d: &[f64], m: usize, mut lo: f64, mut hi: f64, slo: i3
     let mut precise = false;
     let mut stop = if tol > 0.0 { tol } else { PRECISE_FROM };
     for it in 0..MAX_ITER {
+        count::event(if precise { 5 } else { 4 });
         let k = scale_exponent(x, m);
         let (f, df, size) = value_and_slope(p, d, m, x, k, precise);
         if tol == 0.0 && !precise && f.abs() <= noise_factor(m) * size {
@@ -562,6 +568,13 @@ fn taylor_table<'a>(p: &[f64], n: usize, e: f64, skin: f64, slot: &'a mut MaybeU
                 (*tb).ta[k][j] = MaybeUninit::new(v.abs());
             }
         }
+        // zeros up to degree 8, for point_at's fixed bounds
+        for k in 0..9 {
+            for j in (n + 1).saturating_sub(k)..9 - k {
+                (*tb).tk[k][j] = MaybeUninit::new(0.0);
+                (*tb).ta[k][j] = MaybeUninit::new(0.0);
+            }
+        }
         slot.assume_init_ref()
     }
 }
@@ -654,17 +667,14 @@ fn point_at_zero<'a>(p: &[f64], n: usize, e: f64, skin: f64, slot: &'a mut Maybe
     }
 }
 
-/// Writes the point x into `slot` (all of x, px, dpx, vp, vq and entries 0..=n of pt, qt and tol) and
-/// returns true, or returns false (slot not to be used) when a sign is not certain.
-fn point_at(tb: &Taylor, n: usize, x: f64, slot: &mut MaybeUninit<Point>) -> bool {
-    let pt = slot.as_mut_ptr();
-    let mut a = [0.0f64; MAXN + 1];
-    let mut s = [0.0f64; MAXN + 1];
+/// The Taylor coefficients of p and |p| at x above degree 8 (C's loop; bounds that vary
+/// with n).
+fn taylor_shift(tb: &Taylor, n: usize, x: f64, a: &mut [f64; MAXN + 1], s: &mut [f64; MAXN + 1]) {
     assert!(n <= MAXN);
     for d in (0..n + 1).rev() {
         for k in 0..n - d + 1 {
             // SAFETY: k + d <= n <= MAXN (asserted), so every index is in bounds, and
-            // [k][d] is an entry taylor_table wrote.  (Unchecked: this double loop is the
+            // [k][d] is an entry taylor_table wrote.  (Unchecked: this double loop was the
             // solver's hottest code, and the bounds checks cost 30 % of it.)
             unsafe {
                 let t = tb.tk.get_unchecked(k).get_unchecked(d).assume_init();
@@ -675,6 +685,33 @@ fn point_at(tb: &Taylor, n: usize, x: f64, slot: &mut MaybeUninit<Point>) -> boo
                 *sk = *sk * x + u;
             }
         }
+    }
+}
+
+/// Writes the point x into `slot` (all of x, px, dpx, vp, vq and entries 0..=n of pt, qt and tol) and
+/// returns true, or returns false (slot not to be used) when a sign is not certain.
+fn point_at(tb: &Taylor, n: usize, x: f64, slot: &mut MaybeUninit<Point>) -> bool {
+    count::event(6);
+    count::madds((n + 1) * (n + 2));
+    let pt = slot.as_mut_ptr();
+    let mut a = [0.0f64; MAXN + 1];
+    let mut s = [0.0f64; MAXN + 1];
+    if n <= 8 {
+        // over degree 8 with constant bounds, as C writes it out (the table is 0 above degree
+        // n, and 0 x + 0 = 0 for x > 0: the same values as the loop below, bit for bit)
+        let (mut a9, mut s9) = ([0.0f64; 9], [0.0f64; 9]);
+        for d in (0..9).rev() {
+            for k in 0..9 - d {
+                // SAFETY: k + d <= 8: taylor_table wrote [k][d] (p's entry or a zero).
+                let (t, u) = unsafe { (tb.tk[k][d].assume_init(), tb.ta[k][d].assume_init()) };
+                a9[k] = a9[k] * x + t;
+                s9[k] = s9[k] * x + u;
+            }
+        }
+        a[..9].copy_from_slice(&a9);
+        s[..9].copy_from_slice(&s9);
+    } else {
+        taylor_shift(tb, n, x, &mut a, &mut s);
     }
     let rel = 8.0 * (n + 1) as f64 * U;
     let tiny = f64::MIN_POSITIVE;
@@ -711,6 +748,7 @@ fn point_at(tb: &Taylor, n: usize, x: f64, slot: &mut MaybeUninit<Point>) -> boo
 /// C's clearly_positive: the first-order exclusion test, then the second-order one (see the
 /// C source).
 fn clearly_positive(pt: &Point, n: usize, w: f64, dir: i32) -> bool {
+    count::madds(n);
     let rel = 4.0 * (n + 1) as f64 * U;
     let l = |k: usize| (if dir < 0 && k % 2 == 1 { -pt.qt(k) } else { pt.qt(k) }) - pt.tol(k);
     let mut r3 = 0.0;
@@ -763,20 +801,8 @@ const fn reciprocals(mut t: [[f64; MAXN + 1]; MAXN + 1]) -> [[f64; MAXN + 1]; MA
     t
 }
 
-/// What Descartes' rule in the Bernstein basis says about an interval (C's BERN_*).
-enum Bernstein {
-    /// q's coefficients all certainly positive: q > 0 on the interval, nothing in it.
-    Clear,
-    /// Every sign of p and q certain, each changing once: exactly one simple root of p and
-    /// nothing before it but noise.  Holds p at the right end (the last coefficient).
-    One(f64),
-    Unknown,
-}
-
-/// PASCAL[j][k] = C(j, k) = BINOM[k][j - k]: the rows of Pascal's triangle, so that the dot
-/// products below run over contiguous memory (the same exact integers as C's BINOM lookups).
-static PASCAL: [[f64; MAXN + 1]; MAXN + 1] = pascal_table();
-
+/// PASCAL[j][k] = C(j, k) = BINOM[k][j - k]: the rows of Pascal's triangle (the same exact
+/// integers as C's tables).
 const fn pascal_table() -> [[f64; MAXN + 1]; MAXN + 1] {
     let binom = binom_table();
     let mut t = [[0.0; MAXN + 1]; MAXN + 1];
@@ -792,25 +818,61 @@ const fn pascal_table() -> [[f64; MAXN + 1]; MAXN + 1] {
     t
 }
 
-/// b_j = sum_{k <= j} C(j, k) a_k, j = 0..=n, as n + 1 dot products with the binomials (C
-/// `binomial_sums`: independent chains, each summed from k = 0 up, as in C).
-#[inline]
-fn binomial_sums(a: &[f64; MAXN + 1], n: usize, b: &mut [f64; MAXN + 1]) {
-    for ((bj, row), len) in b.iter_mut().zip(&PASCAL).zip(1..n + 2) {
-        let mut s = 0.0;
-        for (&c, &ak) in row[..len].iter().zip(&a[..len]) {
-            s += c * ak;
+/// What Descartes' rule in the Bernstein basis says about an interval (C's BERN_*).
+enum Bernstein {
+    /// q's coefficients all certainly positive: q > 0 on the interval, nothing in it.
+    Clear,
+    /// Every sign of p and q certain, each changing once: exactly one simple root of p and
+    /// nothing before it but noise.  Holds p at the right end (the last coefficient).
+    One(f64),
+    Unknown,
+}
+
+/// What the test on (0, T] reports besides its verdict (C's `guess` and `qb` arguments):
+/// where p's control polygon first crosses 0 (-1: nowhere), q's Bernstein coefficients
+/// (entries 0..=n), the bound on their errors, and whether their signs are certain with an
+/// even number of changes and p's count is even too (then `bernstein_clear` may clear q).
+struct Start {
+    guess: f64,
+    q: [f64; MAXN + 1],
+    err: f64,
+    even: bool,
+}
+
+/// b_j = sum_{k <= j} C(j, k) a_k, j = 0..=n, in place (C `binomial_sums`): n rounds of
+/// running sums, round r adding to each entry j >= r its left neighbour, j descending.  Up to
+/// degree 8 over 9 entries with constant bounds (fully unrolled, in registers: the entries
+/// above n, zeros, never reach those below), as C writes it out.
+#[inline(always)]
+fn binomial_sums(a: &mut [f64; MAXN + 1], n: usize) {
+    if n <= 8 {
+        let mut b = [a[0], a[1], a[2], a[3], a[4], a[5], a[6], a[7], a[8]];
+        for r in 1..9 {
+            for j in (r..9).rev() {
+                b[j] += b[j - 1];
+            }
         }
-        *bj = s;
+        a[..9].copy_from_slice(&b);
+        return;
+    }
+    let n = n.min(MAXN);
+    for r in 1..n + 1 {
+        for j in (r..n + 1).rev() {
+            a[j] += a[j - 1];
+        }
     }
 }
 
 /// C `bernstein_test`: the Bernstein coefficients of p and q on [x, x + w] (x = pt.x) from
 /// their Taylor coefficients at x, each sign trusted only beyond one scalar error bound (see
-/// the C source for why it serves every coefficient); q's first, p's only when q's allow
-/// `One`.
-fn bernstein_test(pt: &Point, n: usize, w: f64) -> Bernstein {
+/// the C source for why it serves every coefficient); q's first, p's when q's allow `One` or
+/// when `start` asks for the guess (then `start` is filled, unless the verdict is `Clear`).
+#[inline(always)]
+fn bernstein_test(pt: &Point, n: usize, w: f64, start: Option<&mut Start>) -> Bernstein {
     let n = n.min(MAXN);
+    count::event(9);
+    count::madds((n + 1) * (n + 2) / 2 + 4 * n);
+    // (entries n + 1..=8 zero: binomial_sums reads 9)
     let mut ap = [0.0f64; MAXN + 1];
     let mut aq = [0.0f64; MAXN + 1];
     let rel = 4.0 * (2 * n + 4) as f64 * U;
@@ -825,8 +887,8 @@ fn bernstein_test(pt: &Point, n: usize, w: f64) -> Bernstein {
         wk *= w;
     }
     let tol = 2.0 * g + f64::MIN_POSITIVE;
-    let mut b = [0.0f64; MAXN + 1];
-    binomial_sums(&aq, n, &mut b);
+    binomial_sums(&mut aq, n);
+    let b = &aq;
     // (branch-free, as in C: the signs are data)
     let (mut clear, mut certain, mut vq, mut last) = (true, true, 0, 0);
     for &bj in &b[..=n] {
@@ -839,24 +901,183 @@ fn bernstein_test(pt: &Point, n: usize, w: f64) -> Bernstein {
     if clear && certain {
         return Bernstein::Clear;
     }
-    if !certain || vq != 1 {
-        return Bernstein::Unknown;
-    }
-    binomial_sums(&ap, n, &mut b);
-    let pend = b[n];
-    let mut vp = 0;
-    last = 0;
-    for &bj in &b[..=n] {
+    let one = certain && vq == 1;
+    let Some(start) = start else {
+        if !one {
+            return Bernstein::Unknown;
+        }
+        return p_count(&mut ap, n, tol, certain, one).0;
+    };
+    start.q[..=n].copy_from_slice(&b[..=n]);
+    start.err = tol;
+    start.even = certain && vq % 2 == 0;
+    let (verdict, vp, jl, cross) = p_count(&mut ap, n, tol, certain, one);
+    // where the control polygon first crosses 0
+    start.guess = if cross < 0 {
+        -1.0
+    } else {
+        let (jl, cross) = (jl as usize, cross as usize);
+        pt.x + w * ((jl as f64 + (cross - jl) as f64 * (ap[jl] / (ap[jl] - ap[cross]))) / n as f64)
+    };
+    // an odd count for p: a root is certain, q cannot be cleared
+    start.even &= vp % 2 == 0;
+    verdict
+}
+
+/// The second half of `bernstein_test`: p's Bernstein coefficients (formed in `ap`, in
+/// place), the verdict, p's sign changes, and (as C's `jl` and `cross`) the last nonzero
+/// coefficient before the first sign change and where that change is (-1: none).
+#[inline(always)]
+fn p_count(ap: &mut [f64; MAXN + 1], n: usize, tol: f64, mut certain: bool, one: bool) -> (Bernstein, i32, i32, i32) {
+    count::madds((n + 1) * (n + 2) / 2);
+    binomial_sums(ap, n);
+    let pend = ap[n];
+    let (mut vp, mut jl, mut cross, mut last) = (0, 0, -1, 0);
+    for (j, &bj) in ap[..=n].iter().enumerate() {
         let s = i32::from(bj > 0.0) - i32::from(bj < 0.0);
         certain &= bj.abs() > tol;
-        vp += i32::from(s * last < 0);
+        if s * last < 0 {
+            vp += 1;
+            if cross < 0 {
+                cross = j as i32;
+            }
+        }
+        if s != 0 && cross < 0 {
+            jl = j as i32;
+        }
+        last = if s != 0 { s } else { last };
+    }
+    let verdict = if one && certain && vp == 1 { Bernstein::One(pend) } else { Bernstein::Unknown };
+    (verdict, vp, jl, cross)
+}
+
+/// C `left_half`: the Bernstein coefficients of the left half of the interval (de Casteljau at
+/// 1/2: n rounds of averages of neighbours; out[k] is the first entry after round k), entries
+/// 0..=n.  Up to degree 8 over 9 entries with constant bounds (the entries above n, zeros,
+/// never reach out[0..=n]), as C writes it out.
+#[inline(always)]
+fn left_half(inp: &[f64; MAXN + 1], n: usize, out: &mut [f64; MAXN + 1]) {
+    let n = n.min(MAXN);
+    if n <= 8 {
+        let mut w = [0.0f64; 9];
+        w[..n + 1].copy_from_slice(&inp[..n + 1]);
+        let mut o = [0.0f64; 9];
+        o[0] = w[0];
+        for k in 1..9 {
+            for j in 0..9 - k {
+                w[j] = (w[j] + w[j + 1]) * 0.5;
+            }
+            o[k] = w[0];
+        }
+        out[..n + 1].copy_from_slice(&o[..n + 1]);
+        return;
+    }
+    let mut w = *inp;
+    out[0] = w[0];
+    for k in 1..n + 1 {
+        for j in 0..n - k + 1 {
+            w[j] = (w[j] + w[j + 1]) * 0.5;
+        }
+        out[k] = w[0];
+    }
+}
+
+/// Halvings after which `bernstein_clear` gives up.
+const CLEAR_DEPTH: usize = 12;
+
+/// C `bernstein_clear`: is q > 0 on the interval whose Bernstein coefficients are q[0..=n]
+/// (certain signs beyond `err`, an even count)?  Depth-first bisection in the Bernstein basis
+/// (left half first); a piece is cleared when its coefficients are all certainly positive, and
+/// the answer is no at the first piece with an uncertain sign or differing end signs, or
+/// beyond CLEAR_DEPTH halvings.  A child's error bound is its parent's plus 2 n u M + DBL_MIN
+/// (see the C source).  Out of line, as in C: a rare path.
+#[inline(never)]
+fn bernstein_clear(q: &[f64; MAXN + 1], err0: f64, n: usize) -> bool {
+    let n = n.min(MAXN);
+    let mut st = [[0.0f64; MAXN + 1]; CLEAR_DEPTH + 2];
+    let mut err = [0.0f64; CLEAR_DEPTH + 2];
+    let mut depth = [0usize; CLEAR_DEPTH + 2];
+    st[0][..=n].copy_from_slice(&q[..=n]);
+    err[0] = err0;
+    let mut top = 1;
+    while top > 0 {
+        top -= 1;
+        let (e, d) = (err[top], depth[top]);
+        let (below, above) = st.split_at_mut(top + 1);
+        let b = &mut below[top];
+        // with every sign certain (no zeros), the number of sign changes is odd exactly when
+        // the end signs differ
+        let (mut lo, mut hi, mut amin) = (b[0], b[0], b[0].abs());
+        for &bj in &b[1..=n] {
+            lo = if bj < lo { bj } else { lo };
+            hi = if bj > hi { bj } else { hi };
+            amin = if bj.abs() < amin { bj.abs() } else { amin };
+        }
+        if !(amin > e) || (b[0] > 0.0) != (b[n] > 0.0) {
+            return false;
+        }
+        if lo > 0.0 {
+            continue;
+        }
+        let m = if -lo > hi { -lo } else { hi };
+        if d == CLEAR_DEPTH {
+            return false;
+        }
+        // halves: the right one over b's slot, the left one above it (looked at first)
+        count::madds(n * (n + 1));
+        let mut rev = [0.0f64; MAXN + 1];
+        for j in 0..n + 1 {
+            rev[j] = b[n - j];
+        }
+        left_half(b, n, &mut above[0]);
+        let r = rev;
+        left_half(&r, n, &mut rev); // the right half, reversed
+        for j in 0..n + 1 {
+            b[j] = rev[n - j];
+        }
+        let ec = e + (2 * n) as f64 * U * m + f64::MIN_POSITIVE;
+        err[top] = ec;
+        err[top + 1] = ec;
+        depth[top] = d + 1;
+        depth[top + 1] = d + 1;
+        top += 2;
+    }
+    true
+}
+
+/// Newton steps `speculate_first_root` takes at most.
+const SPECULATE_STEPS: usize = 8;
+/// The certificate's interval reaches this far beyond the speculated root, relative (2^-20).
+const SPECULATE_MARGIN: f64 = 9.536_743_164_062_5e-7;
+
+/// C `speculate_first_root`: plain Newton from x (where p's control polygon on (0, T] first
+/// crosses 0) until the step is below PRECISE_FROM; `None` when it leaves (0, T), when
+/// p' = 0, when a step from the fourth on has not halved, or after SPECULATE_STEPS.  Nothing
+/// is certain about the result: the caller certifies it by a Bernstein test.
+fn speculate_first_root(p: &[f64], dp: &[f64], n: usize, t_end: f64, mut x: f64) -> Option<f64> {
+    count::phase(2);
+    let mut last = 0.0f64;
+    for it in 0..SPECULATE_STEPS {
+        if !(x > 0.0 && x < t_end) {
+            return None;
+        }
+        let (f, df, _) = value_and_slope(p, dp, n, x, 0, false);
+        if df == 0.0 {
+            return None;
+        }
+        let s = f / df;
+        x -= s;
+        if s.abs() <= PRECISE_FROM * x {
+            return (x > 0.0 && x < t_end).then_some(x);
+        }
+        // converging to a simple root the steps shrink fast from the second on; near a
+        // complex pair they wander
+        if it >= 3 && !(s.abs() <= 0.5 * last.abs()) {
+            return None;
+        }
         last = s;
     }
-    if certain && vp == 1 {
-        Bernstein::One(pend)
-    } else {
-        Bernstein::Unknown
-    }
+    None
 }
 
 fn isolation_split(a: f64, b: f64) -> f64 {
@@ -880,6 +1101,7 @@ fn polish_isolated(p: &[f64], n: usize, a: f64, b: f64, pa: f64, pb: f64) -> f64
     if !(x0 > a && x0 < b) {
         x0 = split_point(a, b);
     }
+    count::phase(2);
     refine_root(p, &dp, n, a, b, 1, 0.0, x0)
 }
 
@@ -890,6 +1112,7 @@ enum Isolation {
 }
 
 fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64) -> Isolation {
+    count::phase(1);
     let e = if skin >= 0.0 { noise_factor(n) } else { 0.0 };
     let sk = if skin > 0.0 { skin } else { 0.0 };
     let mut a_slot = MaybeUninit::<Point>::uninit();
@@ -900,10 +1123,34 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64) -> Isolation {
     if a.vq == 0 || clearly_positive(a, n, t_end, 1) {
         return Isolation::Cleared;
     }
-    match bernstein_test(a, n, t_end) {
+    let mut start = Start { guess: -1.0, q: [0.0; MAXN + 1], err: 0.0, even: false };
+    match bernstein_test(a, n, t_end, Some(&mut start)) {
         Bernstein::Clear => return Isolation::Cleared,
         Bernstein::One(p_end) => return Isolation::Isolated(polish_isolated(p, n, 0.0, t_end, a.px, p_end), false),
         Bernstein::Unknown => {}
+    }
+    if start.guess <= 0.0 && start.even && bernstein_clear(&start.q, start.err, n) {
+        return Isolation::Cleared;
+    }
+    if start.guess > 0.0 {
+        // a guess, then a certificate
+        let mut dp = [0.0f64; MAXN];
+        for i in 0..n {
+            dp[i] = (i + 1) as f64 * p[i + 1];
+        }
+        if let Some(r) = speculate_first_root(p, &dp, n, t_end, start.guess) {
+            let w = r + r * SPECULATE_MARGIN;
+            let w = if w < t_end { w } else { t_end };
+            count::phase(1);
+            if let Bernstein::One(_) = bernstein_test(a, n, w, None) {
+                count::phase(2);
+                return Isolation::Isolated(refine_root(p, &dp, n, 0.0, w, 1, 0.0, r), false);
+            }
+        }
+        count::phase(1);
+        if start.even && bernstein_clear(&start.q, start.err, n) {
+            return Isolation::Cleared;
+        }
     }
     let mut slot = MaybeUninit::<Taylor>::uninit();
     let tb = taylor_table(p, n, e, sk, &mut slot);
@@ -937,7 +1184,7 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64) -> Isolation {
         }
         // Descartes in the Bernstein basis where the counts fail: only for an odd count (a
         // root certain), and not again for (0, T] (see the C source)
-        if odd && !tested && matches!(bernstein_test(a, n, w), Bernstein::One(_)) {
+        if odd && !tested && matches!(bernstein_test(a, n, w, None), Bernstein::One(_)) {
             return Isolation::Isolated(polish_isolated(p, n, a.x, b.x, a.px, b.px), false);
         }
         tested = false;
@@ -954,7 +1201,9 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64) -> Isolation {
         }
         // SAFETY: as above.
         let b = unsafe { stack[top - 1].assume_init_ref() };
-        if let Some(hit) = derivative_method(p, n, a.x, b.x, skin) {
+        let hit = derivative_method(p, n, a.x, b.x, skin);
+        count::phase(1);
+        if let Some(hit) = hit {
             return Isolation::Isolated(hit.0, hit.1);
         }
         if !(b.qt(0) - b.tol(0) > 0.0) {
@@ -1030,6 +1279,8 @@ fn critical_points(d: &Chain, n: usize, lo: f64, t_end: f64, crit: &mut [f64; MA
 }
 
 fn derivative_method(c: &[f64], n: usize, lo: f64, t_end: f64, skin: f64) -> Option<(f64, bool)> {
+    count::phase(3);
+    count::event(7);
     let d = derivative_chain(c, n);
     let mut crit = [0.0f64; MAXN];
     let nc = critical_points(&d, n, lo, t_end, &mut crit);
