@@ -83,7 +83,10 @@ pub(crate) fn load_coefficients(src: &[f64], c: &mut Coeffs, e: &mut [i32; MAXN 
     let mut bad = false;
     for (((&x, ci), ei), nzi) in src.iter().zip(c.iter_mut()).zip(e.iter_mut()).zip(nz.iter_mut()) {
         let b = x.to_bits();
-        *ci = x;
+        // SAFETY: ci is a valid, aligned &mut f64.  (A volatile store is a plain one here; it
+        // keeps LLVM from splitting the copy out of this loop into a memcpy call, which cost
+        // 4 % of a quick solve.)
+        unsafe { std::ptr::write_volatile(ci, x) };
         let be = ((b >> 52) & 0x7ff) as i32;
         bad |= be == 0x7ff;
         *nzi = (b << 1) != 0;
@@ -431,6 +434,7 @@ fn horner_compensated(p: &[f64], m: usize, x: f64) -> f64 {
     s + c
 }
 
+#[inline(always)]
 fn value_and_slope(p: &[f64], d: &[f64], m: usize, x: f64, k: i32, precise: bool) -> (f64, f64, f64) {
     if k != 0 {
         let slope = horner(d, m - 1, x, k, false);
@@ -908,7 +912,11 @@ fn bernstein_test(pt: &Point, n: usize, w: f64, start: Option<&mut Start>) -> Be
         }
         return p_count(&mut ap, n, tol, certain, one).0;
     };
-    start.q[..=n].copy_from_slice(&b[..=n]);
+    if n <= 8 {
+        start.q[..9].copy_from_slice(&b[..9]); // (constant size: no memcpy call)
+    } else {
+        start.q = *b;
+    }
     start.err = tol;
     start.even = certain && vq % 2 == 0;
     let (verdict, vp, jl, cross) = p_count(&mut ap, n, tol, certain, one);
@@ -953,33 +961,40 @@ fn p_count(ap: &mut [f64; MAXN + 1], n: usize, tol: f64, mut certain: bool, one:
 
 /// C `left_half`: the Bernstein coefficients of the left half of the interval (de Casteljau at
 /// 1/2: n rounds of averages of neighbours; out[k] is the first entry after round k), entries
-/// 0..=n.  Up to degree 8 over 9 entries with constant bounds (the entries above n, zeros,
-/// never reach out[0..=n]), as C writes it out.
+/// 0..=n of `inp` (those above n are not read) to entries 0..=n of the result (those above n
+/// are 0).  W = 9 (n <= 8): 8 rounds over 9 entries with constant bounds (the entries above n,
+/// zeros, never reach out[0..=n]), as C writes it out; else C's loop.
 #[inline(always)]
-fn left_half(inp: &[f64; MAXN + 1], n: usize, out: &mut [f64; MAXN + 1]) {
-    let n = n.min(MAXN);
-    if n <= 8 {
-        let mut w = [0.0f64; 9];
-        w[..n + 1].copy_from_slice(&inp[..n + 1]);
-        let mut o = [0.0f64; 9];
-        o[0] = w[0];
-        for k in 1..9 {
-            for j in 0..9 - k {
+fn left_half<const W: usize>(inp: &[f64; W], n: usize) -> [f64; W] {
+    let mut w: [f64; W] = std::array::from_fn(|j| if j <= n { inp[j] } else { 0.0 });
+    let mut out = [0.0f64; W];
+    out[0] = w[0];
+    if W == 9 {
+        for k in 1..W {
+            for j in 0..W - k {
                 w[j] = (w[j] + w[j + 1]) * 0.5;
             }
-            o[k] = w[0];
+            out[k] = w[0];
         }
-        out[..n + 1].copy_from_slice(&o[..n + 1]);
-        return;
+        for (j, o) in out.iter_mut().enumerate() {
+            *o = if j <= n { *o } else { 0.0 };
+        }
+        return out;
     }
-    let mut w = *inp;
-    out[0] = w[0];
+    let n = n.min(W - 1);
     for k in 1..n + 1 {
         for j in 0..n - k + 1 {
             w[j] = (w[j] + w[j + 1]) * 0.5;
         }
         out[k] = w[0];
     }
+    out
+}
+
+/// `[v[n], v[n - 1], .., v[0], 0, ..]`: the coefficients of the reversed interval.
+#[inline(always)]
+fn reversed<const W: usize>(v: &[f64; W], n: usize) -> [f64; W] {
+    std::array::from_fn(|j| if j <= n { v[n - j] } else { 0.0 })
 }
 
 /// Halvings after which `bernstein_clear` gives up.
@@ -990,21 +1005,38 @@ const CLEAR_DEPTH: usize = 12;
 /// (left half first); a piece is cleared when its coefficients are all certainly positive, and
 /// the answer is no at the first piece with an uncertain sign or differing end signs, or
 /// beyond CLEAR_DEPTH halvings.  A child's error bound is its parent's plus 2 n u M + DBL_MIN
-/// (see the C source).  Out of line, as in C: a rare path.
+/// (see the C source).  Out of line, as in C: a rare path.  Up to degree 8 on arrays of 9
+/// (constant sizes: no memcpy or memset calls, and half the stack to zero).
 #[inline(never)]
 fn bernstein_clear(q: &[f64; MAXN + 1], err0: f64, n: usize) -> bool {
-    let n = n.min(MAXN);
-    let mut st = [[0.0f64; MAXN + 1]; CLEAR_DEPTH + 2];
-    let mut err = [0.0f64; CLEAR_DEPTH + 2];
-    let mut depth = [0usize; CLEAR_DEPTH + 2];
-    st[0][..=n].copy_from_slice(&q[..=n]);
-    err[0] = err0;
+    if n <= 8 {
+        clear_pieces::<9>(std::array::from_fn(|j| q[j]), err0, n)
+    } else {
+        clear_pieces::<{ MAXN + 1 }>(*q, err0, n)
+    }
+}
+
+/// A piece of `bernstein_clear`'s interval: q's Bernstein coefficients on it (0..=n), the
+/// bound on their errors, and the halvings that made it.
+#[derive(Clone, Copy)]
+struct Piece<const W: usize> {
+    b: [f64; W],
+    err: f64,
+    depth: usize,
+}
+
+#[inline(always)]
+fn clear_pieces<const W: usize>(q: [f64; W], err: f64, n: usize) -> bool {
+    let n = n.min(W - 1);
+    // a stack of which st[..top] is in use, not zeroed: most calls end at the first piece
+    // (zeroing the stack cost more than such a call)
+    let mut st: [MaybeUninit<Piece<W>>; CLEAR_DEPTH + 2] = [const { MaybeUninit::uninit() }; CLEAR_DEPTH + 2];
+    st[0] = MaybeUninit::new(Piece { b: q, err, depth: 0 });
     let mut top = 1;
     while top > 0 {
         top -= 1;
-        let (e, d) = (err[top], depth[top]);
-        let (below, above) = st.split_at_mut(top + 1);
-        let b = &mut below[top];
+        // SAFETY: st[..top + 1] were written (the first above, the others below) before use.
+        let Piece { b, err: e, depth: d } = unsafe { st[top].assume_init_read() };
         // with every sign certain (no zeros), the number of sign changes is odd exactly when
         // the end signs differ
         let (mut lo, mut hi, mut amin) = (b[0], b[0], b[0].abs());
@@ -1023,23 +1055,14 @@ fn bernstein_clear(q: &[f64; MAXN + 1], err0: f64, n: usize) -> bool {
         if d == CLEAR_DEPTH {
             return false;
         }
-        // halves: the right one over b's slot, the left one above it (looked at first)
+        // halves: the right one over b's slot, the left one above it (looked at first); the
+        // right half is the left half of the reversed coefficients, reversed
         count::madds(n * (n + 1));
-        let mut rev = [0.0f64; MAXN + 1];
-        for j in 0..n + 1 {
-            rev[j] = b[n - j];
-        }
-        left_half(b, n, &mut above[0]);
-        let r = rev;
-        left_half(&r, n, &mut rev); // the right half, reversed
-        for j in 0..n + 1 {
-            b[j] = rev[n - j];
-        }
+        let left = left_half(&b, n);
+        let right = reversed(&left_half(&reversed(&b, n), n), n);
         let ec = e + (2 * n) as f64 * U * m + f64::MIN_POSITIVE;
-        err[top] = ec;
-        err[top + 1] = ec;
-        depth[top] = d + 1;
-        depth[top + 1] = d + 1;
+        st[top] = MaybeUninit::new(Piece { b: right, err: ec, depth: d + 1 });
+        st[top + 1] = MaybeUninit::new(Piece { b: left, err: ec, depth: d + 1 });
         top += 2;
     }
     true
@@ -1054,6 +1077,7 @@ const SPECULATE_MARGIN: f64 = 9.536_743_164_062_5e-7;
 /// crosses 0) until the step is below PRECISE_FROM; `None` when it leaves (0, T), when
 /// p' = 0, when a step from the fourth on has not halved, or after SPECULATE_STEPS.  Nothing
 /// is certain about the result: the caller certifies it by a Bernstein test.
+#[inline(always)]
 fn speculate_first_root(p: &[f64], dp: &[f64], n: usize, t_end: f64, mut x: f64) -> Option<f64> {
     count::phase(2);
     let mut last = 0.0f64;
