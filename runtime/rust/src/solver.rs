@@ -671,8 +671,26 @@ fn point_at_zero<'a>(p: &[f64], n: usize, e: f64, skin: f64, slot: &'a mut Maybe
     }
 }
 
-/// The Taylor coefficients of p and |p| at x above degree 8 (C's loop; bounds that vary
-/// with n).
+/// The Taylor coefficients of p and |p| at x > 0 up to degree 8, over degree 8 with constant
+/// bounds, as C writes it out (the table is 0 above degree n, and 0 x + 0 = 0 for x > 0: the
+/// same values as `taylor_shift`, bit for bit; entries above n are 0).
+#[inline(always)]
+fn taylor_shift_8(tb: &Taylor, x: f64, a: &mut [f64; MAXN + 1], s: &mut [f64; MAXN + 1]) {
+    let (mut a9, mut s9) = ([0.0f64; 9], [0.0f64; 9]);
+    for d in (0..9).rev() {
+        for k in 0..9 - d {
+            // SAFETY: k + d <= 8: taylor_table wrote [k][d] (p's entry or a zero).
+            let (t, u) = unsafe { (tb.tk[k][d].assume_init(), tb.ta[k][d].assume_init()) };
+            a9[k] = a9[k] * x + t;
+            s9[k] = s9[k] * x + u;
+        }
+    }
+    a[..9].copy_from_slice(&a9);
+    s[..9].copy_from_slice(&s9);
+}
+
+/// The Taylor coefficients of p and |p| at x (entries 0..=n), C's loop (bounds that vary
+/// with n): above degree 8.
 fn taylor_shift(tb: &Taylor, n: usize, x: f64, a: &mut [f64; MAXN + 1], s: &mut [f64; MAXN + 1]) {
     assert!(n <= MAXN);
     for d in (0..n + 1).rev() {
@@ -701,19 +719,7 @@ fn point_at(tb: &Taylor, n: usize, x: f64, slot: &mut MaybeUninit<Point>) -> boo
     let mut a = [0.0f64; MAXN + 1];
     let mut s = [0.0f64; MAXN + 1];
     if n <= 8 {
-        // over degree 8 with constant bounds, as C writes it out (the table is 0 above degree
-        // n, and 0 x + 0 = 0 for x > 0: the same values as the loop below, bit for bit)
-        let (mut a9, mut s9) = ([0.0f64; 9], [0.0f64; 9]);
-        for d in (0..9).rev() {
-            for k in 0..9 - d {
-                // SAFETY: k + d <= 8: taylor_table wrote [k][d] (p's entry or a zero).
-                let (t, u) = unsafe { (tb.tk[k][d].assume_init(), tb.ta[k][d].assume_init()) };
-                a9[k] = a9[k] * x + t;
-                s9[k] = s9[k] * x + u;
-            }
-        }
-        a[..9].copy_from_slice(&a9);
-        s[..9].copy_from_slice(&s9);
+        taylor_shift_8(tb, x, &mut a, &mut s);
     } else {
         taylor_shift(tb, n, x, &mut a, &mut s);
     }
@@ -1556,5 +1562,94 @@ mod preparation {
         let (mut e2, mut nz2) = ([0; MAXN + 1], [false; MAXN + 1]);
         assert!(load_coefficients(&[0.0, 0.0, 2.0], &mut c, &mut e2, &mut nz2));
         assert_eq!(root_bound(&e2, &nz2, 2), 0.0);
+    }
+}
+
+/// The kernels written over 9 entries with constant bounds (degree <= 8) against C's plain
+/// loops, bit for bit, on wide-range data with exact zeros (as tests/runtime/test_c_kernels.py
+/// checks C's written-out forms).
+#[cfg(test)]
+mod kernels {
+    use super::{binomial_sums, left_half, taylor_shift, taylor_shift_8, taylor_table, Taylor, MAXN};
+    use std::mem::MaybeUninit;
+
+    /// xorshift; values of both signs over 2^-30..2^30, one in 16 an exact zero.
+    struct Rnd(u64);
+    impl Rnd {
+        fn next(&mut self) -> f64 {
+            let s = &mut self.0;
+            *s ^= *s << 13;
+            *s ^= *s >> 7;
+            *s ^= *s << 17;
+            if (*s).is_multiple_of(16) {
+                return 0.0;
+            }
+            let m = (*s >> 11) as f64 / (1u64 << 53) as f64 - 0.5;
+            m * 2f64.powi(((*s >> 5) % 60) as i32 - 30)
+        }
+        fn array(&mut self) -> [f64; MAXN + 1] {
+            std::array::from_fn(|_| self.next())
+        }
+    }
+
+    fn bits(v: &[f64]) -> Vec<u64> {
+        v.iter().map(|x| x.to_bits()).collect()
+    }
+
+    #[test]
+    fn running_sums_are_the_loop() {
+        let mut r = Rnd(0x9E37_79B9_7F4A_7C15);
+        for trial in 0..20000 {
+            let n = 1 + trial % 8;
+            let mut a = r.array();
+            a[n + 1..].fill(0.0); // (the caller's padding)
+            let mut want = a;
+            for round in 1..=n {
+                for j in (round..=n).rev() {
+                    want[j] += want[j - 1];
+                }
+            }
+            binomial_sums(&mut a, n);
+            assert_eq!(bits(&a[..=n]), bits(&want[..=n]), "degree {n}");
+        }
+    }
+
+    #[test]
+    fn left_half_is_the_loop() {
+        let mut r = Rnd(0x1234_5678_9ABC_DEF1);
+        for trial in 0..20000 {
+            let n = 1 + trial % 8;
+            let a = r.array(); // entries above n must not matter
+            let mut w = a;
+            let mut want = [0.0; MAXN + 1];
+            want[0] = w[0];
+            for k in 1..=n {
+                for j in 0..=n - k {
+                    w[j] = (w[j] + w[j + 1]) * 0.5;
+                }
+                want[k] = w[0];
+            }
+            let a9: [f64; 9] = std::array::from_fn(|j| a[j]);
+            assert_eq!(bits(&left_half(&a9, n)[..=n]), bits(&want[..=n]), "degree {n}");
+            assert_eq!(bits(&left_half(&a, n)[..=n]), bits(&want[..=n]), "degree {n} (loop)");
+        }
+    }
+
+    #[test]
+    fn taylor_shift_8_is_the_loop() {
+        let mut r = Rnd(0x0F0F_F0F0_1234_4321);
+        for trial in 0..20000 {
+            let n = 1 + trial % 8;
+            let p = r.array();
+            let x = r.next().abs() + f64::MIN_POSITIVE; // x > 0
+            let mut slot = MaybeUninit::<Taylor>::uninit();
+            let tb = taylor_table(&p, n, 1e-15, 0.0, &mut slot);
+            let (mut a, mut s) = ([0.0; MAXN + 1], [0.0; MAXN + 1]);
+            let (mut a8, mut s8) = ([0.0; MAXN + 1], [0.0; MAXN + 1]);
+            taylor_shift(tb, n, x, &mut a, &mut s);
+            taylor_shift_8(tb, x, &mut a8, &mut s8);
+            assert_eq!(bits(&a8[..=n]), bits(&a[..=n]), "degree {n} at {x}");
+            assert_eq!(bits(&s8[..=n]), bits(&s[..=n]), "degree {n} at {x}");
+        }
     }
 }
