@@ -1013,7 +1013,7 @@ static int bernstein_test(const Point *pt, int n, double w, double *pend,
          1.0 / 16, 1},
     };
     COUNT(9);
-    COUNT_MADDS((n + 1) * (n + 2) / 2 + 4 * n);
+    COUNT_MADDS(n * (n + 1) / 2 + 4 * n); /* the sums and the scaling */
     double ap[MAXN + 1], aq[MAXN + 1];
     for (int k = n + 1; k <= 8; k++)
         ap[k] = aq[k] = 0; /* (binomial_sums reads 9) */
@@ -1051,7 +1051,7 @@ static int bernstein_test(const Point *pt, int n, double w, double *pend,
     int one = certain && vq == 1;
     if (!one && guess == NULL)
         return BERN_UNKNOWN;
-    COUNT_MADDS((n + 1) * (n + 2) / 2);
+    COUNT_MADDS(n * (n + 1) / 2);
     binomial_sums(ap, n);
     b = ap;
     *pend = b[n];
