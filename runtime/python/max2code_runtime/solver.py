@@ -563,7 +563,9 @@ def _bernstein_test(pt: _Point, n: int, w: float, explore: bool) -> _Bernstein:
     answer = BERN_ONE if one and certain and vp == 1 else BERN_UNKNOWN
     if not explore:
         return _Bernstein(answer, b[n], math.nan, None)
-    guess = -1.0 if cross < 0 else pt.x + w * ((jl + (cross - jl) * _div(b[jl], b[jl] - b[cross])) / n)
+    guess = -1.0
+    if cross >= 0:  # where the control polygon (x + j w / n, b_j) first crosses 0
+        guess = pt.x + w * ((jl + (cross - jl) * _div(b[jl], b[jl] - b[cross])) / n)
     return _Bernstein(answer, b[n], guess, _BernQ(tuple(aq), tol, even and vp % 2 == 0))
 
 
