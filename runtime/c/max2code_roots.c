@@ -1424,6 +1424,9 @@ static int critical_points(double d[MAXN + 1][MAXN + 1], int n, double lo,
 {
     double r[2], disc, level[MAXN];
     int nl = 0;
+    if (n < 3)
+        return 0; /* (never: degree >= 3 here; says so to gcc -O3, which
+                   * otherwise warns that d[2] may be unset) */
     if (quad_roots(d[2][2], d[2][1], d[2][0], r, &disc) == 2)
         for (int i = 0; i < 2; i++)
             if (r[i] > lo && r[i] < T && (nl == 0 || r[i] > level[nl - 1]))
