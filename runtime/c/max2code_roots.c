@@ -1013,7 +1013,7 @@ static int bernstein_test(const Point *pt, int n, double w, double *pend,
          1.0 / 16, 1},
     };
     COUNT(9);
-    COUNT_MADDS((n + 1) * (n + 2) / 2 + 4 * n);
+    COUNT_MADDS(n * (n + 1) / 2 + 4 * n); /* the sums and the scaling */
     double ap[MAXN + 1], aq[MAXN + 1];
     for (int k = n + 1; k <= 8; k++)
         ap[k] = aq[k] = 0; /* (binomial_sums reads 9) */
@@ -1051,7 +1051,7 @@ static int bernstein_test(const Point *pt, int n, double w, double *pend,
     int one = certain && vq == 1;
     if (!one && guess == NULL)
         return BERN_UNKNOWN;
-    COUNT_MADDS((n + 1) * (n + 2) / 2);
+    COUNT_MADDS(n * (n + 1) / 2);
     binomial_sums(ap, n);
     b = ap;
     *pend = b[n];
@@ -1424,6 +1424,9 @@ static int critical_points(double d[MAXN + 1][MAXN + 1], int n, double lo,
 {
     double r[2], disc, level[MAXN];
     int nl = 0;
+    if (n < 3)
+        return 0; /* (never: degree >= 3 here; says so to gcc -O3, which
+                   * otherwise warns that d[2] may be unset) */
     if (quad_roots(d[2][2], d[2][1], d[2][0], r, &disc) == 2)
         for (int i = 0; i < 2; i++)
             if (r[i] > lo && r[i] < T && (nl == 0 || r[i] > level[nl - 1]))

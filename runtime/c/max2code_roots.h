@@ -68,21 +68,32 @@
  *     a touch is reported as a (double) root with *graze = 1.  Both can only
  *     lie where the envelope q = p - sign(p(0)) 2 gamma_{2n} sum |c_i| t^i
  *     has changed sign.
- *     1. Exclusion and isolation (T <= 2^100): Budan-Fourier counts of the
- *        roots of p and of q in subintervals of (0, T] (sign changes of the
- *        Taylor coefficients, each trusted only beyond its rounding bound;
- *        any doubt goes to step 2), plus a lower bound on q from the Taylor
- *        coefficients at an end of the interval, and Descartes' rule in the
- *        Bernstein basis (the sign changes of the Bernstein coefficients of
- *        p and q on the interval, formed from the Taylor coefficients at its
- *        left end, each sign trusted only beyond an error bound): first on
- *        the whole of (0, T], then where a count is odd.  An interval where q has no
- *        root is cleared; one where p and q have exactly one root each holds
- *        one simple root of p (with nothing before it but, possibly, a
- *        stretch where p stays within the noise): it is polished; otherwise
- *        the leftmost interval is bisected, up to 40 times in all and down
- *        to 2^-20 relative width.  "No root in the window" usually costs
- *        one or two such tests.
+ *     1. Exclusion and isolation (T <= 2^100), cheapest first:
+ *        a. Descartes on (0, T] in the Bernstein basis: the sign changes of
+ *           the Bernstein coefficients of p and q on the window (from the
+ *           coefficients, by n rounds of running sums; each sign trusted
+ *           only beyond an error bound).  q's all positive: no root; one
+ *           change each: one simple root of p (with nothing before it but,
+ *           possibly, a stretch where p stays within the noise): polished.
+ *        b. A guess, then a certificate: Newton from where p's control
+ *           polygon first crosses 0; once it converges to r, the test of a
+ *           on (0, r (1 + 2^-20)] must find one change each, which makes r
+ *           the first root (else the guess is dropped).
+ *        c. Exclusion by halving: when q's signs are certain with an even
+ *           count (and p's count is even), the window is halved in the
+ *           Bernstein basis (de Casteljau) until every piece has q's
+ *           coefficients all positive -- no root -- or a piece is in doubt
+ *           (then on to d).  This is what clears windows with complex roots
+ *           close to the axis.
+ *        d. Budan-Fourier counts of the roots of p and of q in subintervals
+ *           of (0, T] (sign changes of the Taylor coefficients, each trusted
+ *           only beyond its rounding bound; any doubt goes to step 2), plus
+ *           a lower bound on q from the Taylor coefficients at an end of the
+ *           interval, and test a where a count is odd.  An interval where q
+ *           has no root is cleared; one where p and q have exactly one root
+ *           each is polished; otherwise the leftmost interval is bisected,
+ *           up to 40 times in all and down to 2^-20 relative width.
+ *        Only certified signs decide; a, b and c only decide sooner.
  *     2. An interval the counts do not resolve (a double root, a tight
  *        cluster, a sign too close to call) goes to the derivative method,
  *        which handles the whole window when it exceeds 2^100 or when step

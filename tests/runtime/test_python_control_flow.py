@@ -8,13 +8,16 @@ M2C_FLOW_COUNT=500, and took a different path on 17,571 of them.)  So here the C
 built with its cost accounting (-DM2C_COUNT, tests/runtime/counts_driver.c) and, for every
 solve, the pure-Python solver's counts of the same events must equal C's: Newton steps with
 plain and with compensated evaluation, Taylor points, derivative-method calls and Bernstein
-tests -- along with the status, the root's bits and the graze flag.
+tests -- along with the status, the root's bits and the graze flag.  Counts see a last bit
+only where it flips a decision, so the Bernstein kernels (coefficients, the guess, the
+exclusion by halving, the speculative Newton root) are also compared bit for bit on every
+Point the solves test (tests/runtime/bernstein_driver.c).
 
 Inputs: the hard cases, random polynomials (degree 2-8), every benchmark family (degrees up to
 16, grazes, complex pairs near the window, extreme scales) and the fuzz vectors; each by the
 interval method with and without the graze check and with a contact skin.  M2C_FLOW_COUNT sets
 the random polynomials and fuzz vectors (and a tenth of it the polynomials per benchmark
-family); the default, 300, takes about 10 s.
+family); the default, 300, takes about 15 s.
 """
 from __future__ import annotations
 
@@ -23,6 +26,7 @@ import math
 import os
 import re
 import subprocess
+from collections import Counter
 from pathlib import Path
 from typing import Any, Callable, Sequence
 
@@ -95,12 +99,34 @@ def _counting(solver: Any, monkeypatch: pytest.MonkeyPatch) -> list[int]:
     return counts
 
 
+def _outcomes(solver: Any, monkeypatch: pytest.MonkeyPatch) -> Counter[str]:
+    """How the pure-Python solver's speculation and Bernstein exclusion end, over all solves:
+    C counts neither (speculate_first_root's Newton steps are not counted, bernstein_clear's
+    halvings only as multiply-adds), so the path equality says nothing about them unless the
+    inputs reach each of their ends."""
+    seen: Counter[str] = Counter()
+
+    def wrap(name: str, outcome: Callable[[Any], str]) -> None:
+        inner = getattr(solver, name)
+
+        def observed(*args: Any) -> Any:
+            r = inner(*args)
+            seen[outcome(r)] += 1
+            return r
+        monkeypatch.setattr(solver, name, observed)
+
+    wrap("_speculate_first_root", lambda r: "no guess root" if r is None else "guess root")
+    wrap("_bernstein_clear", lambda r: "cleared by halving" if r else "not cleared by halving")
+    return seen
+
+
 def test_pure_python_takes_c_path(counts_driver: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     import max2code_runtime as rt
     from max2code_runtime import solver
 
     monkeypatch.setattr(rt, "_C", None)
     counts = _counting(solver, monkeypatch)
+    outcomes = _outcomes(solver, monkeypatch)
     lines, mine = [], []
     for c, tmax in _inputs():
         for method, number, eps in CALLS:
@@ -114,19 +140,114 @@ def test_pure_python_takes_c_path(counts_driver: Path, monkeypatch: pytest.Monke
     assert r.returncode == 0 and r.stderr == "", r.stderr[-2000:]
     theirs = r.stdout.splitlines()
     assert len(theirs) == len(lines)
-    bad, bernstein = [], 0
+    bad, bernstein, certified = [], 0, 0
     for line, text, (st, t, g, ev) in zip(lines, theirs, mine):
         w = text.split()
         cst, ct, cg = int(w[0]), float.fromhex(w[1]), w[2] == "1"
         cev = tuple(int(x) for x in w[3:])
         bernstein += cev[4]
+        # a root with two Bernstein tests and no Taylor point nor derivative method: only the
+        # guess's certificate (the second test) finds one before the Taylor table
+        certified += cst == 1 and cev[2:] == (0, 0, 2)
         if (cst, ct.hex(), cg) != (st, t.hex(), g):
             bad.append(f"answer: C {(cst, ct.hex(), cg)} vs Python {(st, t.hex(), g)}: {line}")
         elif cev != ev:
             diff = ", ".join(f"{name} C {a} Python {b}" for name, a, b in zip(EVENTS, cev, ev) if a != b)
             bad.append(f"path: {diff}: {line}")
     assert bernstein > len(lines) // 2, "the inputs hardly reach the Bernstein test"
+    assert certified > len(lines) // 20, f"C certified a guessed root in {certified} solves"
+    ends = ("guess root", "no guess root", "cleared by halving", "not cleared by halving")
+    assert all(outcomes[k] > len(lines) // 100 for k in ends), f"rarely reached: {outcomes}"
     assert not bad, f"{len(bad)} of {len(lines)} solves differ, first:\n" + "\n".join(bad[:10])
+
+
+@pytest.fixture(scope="module")
+def bernstein_driver(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    gcc = require("gcc")
+    out = tmp_path_factory.mktemp("bernstein") / "bernstein_driver"
+    cmd = [gcc, "-std=c11", "-O2", "-Wall", "-Wextra", "-Werror", "-DM2C_NO_GSL", "-I", str(C_DIR),
+           str(Path(__file__).with_name("bernstein_driver.c")), "-o", str(out), "-lm"]
+    r = subprocess.run(cmd, capture_output=True, text=True)
+    assert r.returncode == 0, f"{' '.join(cmd)}\n{r.stderr}"
+    return out
+
+
+def _bernstein_calls(monkeypatch: pytest.MonkeyPatch) -> list[tuple[Any, int, float]]:
+    """The Points and widths the pure-Python solver tests over the inputs (with each width
+    also times 0.75, off the powers of two): where the kernels run in real solves."""
+    import max2code_runtime as rt
+    from max2code_runtime import solver
+
+    monkeypatch.setattr(rt, "_C", None)
+    calls: list[tuple[Any, int, float]] = []
+    inner = solver._bernstein_test
+
+    def recorded(*args: Any) -> Any:
+        calls.append((args[0], args[1], args[2]))
+        calls.append((args[0], args[1], args[2] * 0.75))
+        return inner(*args)
+    monkeypatch.setattr(solver, "_bernstein_test", recorded)
+    for c, tmax in _inputs():
+        for method, _, eps in CALLS:
+            rt.first_root_status(list(c), tmax, method, eps)
+    monkeypatch.setattr(solver, "_bernstein_test", inner)
+    return calls
+
+
+def _kernel_line(solver: Any, pt: Any, n: int, w: float, seen: Counter[str]) -> list[str]:
+    """What bernstein_driver.c prints for the Point, computed by the pure-Python kernels; seen
+    counts the ends reached."""
+    first = solver._bernstein_test(pt, n, w, True)
+    out = [str(first.answer), _num(first.pend), _num(first.guess)]
+    seen[f"answer {first.answer}"] += 1
+    if first.q is not None:
+        cleared = solver._bernstein_clear(first.q, n)
+        seen["cleared by halving" if cleared else "not cleared by halving"] += 1
+        out += [_num(v) for v in first.q.b]
+        out += [_num(first.q.err), str(int(first.q.even)), str(int(cleared))]
+    r = None
+    if first.guess > 0:
+        dp = [(i + 1) * pt.pt[i + 1] for i in range(n)]
+        r = solver._speculate_first_root(pt.pt, dp, n, pt.x + w, first.guess)
+        seen["no guess root" if r is None else "guess root"] += 1
+    out += ["0", _num(0.0)] if r is None else ["1", _num(r)]
+    second = solver._bernstein_test(pt, n, w, False)
+    return out + [str(second.answer), _num(second.pend)]
+
+
+def _c_token(text: str) -> str:
+    """A token of bernstein_driver.c's output as _kernel_line writes it (%a read back)."""
+    if "x" in text or "nan" in text or "inf" in text:
+        return _num(float.fromhex(text))
+    return text
+
+
+def test_bernstein_kernels_bit_for_bit(bernstein_driver: Path,
+                                       monkeypatch: pytest.MonkeyPatch) -> None:
+    """bernstein_test's coefficients, p(x + w) and guess, bernstein_clear's verdict on q's
+    coefficients and speculate_first_root's root: the pure-Python kernels give C's bits on
+    every Point the solves test.  The counts above see a last bit only where it flips a
+    decision (a port summing the Bernstein coefficients in the old order passed them at
+    M2C_FLOW_COUNT=1000); here every bit is compared."""
+    from max2code_runtime import solver
+
+    calls = _bernstein_calls(monkeypatch)
+    lines, mine = [], []
+    seen: Counter[str] = Counter()
+    for pt, n, w in calls:
+        lines.append(" ".join([str(n), _num(pt.x), _num(w), *(_num(v) for v in pt.pt),
+                               *(_num(v) for v in pt.qt), *(_num(v) for v in pt.tol)]))
+        mine.append(_kernel_line(solver, pt, n, w, seen))
+    r = subprocess.run([str(bernstein_driver)], input="\n".join(lines) + "\n",
+                       capture_output=True, text=True, timeout=600)
+    assert r.returncode == 0 and r.stderr == "", r.stderr[-2000:]
+    theirs = [[_c_token(t) for t in text.split()] for text in r.stdout.splitlines()]
+    assert len(theirs) == len(lines)
+    bad = [f"C {c}\nPython {p}\ninput {line}" for line, c, p in zip(lines, theirs, mine) if c != p]
+    assert not bad, f"{len(bad)} of {len(lines)} differ, first:\n" + "\n".join(bad[:5])
+    ends = [f"answer {a}" for a in (solver.BERN_UNKNOWN, solver.BERN_CLEAR, solver.BERN_ONE)]
+    ends += ["cleared by halving", "not cleared by halving", "guess root", "no guess root"]
+    assert all(seen[k] > len(lines) // 100 for k in ends), f"rarely reached: {seen}"
 
 
 def _c_table(name: str) -> list[list[float]]:

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import math
 from fractions import Fraction
-from typing import Sequence
+from typing import NamedTuple, Sequence
 
 MAXN = 16
 U = 2.0**-53
@@ -309,10 +309,11 @@ def _horner_compensated(P: Sequence[float], m: int, x: float) -> float:
     return s + c
 
 
-def _value_and_slope(P: Sequence[float], D: Sequence[float], m: int, x: float, k: int,
-                     precise: bool) -> tuple[float, float, float]:
-    if k != 0:
-        return horner(P, m, x, k, precise), horner(D, m - 1, x, k, False), _horner_abs(P, m, x, k)
+def _plain_value_and_slope(P: Sequence[float], D: Sequence[float], m: int,
+                           x: float) -> tuple[float, float, float]:
+    """C value_and_slope for k = 0 and plain evaluation.  Its own function because C's
+    accounting counts a Newton step per value_and_slope call in refine_root (the control-flow
+    test wraps _value_and_slope) but none in speculate_first_root, which calls this."""
     f, df, ax, sz = P[m], D[m - 1], abs(x), abs(P[m])
     f = f * x + P[m - 1]
     sz = sz * ax + abs(P[m - 1])
@@ -320,6 +321,14 @@ def _value_and_slope(P: Sequence[float], D: Sequence[float], m: int, x: float, k
         df = df * x + D[i]
         sz = sz * ax + abs(P[i])
         f = f * x + P[i]
+    return f, df, sz
+
+
+def _value_and_slope(P: Sequence[float], D: Sequence[float], m: int, x: float, k: int,
+                     precise: bool) -> tuple[float, float, float]:
+    if k != 0:
+        return horner(P, m, x, k, precise), horner(D, m - 1, x, k, False), _horner_abs(P, m, x, k)
+    f, df, sz = _plain_value_and_slope(P, D, m, x)
     return (_horner_compensated(P, m, x) if precise else f), df, sz
 
 
@@ -481,21 +490,40 @@ BERN_ONE = 2
 INV_BINOM = [[1.0 / math.comb(n, k) for k in range(n + 1)] for n in range(MAXN + 1)]
 
 
-def _binomial_sums(a: Sequence[float], n: int) -> list[float]:
-    """b_j = sum_{k <= j} C(j, k) a_k, each sum accumulated from k = 0 up (C binomial_sums)."""
-    b = [0.0] * (n + 1)
-    for j in range(n + 1):
-        s = 0.0
-        for k in range(j + 1):
-            s += BINOM[k][j - k] * a[k]
-        b[j] = s
-    return b
+def _binomial_sums(a: list[float], n: int) -> None:
+    """In place, b_j = sum_{k <= j} C(j, k) a_k as C binomial_sums adds: n rounds of running
+    sums, round r adding each entry j >= r's left neighbour, j descending (C writes the rounds
+    out up to degree 8; tests/runtime/test_c_kernels.py checks that they give this loop's
+    values bit for bit)."""
+    for r in range(1, n + 1):
+        for j in range(n, r - 1, -1):
+            a[j] += a[j - 1]
 
 
-def _bernstein_test(pt: _Point, n: int, w: float) -> tuple[int, float]:
-    """(BERN_CLEAR / BERN_ONE / BERN_UNKNOWN, p(x + w)): Descartes' rule on the Bernstein
-    coefficients of q, then p, on [x, x + w] (C bernstein_test, which says why).  p(x + w) is
-    only computed (else NaN) when q's coefficients are certain and change sign once."""
+class _BernQ(NamedTuple):
+    """C BernQ: q's Bernstein coefficients on the tested interval, the bound on their errors,
+    and whether q's signs are certain with an even count (and p's count even too): only then
+    can bernstein_clear show q > 0 there."""
+    b: tuple[float, ...]
+    err: float
+    even: bool
+
+
+class _Bernstein(NamedTuple):
+    """What C bernstein_test finds: its answer, p(x + w) (NaN when p's coefficients were not
+    formed), where p's control polygon first crosses 0 (-1 if it does not; NaN when not asked)
+    and q's coefficients (None unless asked, or when the answer is BERN_CLEAR)."""
+    answer: int
+    pend: float
+    guess: float
+    q: _BernQ | None
+
+
+def _bernstein_test(pt: _Point, n: int, w: float, explore: bool) -> _Bernstein:
+    """Descartes' rule on the Bernstein coefficients of q, then p, on [x, x + w] (C
+    bernstein_test, which says why).  explore is C's call with guess and qb (the test of (0, T]
+    before the Taylor table): p's coefficients are then always formed, for the guess, and q's
+    are kept for bernstein_clear; otherwise p's only when q's count is certainly 1."""
     inv = INV_BINOM[n]
     ap = [0.0] * (n + 1)
     aq = [0.0] * (n + 1)
@@ -508,14 +536,37 @@ def _bernstein_test(pt: _Point, n: int, w: float) -> tuple[int, float]:
         g += (pt.tol[k] + rel * (abs(pt.pt[k]) + abs(pt.qt[k]))) * wk
         wk *= w
     tol = 2 * g + DBL_MIN
-    certain, vq, clear = _bernstein_signs(_binomial_sums(aq, n), tol)
+    _binomial_sums(aq, n)
+    certain, vq, clear = _bernstein_signs(aq, tol)
     if clear and certain:
-        return BERN_CLEAR, math.nan
-    if not certain or vq != 1:
-        return BERN_UNKNOWN, math.nan
-    b = _binomial_sums(ap, n)
-    certain, vp, _ = _bernstein_signs(b, tol)
-    return (BERN_ONE if certain and vp == 1 else BERN_UNKNOWN), b[n]
+        return _Bernstein(BERN_CLEAR, math.nan, math.nan, None)
+    even = certain and vq % 2 == 0
+    one = certain and vq == 1
+    if not one and not explore:
+        return _Bernstein(BERN_UNKNOWN, math.nan, math.nan, None)
+    _binomial_sums(ap, n)
+    b = ap
+    # p's signs: zeros skipped (unlike q's); jl is the last nonzero entry before the first
+    # sign change, at cross
+    vp, jl, cross, last = 0, 0, -1, 0
+    for j in range(n + 1):
+        v = b[j]
+        s = (v > 0) - (v < 0)
+        certain = certain and abs(v) > tol
+        if s * last < 0:
+            vp += 1
+            if cross < 0:
+                cross = j
+        if s != 0 and cross < 0:
+            jl = j
+        last = s if s != 0 else last
+    answer = BERN_ONE if one and certain and vp == 1 else BERN_UNKNOWN
+    if not explore:
+        return _Bernstein(answer, b[n], math.nan, None)
+    guess = -1.0
+    if cross >= 0:  # where the control polygon (x + j w / n, b_j) first crosses 0
+        guess = pt.x + w * ((jl + (cross - jl) * _div(b[jl], b[jl] - b[cross])) / n)
+    return _Bernstein(answer, b[n], guess, _BernQ(tuple(aq), tol, even and vp % 2 == 0))
 
 
 def _bernstein_signs(b: Sequence[float], tol: float) -> tuple[bool, int, bool]:
@@ -530,6 +581,77 @@ def _bernstein_signs(b: Sequence[float], tol: float) -> tuple[bool, int, bool]:
         last = s
         clear = clear and s > 0
     return certain, changes, clear
+
+
+def _left_half(b: Sequence[float], n: int) -> list[float]:
+    """The Bernstein coefficients of the left half of the interval: de Casteljau at 1/2, out[k]
+    the first entry after round k of averages (C left_half, whose degree-8 written-out form
+    gives this loop's values)."""
+    w = [b[j] for j in range(n + 1)]
+    out = [0.0] * (n + 1)
+    out[0] = w[0]
+    for k in range(1, n + 1):
+        for j in range(n - k + 1):
+            w[j] = (w[j] + w[j + 1]) * 0.5
+        out[k] = w[0]
+    return out
+
+
+CLEAR_DEPTH = 12
+
+
+def _bernstein_clear(q: _BernQ, n: int) -> bool:
+    """q > 0 on q's interval, shown by depth-first halving in the Bernstein basis, the left
+    half first (C bernstein_clear, which says why and bounds the halves' errors)."""
+    stack = [(q.b, q.err, 0)]
+    while stack:
+        b, e, d = stack.pop()
+        lo = hi = b[0]
+        amin = abs(b[0])
+        for j in range(1, n + 1):
+            v = b[j]
+            lo = v if v < lo else lo
+            hi = v if v > hi else hi
+            amin = abs(v) if abs(v) < amin else amin
+        # every sign certain (no zeros): an odd count exactly when the end signs differ
+        if not (amin > e) or (b[0] > 0) != (b[n] > 0):
+            return False
+        if lo > 0:
+            continue
+        M = -lo if -lo > hi else hi
+        if d == CLEAR_DEPTH:
+            return False
+        right = _left_half([b[n - j] for j in range(n + 1)], n)  # reversed
+        ec = e + 2 * n * U * M + DBL_MIN
+        stack.append(([right[n - j] for j in range(n + 1)], ec, d + 1))
+        stack.append((_left_half(b, n), ec, d + 1))
+    return True
+
+
+SPECULATE_STEPS = 8
+# the certificate's interval (0, r + r 2^-20]: 0x1p-20
+SPECULATE_MARGIN = 9.5367431640625e-07
+
+
+def _speculate_first_root(p: Sequence[float], dp: Sequence[float], n: int, T: float,
+                          x: float) -> float | None:
+    """Plain Newton from the guess x, or None where C speculate_first_root gives up (it says
+    when and why).  Not counted as Newton steps (C counts none here)."""
+    last = 0.0
+    for it in range(SPECULATE_STEPS):
+        if not (x > 0 and x < T):
+            return None
+        f, df, _ = _plain_value_and_slope(p, dp, n, x)
+        if df == 0:
+            return None
+        s = f / df
+        x -= s
+        if abs(s) <= PRECISE_FROM * x:
+            return x if x > 0 and x < T else None
+        if it >= 3 and not (abs(s) <= 0.5 * abs(last)):
+            return None
+        last = s
+    return None
 
 
 def _polish_isolated(p: Sequence[float], n: int, a: float, b: float, pa: float,
@@ -563,11 +685,25 @@ def _isolate_first_root(p: Sequence[float], n: int, skin: float, T: float):
         return 0.0
     if a.vq == 0 or _clearly_positive(a, n, T, 1):
         return _CLEARED
-    bern, pT = _bernstein_test(a, n, T)
-    if bern == BERN_CLEAR:
+    start = _bernstein_test(a, n, T, True)
+    if start.answer == BERN_CLEAR:
         return _CLEARED
-    if bern == BERN_ONE:
-        return _polish_isolated(p, n, 0.0, T, a.px, pT), False
+    if start.answer == BERN_ONE:
+        return _polish_isolated(p, n, 0.0, T, a.px, start.pend), False
+    q = start.q
+    assert q is not None  # (asked for, and not cleared)
+    if start.guess <= 0 and q.even and _bernstein_clear(q, n):
+        return _CLEARED
+    if start.guess > 0:  # a guess, then a certificate
+        dp = [(i + 1) * p[i + 1] for i in range(n)]
+        r = _speculate_first_root(p, dp, n, T, start.guess)
+        if r is not None:
+            w = r + r * SPECULATE_MARGIN
+            w = w if w < T else T
+            if _bernstein_test(a, n, w, False).answer == BERN_ONE:
+                return _refine_root(p, dp, n, 0.0, w, 1, 0.0, r), False
+        if q.even and _bernstein_clear(q, n):
+            return _CLEARED
     tk = [[BINOM[k][j] * p[j + k] if j + k <= n else 0.0 for j in range(n + 1)] for k in range(n + 1)]
     ta = [[abs(v) for v in row] for row in tk]
     first = _point_at(tk, ta, e, sk, n, T)
@@ -589,7 +725,7 @@ def _isolate_first_root(p: Sequence[float], n: int, skin: float, T: float):
         if a.vp - b.vp == 1 and a.vq - b.vq == 1:
             return _polish_isolated(p, n, a.x, b.x, a.px, b.px), False
         # Bernstein only for an odd count (a root certain), and not again on (0, T]
-        if odd and not tested and _bernstein_test(a, n, w)[0] == BERN_ONE:
+        if odd and not tested and _bernstein_test(a, n, w, False).answer == BERN_ONE:
             return _polish_isolated(p, n, a.x, b.x, a.px, b.px), False
         tested = False
         m = _isolation_split(a.x, b.x)

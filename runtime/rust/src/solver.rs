@@ -881,7 +881,7 @@ fn binomial_sums(a: &mut [f64; MAXN + 1], n: usize) {
 fn bernstein_test(pt: &Point, n: usize, w: f64, start: Option<&mut Start>) -> Bernstein {
     let n = n.min(MAXN);
     count::event(9);
-    count::madds((n + 1) * (n + 2) / 2 + 4 * n);
+    count::madds(n * (n + 1) / 2 + 4 * n); // the sums and the scaling
     // (entries n + 1..=8 zero: binomial_sums reads 9)
     let mut ap = [0.0f64; MAXN + 1];
     let mut aq = [0.0f64; MAXN + 1];
@@ -943,7 +943,7 @@ fn bernstein_test(pt: &Point, n: usize, w: f64, start: Option<&mut Start>) -> Be
 /// coefficient before the first sign change and where that change is (-1: none).
 #[inline(always)]
 fn p_count(ap: &mut [f64; MAXN + 1], n: usize, tol: f64, mut certain: bool, one: bool) -> (Bernstein, i32, i32, i32) {
-    count::madds((n + 1) * (n + 2) / 2);
+    count::madds(n * (n + 1) / 2);
     binomial_sums(ap, n);
     let pend = ap[n];
     let (mut vp, mut jl, mut cross, mut last) = (0, 0, -1, 0);
@@ -1290,6 +1290,9 @@ fn roots_in_pieces(p: &[f64], d: &[f64], m: usize, lo: f64, crit: &[f64], t_end:
 fn critical_points(d: &Chain, n: usize, lo: f64, t_end: f64, crit: &mut [f64; MAXN]) -> usize {
     let mut level = [0.0f64; MAXN];
     let mut nl = 0usize;
+    if n < 3 {
+        return 0; // (never: degree >= 3 here; as C says so)
+    }
     if let (Some(r), _) = quad_roots(d[2][2], d[2][1], d[2][0]) {
         for x in r {
             if x > lo && x < t_end && (nl == 0 || x > level[nl - 1]) {

@@ -1,0 +1,72 @@
+/*
+ * bernstein_driver.c -- the C runtime's Bernstein kernels on given Points, for
+ * tests/runtime/test_python_control_flow.py: their intermediate values, bit for bit, which
+ * the solver's answers and counts only show where a last bit flips a decision.  Includes
+ * runtime/c/max2code_roots.c to reach its static functions.
+ *
+ * Each input line:   N X W PT0 .. PTN QT0 .. QTN TOL0 .. TOLN   (hex floats)
+ * Each output line (floats as %a):
+ *   ANSWER PEND GUESS [Q0 .. QN ERR EVEN CLEARED] SPECULATED R ANSWER2 PEND2
+ * ANSWER, PEND, GUESS: bernstein_test(pt, N, W) with guess and qb; the bracket only unless
+ * ANSWER is BERN_CLEAR (qb is not filled then): qb's coefficients, bound and even flag, and
+ * bernstein_clear(qb) (whatever qb.even says).  SPECULATED, R: speculate_first_root on the
+ * polynomial PT (derivative as isolate_first_root forms it), T = X + W, from GUESS when
+ * GUESS > 0 (else 0 and 0).  ANSWER2, PEND2: bernstein_test without guess or qb (PEND2 NaN
+ * when p's coefficients are not formed).
+ */
+#include "max2code_roots.c"
+
+#include <stdio.h>
+#include <stdlib.h>
+
+static double next(char **p)
+{
+    char *end;
+    double v = strtod(*p, &end);
+    *p = end;
+    return v;
+}
+
+int main(void)
+{
+    static char line[16384];
+    while (fgets(line, sizeof line, stdin) != NULL) {
+        char *p = line, *end;
+        int n = (int)strtol(p, &end, 10);
+        if (end == p || n < 1 || n > MAXN)
+            continue;
+        p = end;
+        Point pt;
+        memset(&pt, 0, sizeof pt);
+        pt.x = next(&p);
+        double w = next(&p);
+        for (int k = 0; k <= n; k++)
+            pt.pt[k] = next(&p);
+        for (int k = 0; k <= n; k++)
+            pt.qt[k] = next(&p);
+        for (int k = 0; k <= n; k++)
+            pt.tol[k] = next(&p);
+        double pend = NAN, guess = NAN;
+        BernQ qb;
+        int answer = bernstein_test(&pt, n, w, &pend, &guess, &qb);
+        printf("%d %a %a", answer, pend, guess);
+        if (answer != BERN_CLEAR) {
+            for (int j = 0; j <= n; j++)
+                printf(" %a", qb.b[j]);
+            printf(" %a %d %d", qb.err, qb.even != 0, bernstein_clear(&qb, n));
+        }
+        double r = 0;
+        int speculated = 0;
+        if (guess > 0) {
+            double dp[MAXN];
+            for (int i = 0; i < n; i++)
+                dp[i] = (i + 1) * pt.pt[i + 1];
+            speculated = speculate_first_root(pt.pt, dp, n, pt.x + w, guess, &r);
+        }
+        printf(" %d %a", speculated, speculated ? r : 0.0);
+        double pend2 = NAN;
+        int answer2 = bernstein_test(&pt, n, w, &pend2, NULL, NULL);
+        printf(" %d %a\n", answer2, pend2);
+    }
+    return 0;
+}
