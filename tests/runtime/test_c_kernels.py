@@ -2,8 +2,9 @@
 
 Up to degree 8 the solver's inner kernels are written out (no loop bounds that vary with the
 degree): the Bernstein conversion's running sums, de Casteljau halving and the Taylor shift at a
-point.  Each promises the same values as the obvious loop, bit for bit, so that the Rust and
-Python ports (which use the loops) agree with C exactly.  The preparation reads exponents from
+point.  Each promises the same values as the obvious loop, bit for bit, so that the Python port
+(which uses the loops) and the Rust one (fixed-size forms of its own, checked against the loops
+by its unit tests) agree with C exactly.  The preparation reads exponents from
 the bits and rounds a quotient up by a multiply instead of a division.  A program that includes
 max2code_roots.c checks each against its definition on random and edge data; any difference is
 printed and fails the test.
