@@ -97,7 +97,7 @@ static double pow2(int e)
  * division is slow.  num + 2^12 den + den - 1 = x is positive and below
  * 2^17, and for such x, floor(x / den) = floor(x ceil(2^32 / den) / 2^32)
  * (the excess of den ceil(2^32 / den) over 2^32 is below den, and x den <
- * 2^32).  Checked for every num and den in tests/runtime (the C unit). */
+ * 2^32).  Checked for every num and den by tests/runtime/test_c_kernels.py. */
 static int ceil_div(int num, int den)
 {
 #define M(d) ((0x100000000ULL + (d) - 1) / (d))
@@ -904,8 +904,8 @@ static int clearly_positive(const Point *pt, int n, double w, int dir)
 
 /* The Bernstein coefficients of p and q on [x, x + w] (x = pt->x), from their
  * Taylor coefficients at x: with t_k the k-th of them and s = (y - x) / w,
- * the j-th coefficient is sum_{k <= j} C(j, k) t_k w^k / C(n, k), formed by
- * (binomial_sums).  Descartes' rule in this basis (the number of sign changes
+ * the j-th coefficient is sum_{k <= j} C(j, k) t_k w^k / C(n, k) (formed by
+ * binomial_sums).  Descartes' rule in this basis (the number of sign changes
  * bounds the roots in (x, x + w) and has their parity) is never weaker than
  * Budan-Fourier's V(x) - V(x + w) and is often much sharper: an interval
  * that Budan-Fourier sees two roots in, on account of a complex pair
@@ -924,6 +924,8 @@ static int clearly_positive(const Point *pt, int n, double w, int dir)
  * 0, or -1 (a start for speculate_first_root: the polygon tends to the graph
  * as intervals shrink). */
 #define BERN_UNKNOWN 0
+#define BERN_CLEAR 1
+#define BERN_ONE 2
 /* q's Bernstein coefficients on an interval, a bound on their errors, and
  * whether their signs are certain with an even number of changes. */
 typedef struct {
@@ -931,8 +933,6 @@ typedef struct {
     double err;
     int even;
 } BernQ;
-#define BERN_CLEAR 1
-#define BERN_ONE 2
 
 /* b_j = sum_{k <= j} C(j, k) a_k, j = 0..n, in place: n rounds of running
  * sums (round r adds each entry j >= r's left neighbour, j descending), so
@@ -1096,14 +1096,20 @@ static double isolation_split(double a, double b)
 static int derivative_method(const double c[], int n, double lo, double T,
                              double skin, double *t, int *graze);
 
+/* dp[0..n-1]: the coefficients of p' (p of degree n). */
+static void derivative(const double p[], int n, double dp[])
+{
+    for (int i = 0; i < n; i++)
+        dp[i] = (i + 1) * p[i + 1];
+}
+
 /* The one simple root of p in (a, b), p(a) = pa > 0 > pb = p(b): safeguarded
  * Newton from the regula falsi point. */
 static double polish_isolated(const double p[], int n, double a, double b,
                               double pa, double pb)
 {
     double dp[MAXN];
-    for (int i = 0; i < n; i++)
-        dp[i] = (i + 1) * p[i + 1];
+    derivative(p, n, dp);
     double x0 = a + (b - a) * (pa / (pa - pb));
     if (!(x0 > a && x0 < b))
         x0 = split_point(a, b);
@@ -1287,12 +1293,9 @@ static int isolate_first_root(const double p[], int n, double skin,
         *graze = 0;
         return ISOLATED;
     }
-    if (guess <= 0 && qb.even && bernstein_clear(&qb, n))
-        return CLEARED;
     if (guess > 0) { /* a guess, then a certificate */
         double dp[MAXN], r;
-        for (int i = 0; i < n; i++)
-            dp[i] = (i + 1) * p[i + 1];
+        derivative(p, n, dp);
         if (speculate_first_root(p, dp, n, T, guess, &r)) {
             double w = r + r * 0x1p-20;
             w = w < T ? w : T;
@@ -1305,9 +1308,9 @@ static int isolate_first_root(const double p[], int n, double skin,
             }
         }
         PHASE(1);
-        if (qb.even && bernstein_clear(&qb, n))
-            return CLEARED;
     }
+    if (qb.even && bernstein_clear(&qb, n)) /* (after a guess that failed) */
+        return CLEARED;
     Taylor tb;
     taylor_table(p, n, e, sk, &tb);
     if (!point_at(&tb, n, T, &stack[top++]))
@@ -1387,8 +1390,7 @@ static void derivative_chain(const double c[], int n,
     for (int i = 0; i <= n; i++)
         d[n][i] = c[i];
     for (int m = n; m > 1; m--)
-        for (int i = 0; i < m; i++)
-            d[m - 1][i] = (i + 1) * d[m][i + 1];
+        derivative(d[m], m, d[m - 1]);
 }
 
 /* Roots in (lo, T) of the polynomial P of degree m whose derivative's roots

@@ -654,11 +654,16 @@ def _speculate_first_root(p: Sequence[float], dp: Sequence[float], n: int, T: fl
     return None
 
 
+def _derivative(p: Sequence[float], n: int) -> list[float]:
+    """The coefficients of p' (p of degree n)."""
+    return [(i + 1) * p[i + 1] for i in range(n)]
+
+
 def _polish_isolated(p: Sequence[float], n: int, a: float, b: float, pa: float,
                      pb: float) -> float:
     """The one simple root of p in (a, b), p(a) = pa > 0 > pb = p(b): safeguarded Newton from
     the regula falsi point (C polish_isolated)."""
-    dp = [(i + 1) * p[i + 1] for i in range(n)]
+    dp = _derivative(p, n)
     x0 = a + (b - a) * _div(pa, pa - pb)
     if not (a < x0 < b):
         x0 = _split_point(a, b)
@@ -692,18 +697,16 @@ def _isolate_first_root(p: Sequence[float], n: int, skin: float, T: float):
         return _polish_isolated(p, n, 0.0, T, a.px, start.pend), False
     q = start.q
     assert q is not None  # (asked for, and not cleared)
-    if start.guess <= 0 and q.even and _bernstein_clear(q, n):
-        return _CLEARED
     if start.guess > 0:  # a guess, then a certificate
-        dp = [(i + 1) * p[i + 1] for i in range(n)]
+        dp = _derivative(p, n)
         r = _speculate_first_root(p, dp, n, T, start.guess)
         if r is not None:
             w = r + r * SPECULATE_MARGIN
             w = w if w < T else T
             if _bernstein_test(a, n, w, False).answer == BERN_ONE:
                 return _refine_root(p, dp, n, 0.0, w, 1, 0.0, r), False
-        if q.even and _bernstein_clear(q, n):
-            return _CLEARED
+    if q.even and _bernstein_clear(q, n):  # (after a guess that failed)
+        return _CLEARED
     tk = [[BINOM[k][j] * p[j + k] if j + k <= n else 0.0 for j in range(n + 1)] for k in range(n + 1)]
     ta = [[abs(v) for v in row] for row in tk]
     first = _point_at(tk, ta, e, sk, n, T)
@@ -757,8 +760,7 @@ def _derivative_chain(c: Sequence[float], n: int) -> list[list[float]]:
     d = [[0.0] * (MAXN + 1) for _ in range(n + 1)]
     d[n][: n + 1] = c[: n + 1]
     for m in range(n, 1, -1):
-        for i in range(m):
-            d[m - 1][i] = (i + 1) * d[m][i + 1]
+        d[m - 1][:m] = _derivative(d[m], m)
     return d
 
 

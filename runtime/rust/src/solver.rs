@@ -1120,13 +1120,19 @@ fn isolation_split(a: f64, b: f64) -> f64 {
     a + 0.5 * (b - a)
 }
 
-/// C `polish_isolated`: the one simple root of p in (a, b), p(a) = pa > 0 > pb = p(b), by
-/// safeguarded Newton from the regula falsi point.
-fn polish_isolated(p: &[f64], n: usize, a: f64, b: f64, pa: f64, pb: f64) -> f64 {
+/// C `derivative`: the coefficients of p' (p of degree n) in dp[0..n].
+fn derivative(p: &[f64], n: usize) -> [f64; MAXN] {
     let mut dp = [0.0f64; MAXN];
     for i in 0..n {
         dp[i] = (i + 1) as f64 * p[i + 1];
     }
+    dp
+}
+
+/// C `polish_isolated`: the one simple root of p in (a, b), p(a) = pa > 0 > pb = p(b), by
+/// safeguarded Newton from the regula falsi point.
+fn polish_isolated(p: &[f64], n: usize, a: f64, b: f64, pa: f64, pb: f64) -> f64 {
+    let dp = derivative(p, n);
     let mut x0 = a + (b - a) * (pa / (pa - pb));
     if !(x0 > a && x0 < b) {
         x0 = split_point(a, b);
@@ -1159,15 +1165,9 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64) -> Isolation {
         Bernstein::One(p_end) => return Isolation::Isolated(polish_isolated(p, n, 0.0, t_end, a.px, p_end), false),
         Bernstein::Unknown => {}
     }
-    if start.guess <= 0.0 && start.even && bernstein_clear(&start.q, start.err, n) {
-        return Isolation::Cleared;
-    }
     if start.guess > 0.0 {
         // a guess, then a certificate
-        let mut dp = [0.0f64; MAXN];
-        for i in 0..n {
-            dp[i] = (i + 1) as f64 * p[i + 1];
-        }
+        let dp = derivative(p, n);
         if let Some(r) = speculate_first_root(p, &dp, n, t_end, start.guess) {
             let w = r + r * SPECULATE_MARGIN;
             let w = if w < t_end { w } else { t_end };
@@ -1178,9 +1178,10 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64) -> Isolation {
             }
         }
         count::phase(1);
-        if start.even && bernstein_clear(&start.q, start.err, n) {
-            return Isolation::Cleared;
-        }
+    }
+    if start.even && bernstein_clear(&start.q, start.err, n) {
+        // (after a guess that failed)
+        return Isolation::Cleared;
     }
     let mut slot = MaybeUninit::<Taylor>::uninit();
     let tb = taylor_table(p, n, e, sk, &mut slot);
@@ -1257,9 +1258,8 @@ fn derivative_chain(c: &[f64], n: usize) -> Chain {
     let mut d = [[0.0; MAXN + 1]; MAXN + 1];
     d[n][..=n].copy_from_slice(&c[..=n]);
     for m in (2..=n).rev() {
-        for i in 0..m {
-            d[m - 1][i] = (i + 1) as f64 * d[m][i + 1];
-        }
+        let dm = derivative(&d[m], m);
+        d[m - 1][..m].copy_from_slice(&dm[..m]);
     }
     d
 }
