@@ -811,7 +811,7 @@ def counts_table(counts: dict, cmp: dict) -> str:
     for fam, label in TABLE:
         c = counts[fam]
         lines.append(f"| {label} | {cmp['families'][fam]['c_evals']:.1f} | {c['isolate']:.1f} | "
-                     f"{c['newton']:.1f} | {c['derivative']:.1f} | {c.get('bernstein_tests', 0):.2f} | "
+                     f"{c['newton']:.1f} | {c['derivative']:.1f} | {c['bernstein_tests']:.2f} | "
                      f"{c['taylor_points']:.2f} | "
                      f"{c['plain_steps']:.1f} / {c['precise_steps']:.1f} | {100 * c['share_derivative']:.0f} % |")
     return "\n".join(lines) + "\n"
