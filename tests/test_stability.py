@@ -29,7 +29,7 @@ C_DIR = ROOT / "runtime" / "c"
 COUNT = 30  # polynomials per family (the oracle costs ~40 ms each)
 JUDGED_FAMILIES = ("graze8", "cluster8", "drop8", "near0_8", "scale8", "noroot8",  # where others fail
                    # issue 10: the collision polynomials, windows without a root (complex roots
-                    # close by, tmax infinite) and degrees 12 and 16
+                   # close by, tmax infinite) and degrees 12 and 16
                    "collision8", "noroot8_near", "noroot8_inf", "generic12", "generic16",
                    # and the generic ones, whose first root is now often a certified guess
                    "generic4", "generic8")
