@@ -109,17 +109,30 @@ static int ceil_div(int num, int den)
     return (int)((x * MAGIC[den]) >> 32) - 4096;
 }
 
+/* What load_coefficients reads off the bits besides the exponents, in the
+ * same pass: the largest and smallest exponent of the nonzero coefficients
+ * (the spread, unless reduce drops terms) and the number of sign changes
+ * (zeros skipped: Descartes' bound on the positive roots, which clears a
+ * solve with no sign change before any preparation). */
+typedef struct {
+    int finite;  /* no NaN, no infinity */
+    int emax;    /* INT_MIN when every coefficient is 0 */
+    int emin;
+    int changes;
+} Scan;
+
 /* Copies src[0..n] to c (which may be src) and reads the exponents from the
  * bits in the same pass: e[i] = ilogb(c[i]) and nz[i] = (c[i] != 0), e[i] = 0
- * for zeros.  Returns 0 when a coefficient is not finite (invalid input).
+ * for zeros; .finite is 0 when a coefficient is not (invalid input).
  * The preparation below works on these integers: a solve that is cleared at
  * once is mostly preparation, and the floating-point forms of these tests
  * cost a dozen Horner evaluations.  (A plain copy loop became `rep movsq`,
  * a sixth of such a solve.) */
-static int load_coefficients(const double src[], int n, double c[], int e[],
-                             int nz[])
+static Scan load_coefficients(const double src[], int n, double c[], int e[],
+                              int nz[])
 {
-    int bad = 0;
+    int bad = 0, hi = INT_MIN, lo = INT_MAX, changes = 0;
+    uint64_t last = 0; /* the sign bit of the last nonzero, + 1; 0: none yet */
     for (int i = 0; i <= n; i++) {
         double x = src[i];
         uint64_t b;
@@ -127,10 +140,18 @@ static int load_coefficients(const double src[], int n, double c[], int e[],
         c[i] = x;
         int be = (int)((b >> 52) & 0x7ff);
         bad |= be == 0x7ff;
-        nz[i] = (b << 1) != 0;
-        e[i] = be != 0 ? be - 1023 : nz[i] ? ilogb(x) : 0; /* subnormal: rare */
+        int z = (b << 1) != 0;
+        nz[i] = z;
+        int ei = be != 0 ? be - 1023 : z ? ilogb(x) : 0; /* subnormal: rare */
+        e[i] = ei;
+        int h = z ? ei : INT_MIN, l = z ? ei : INT_MAX;
+        hi = h > hi ? h : hi;
+        lo = l < lo ? l : lo;
+        uint64_t sg = (b >> 63) + 1;
+        changes += z & (last != 0) & (last != sg);
+        last = z ? sg : last;
     }
-    return !bad;
+    return (Scan){!bad, hi, lo, changes};
 }
 
 /* Fujiwara bound 2 max |c_i/c_n|^(1/(n-i)), each ratio rounded up to a power
@@ -303,20 +324,20 @@ static int exponents(const double c[], int n, int e[], int nz[], int *emax)
     return spread(e, nz, n, emax);
 }
 
-/* Scale by a power of two (exact: the spread is at most MAX_SPREAD) so that
- * max |c_i| (exponent emax) is in [1/2, 1); returns E: the values of p are
- * scaled by 2^-E. */
-static int normalise(double c[], int n, int emax)
+/* Scale by sign 2^-E (exact: the spread is at most MAX_SPREAD; sign is +-1)
+ * so that max |c_i| (exponent emax) is in [1/2, 1); returns E: the values of
+ * p are scaled by 2^-E. */
+static int normalise(double c[], int n, int emax, double sign)
 {
     int E = emax + 1;
     if (E >= DBL_MIN_EXP && E <= DBL_MAX_EXP - 2) {
         /* multiplying by an exact power of two rounds as ldexp does */
-        double f = pow2(-E);
+        double f = sign * pow2(-E);
         for (int i = 0; i <= n; i++)
             c[i] *= f;
     } else {
         for (int i = 0; i <= n; i++)
-            c[i] = ldexp(c[i], -E);
+            c[i] = ldexp(sign * c[i], -E);
     }
     return E;
 }
@@ -1494,14 +1515,10 @@ static int derivative_method(const double c[], int n, double lo, double T,
 /* Interval solver                                                      */
 /* ------------------------------------------------------------------ */
 
-/* First root in (0, T] of c (degree n >= 3, normalised, c[0] != 0). */
-static int first_root_interval(const double c[], int n, double T,
+/* First root in (0, T] of p (degree n >= 3, normalised, p[0] > 0). */
+static int first_root_interval(const double p[], int n, double T,
                                double skin, double *t, int *graze)
 {
-    double p[MAXN + 1];
-    double s = c[0] > 0 ? 1 : -1; /* p = +-c with p(0) > 0: same roots */
-    for (int i = 0; i <= n; i++)
-        p[i] = s * c[i];
     double lo = 0;
     if (T <= (n <= 8 ? FAST_LIMIT_LOW : FAST_LIMIT_HIGH)) {
         int r = isolate_first_root(p, n, skin, T, t, graze, &lo);
@@ -2075,7 +2092,11 @@ static int solve_normalised(double c[], const int e[], const int nz[], int n,
                             int emax, double tu, int method, double eps,
                             double *root, int *g)
 {
-    int E = normalise(c, n, emax);
+    int closed = method == M2C_METHOD_CLOSED && n <= 4;
+    int interval = n > 2 && method != M2C_METHOD_GSL && !closed;
+    /* the interval method wants p(0) > 0: p = -c has the same roots (the
+     * sign goes into the exact scaling: no pass of its own) */
+    int E = normalise(c, n, emax, interval && c[0] < 0 ? -1 : 1);
     /* skin < 0: no graze check; else the skin in the normalised units */
     double skin = method == M2C_METHOD_INTERVAL_NOGRAZE ? -1
                   : eps == 0                           ? 0
@@ -2088,7 +2109,7 @@ static int solve_normalised(double c[], const int e[], const int nz[], int n,
         return first_root_quadratic(c, 0, tu, skin, root, g);
     if (method == M2C_METHOD_GSL)
         return first_root_gsl(c, n, tu, root, g);
-    if (method == M2C_METHOD_CLOSED && n <= 4)
+    if (closed)
         return first_root_closed(c, n, tu, root, g);
     /* all roots lie below the bound: a smaller window, fewer steps */
     double B = root_bound(e, nz, n); /* (the exponents before scaling: the same) */
@@ -2113,15 +2134,26 @@ static int solve(const double c_in[], int degree, double tmax, int method,
         return -1;
     double c[MAXN + 1];
     int e[MAXN + 1], nz[MAXN + 1], emax, g = 0, found;
-    if (!load_coefficients(c_in, degree, c, e, nz))
+    Scan sc = load_coefficients(c_in, degree, c, e, nz);
+    if (!sc.finite)
         return -1; /* a NaN or an infinity */
     PHASE(0);
     COUNT(8);
+    /* Descartes on the input: no sign change, c_0 != 0, no root in (0, inf)
+     * (and none of p = +-c's envelope q either, whose coefficients have
+     * p's signs): the interval methods would clear it, after the
+     * preparation that would be most of such a solve's cost */
+    if (sc.changes == 0 && c[0] != 0 && eps == 0 &&
+        (method == M2C_METHOD_INTERVAL || method == M2C_METHOD_INTERVAL_NOGRAZE))
+        return 0;
     int n = reduce(c, e, nz, degree, tmax);
     if (n <= 0)
         return 0;
     double root = 0;
-    if (spread(e, nz, n, &emax) > MAX_SPREAD)
+    emax = sc.emax;
+    int sp = n == degree ? sc.emax - sc.emin /* reduce dropped nothing */
+                         : spread(e, nz, n, &emax);
+    if (sp > MAX_SPREAD)
         found = first_root_sliced(c, n, tmax, eps,
                                   method == M2C_METHOD_INTERVAL_NOGRAZE, &root, &g);
     else

@@ -105,10 +105,28 @@ int main(void)
         /* root_bound_exponent: 1 + max ceil((e_i + 1 - e_n) / (n - i)) over nonzero c_i */
         int e[MAXN + 1], nz[MAXN + 1];
         double cp[MAXN + 1];
-        if (!load_coefficients(p, n, cp, e, nz)) {
+        /* with zeros of both signs among the coefficients: the scan skips them */
+        if (state % 3 == 0)
+            p[state % (unsigned)n] = state % 2 ? -0.0 : 0.0;
+        Scan sc = load_coefficients(p, n, cp, e, nz);
+        if (!sc.finite) {
             CHECK(0, "load_coefficients refused finite data\n");
             continue;
         }
+        /* the scan: extreme exponents of the nonzero ones, sign changes */
+        int hi = INT_MIN, lo = INT_MAX, changes = 0, last = 0;
+        for (int i = 0; i <= n; i++) {
+            if (p[i] == 0)
+                continue;
+            hi = ilogb(p[i]) > hi ? ilogb(p[i]) : hi;
+            lo = ilogb(p[i]) < lo ? ilogb(p[i]) : lo;
+            int s = p[i] > 0 ? 1 : -1;
+            changes += last != 0 && s != last;
+            last = s;
+        }
+        CHECK(sc.emax == hi && sc.emin == lo && sc.changes == changes,
+              "load_coefficients scan n=%d: %d %d %d, want %d %d %d\n", n, sc.emax,
+              sc.emin, sc.changes, hi, lo, changes);
         int want = INT_MIN;
         for (int i = 0; i < n; i++) {
             if (p[i] == 0)
@@ -124,11 +142,12 @@ int main(void)
     double c[3] = {1, 2, 3}, out[3];
     int e[3], nz[3];
     c[1] = INFINITY;
-    CHECK(!load_coefficients(c, 2, out, e, nz), "infinity accepted\n");
+    CHECK(!load_coefficients(c, 2, out, e, nz).finite, "infinity accepted\n");
     c[1] = NAN;
-    CHECK(!load_coefficients(c, 2, out, e, nz), "NaN accepted\n");
+    CHECK(!load_coefficients(c, 2, out, e, nz).finite, "NaN accepted\n");
     c[1] = 0x1p-1070; /* subnormal */
-    CHECK(load_coefficients(c, 2, out, e, nz) && e[1] == -1070 && nz[1], "subnormal exponent\n");
+    Scan sc = load_coefficients(c, 2, out, e, nz);
+    CHECK(sc.finite && e[1] == -1070 && nz[1] && sc.emin == -1070, "subnormal exponent\n");
     printf("%d differences\n", bad);
     return bad != 0;
 }
