@@ -20,6 +20,8 @@
 //!
 //! # Preparation (as in C)
 //!
+//! An interval solve without a contact skin whose nonzero coefficients all have one sign
+//! (`c[0] != 0`) has no root in `(0, inf)` (Descartes' rule of signs) and returns at once.
 //! Leading coefficients that are exactly 0, or negligible over the window
 //! (`|c_n| T^n <= 4 n eps max_{i<n} |c_i| T^i`, `T = tmax`, or a Fujiwara bound on the roots
 //! of the rest when `tmax` is infinite), are dropped; `c[0] == 0` (touching now) divides by
