@@ -19,7 +19,6 @@ contact skin (eps = 0): with one, the solve takes its full path.  Checked here:
 from __future__ import annotations
 
 import math
-import os
 import subprocess
 from pathlib import Path
 from typing import Sequence
@@ -102,13 +101,7 @@ def _python_answers(vecs: list[Vector], backend: str, monkeypatch: pytest.Monkey
                     ) -> list[tuple[int, float, bool]]:
     import max2code_runtime as rt
 
-    c_backend = rt._load_c()
-    if backend == "c" and c_backend is None:
-        why = "the cffi backend is not built (python -m max2code_runtime.build)"
-        if os.environ.get("CI"):
-            pytest.fail(why + " -- required in CI")
-        pytest.skip(why)
-    monkeypatch.setattr(rt, "_C", c_backend if backend == "c" else None)
+    tf.select_backend(backend, monkeypatch)
     return [rt.first_root_status(list(c), t, method, eps) for c, t in vecs for method, _, eps, _ in CALLS]
 
 
