@@ -221,10 +221,9 @@ def test_rust_same_answers_as_c(c_answers) -> None:
     assert not slow, f"{len(slow)} calls over 1 ms, first:\n" + "\n".join(slow[:10])
 
 
-@pytest.mark.parametrize("backend", ["c", "python"])
-def test_python_same_answers_as_c(c_answers, backend: str, monkeypatch: pytest.MonkeyPatch) -> None:
-    import time
-
+def select_backend(backend: str, monkeypatch: pytest.MonkeyPatch) -> None:
+    """max2code_runtime on its C ("c") or pure-Python ("python") backend for this test; no C
+    backend: a skip, a failure in CI."""
     import max2code_runtime as rt
     c_backend = rt._load_c()
     if backend == "c" and c_backend is None:
@@ -233,6 +232,14 @@ def test_python_same_answers_as_c(c_answers, backend: str, monkeypatch: pytest.M
             pytest.fail(why + " -- required in CI")
         pytest.skip(why)
     monkeypatch.setattr(rt, "_C", c_backend if backend == "c" else None)
+
+
+@pytest.mark.parametrize("backend", ["c", "python"])
+def test_python_same_answers_as_c(c_answers, backend: str, monkeypatch: pytest.MonkeyPatch) -> None:
+    import time
+
+    import max2code_runtime as rt
+    select_backend(backend, monkeypatch)
     limit = LIMIT_NS if backend == "c" else 50 * LIMIT_NS
     # the pure-Python port is slow: a tenth of the vectors (all of them on demand)
     share = 1 if backend == "c" or COUNT > 10000 else 10

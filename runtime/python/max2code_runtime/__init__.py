@@ -86,7 +86,10 @@ def _valid(cc: list[float], tmax: float, eps: float) -> bool:
 def _solve_normalised(c: list[float], n: int, emax: int, tu: float, method: str, eps: float
                       ) -> tuple[float, bool] | None:
     """The C runtime's solve_normalised (spread within 2^MAX_SPREAD)."""
-    E = solver.normalise(c, n, emax)
+    closed = method == "closed" and n <= 4
+    interval = n > 2 and not closed
+    # the interval method wants p(0) > 0: p = -c, same roots, the sign in the exact scaling
+    E = solver.normalise(c, n, emax, -1.0 if interval and c[0] < 0 else 1.0)
     if method == "interval-nograze":
         skin = -1.0
     else:
@@ -96,7 +99,7 @@ def _solve_normalised(c: list[float], n: int, emax: int, tu: float, method: str,
         return (r, False) if 0 < r <= tu else None
     if n == 2:
         return solver.first_root_quadratic(c, tu, skin)
-    if method == "closed" and n <= 4:
+    if closed:
         return _first_root_closed(c, n, tu)
     B = solver.root_bound(c, n)
     T = tu if tu < B else B
@@ -105,11 +108,19 @@ def _solve_normalised(c: list[float], n: int, emax: int, tu: float, method: str,
 
 def _solve_python(cc: list[float], tmax: float, method: str, eps: float) -> tuple[int, float, bool]:
     """The C runtime's solve(), on validated input."""
+    degree = len(cc) - 1
     c = cc + [0.0] * (MAX_DEGREE + 1 - len(cc))
-    n = solver.reduce(c, len(cc) - 1, tmax)
+    # C's load_coefficients scans the bits in one pass; here two simple loops, same numbers
+    _, _, spread, emax = solver.exponents(c, degree)
+    # Descartes on the input: no sign change (zeros skipped), c_0 != 0: no root in (0, inf)
+    if (solver._sign_changes(c, degree) == 0 and c[0] != 0 and eps == 0
+            and method in ("interval", "interval-nograze")):
+        return 0, math.nan, False
+    n = solver.reduce(c, degree, tmax)
     if n <= 0:
         return 0, math.nan, False
-    _, _, spread, emax = solver.exponents(c, n)
+    if n != degree:  # reduce dropped terms: their spread
+        _, _, spread, emax = solver.exponents(c, n)
     if spread > solver.MAX_SPREAD:
         found = solver.first_root_sliced(c, n, tmax, eps, method == "interval-nograze")
     else:

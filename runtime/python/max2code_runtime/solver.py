@@ -181,16 +181,18 @@ def exponents(c: Sequence[float], n: int) -> tuple[list[int], list[bool], int, i
     return e, nz, emax - min(e[i] for i in range(n + 1) if nz[i]), emax
 
 
-def normalise(c: Coeffs, n: int, emax: int) -> int:
-    """C normalise: scale exactly so that max |c_i| (exponent emax) is in [1/2, 1); returns E."""
+def normalise(c: Coeffs, n: int, emax: int, sign: float) -> int:
+    """C normalise: scale exactly by sign 2^-E (sign +-1) so that max |c_i| (exponent emax) is
+    in [1/2, 1); returns E.  The interval method wants p(0) > 0 and -c has c's roots: the sign
+    rides on the exact scaling instead of a copy."""
     E = emax + 1
     if -1021 <= E <= 1022:
-        f = math.ldexp(1.0, -E)
+        f = sign * math.ldexp(1.0, -E)
         for i in range(n + 1):
             c[i] *= f
     else:
         for i in range(n + 1):
-            c[i] = _ldexp(c[i], -E)
+            c[i] = _ldexp(sign * c[i], -E)
     return E
 
 
@@ -817,10 +819,8 @@ def _derivative_method(c: Sequence[float], n: int, lo: float, T: float, skin: fl
     return None
 
 
-def first_root_interval(c: Sequence[float], n: int, T: float, skin: float) -> tuple[float, bool] | None:
-    """First root in (0, T] of c (degree n >= 3, normalised, c[0] != 0)."""
-    s = 1.0 if c[0] > 0 else -1.0
-    p = [s * c[i] for i in range(n + 1)]
+def first_root_interval(p: Sequence[float], n: int, T: float, skin: float) -> tuple[float, bool] | None:
+    """First root in (0, T] of p (degree n >= 3, normalised, p[0] > 0: normalise's sign)."""
     lo = 0.0
     if T <= (FAST_LIMIT_LOW if n <= 8 else FAST_LIMIT_HIGH):
         r = _isolate_first_root(p, n, skin, T)

@@ -20,6 +20,8 @@
 //!
 //! # Preparation (as in C)
 //!
+//! An interval solve without a contact skin whose nonzero coefficients all have one sign
+//! (`c[0] != 0`) has no root in `(0, inf)` (Descartes' rule of signs) and returns at once.
 //! Leading coefficients that are exactly 0, or negligible over the window
 //! (`|c_n| T^n <= 4 n eps max_{i<n} |c_i| T^i`, `T = tmax`, or a Fujiwara bound on the roots
 //! of the rest when `tmax` is infinite), are dropped; `c[0] == 0` (touching now) divides by
@@ -156,18 +158,29 @@ fn solve(coef: &[f64], tmax: f64, method: Method, eps: f64) -> Status {
     let mut c: Coeffs = [0.0; MAXN + 1];
     let mut e = [0i32; MAXN + 1];
     let mut nz = [false; MAXN + 1];
-    // the copy and the exponents in one pass, as C's (a NaN or an infinity: invalid)
-    if !solver::load_coefficients(coef, &mut c, &mut e, &mut nz) {
+    // the copy, the exponents and their scan in one pass, as C's (a NaN or an infinity: invalid)
+    let sc = solver::load_coefficients(coef, &mut c, &mut e, &mut nz);
+    if !sc.finite {
         return Status::Invalid;
     }
     count::phase(0);
     count::event(8);
-    let n = solver::reduce(&mut c, &mut e, &mut nz, coef.len() - 1, tmax);
+    // Descartes on the input, as C: no sign change and c_0 != 0, no root in (0, inf); the
+    // interval methods would clear it after the preparation (most of such a solve's cost)
+    if sc.changes == 0 && c[0] != 0.0 && eps == 0.0 && matches!(method, Method::Interval | Method::IntervalNoGraze) {
+        return Status::NoRoot;
+    }
+    let degree = coef.len() - 1;
+    let n = solver::reduce(&mut c, &mut e, &mut nz, degree, tmax);
     if n <= 0 {
         return Status::NoRoot;
     }
     let n = n as usize;
-    let (spread, emax) = solver::spread(&e, &nz, n);
+    let (spread, emax) = if n == degree {
+        (sc.emax - sc.emin, sc.emax) // reduce dropped nothing
+    } else {
+        solver::spread(&e, &nz, n)
+    };
     let hit = if spread > solver::max_spread() {
         solver::first_root_sliced(&c, n, tmax, eps, method == Method::IntervalNoGraze)
     } else {
@@ -188,7 +201,11 @@ fn solve(coef: &[f64], tmax: f64, method: Method, eps: f64) -> Status {
 /// differences, which scaling by a power of two keeps).
 #[allow(clippy::too_many_arguments)]
 fn solve_normalised(c: &mut Coeffs, e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n: usize, emax: i32, tu: f64, method: Method, eps: f64) -> Option<(f64, bool)> {
-    let big_e = solver::normalise(c, n, emax);
+    let closed_form = method == Method::Closed && n <= 4;
+    let by_interval = n > 2 && !closed_form;
+    // the interval method wants p(0) > 0: p = -c has the same roots (the sign goes into the
+    // exact scaling: no pass of its own)
+    let big_e = solver::normalise(c, n, emax, if by_interval && c[0] < 0.0 { -1.0 } else { 1.0 });
     let skin = if method == Method::IntervalNoGraze {
         -1.0
     } else if eps == 0.0 {
@@ -202,19 +219,26 @@ fn solve_normalised(c: &mut Coeffs, e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], 
             (r > 0.0 && r <= tu).then_some((r, false))
         }
         2 => solver::quadratic(c, tu, skin),
-        3 | 4 if method == Method::Closed => {
+        3 | 4 if closed_form => {
             let mut c9 = [0.0; 9];
             c9.copy_from_slice(&c[..9]);
             let res = if n == 3 { closed::cubic_first(&c9, tu) } else { closed::quartic_first(&c9, tu) };
             match res {
                 Ok(hit) => hit,
-                Err(()) => interval(c, e, nz, n, tu, skin),
+                Err(()) => {
+                    // (Rust's own fallback, not C's: the sign normalise left to the closed form)
+                    if c[0] < 0.0 {
+                        c.iter_mut().take(n + 1).for_each(|v| *v = -*v);
+                    }
+                    interval(c, e, nz, n, tu, skin)
+                }
             }
         }
         _ => interval(c, e, nz, n, tu, skin),
     }
 }
 
+/// The interval method on c (normalised, c[0] > 0) over (0, min(tu, the root bound)].
 fn interval(c: &Coeffs, e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n: usize, tu: f64, skin: f64) -> Option<(f64, bool)> {
     let b = solver::root_bound(e, nz, n);
     let t_end = if tu < b { tu } else { b };

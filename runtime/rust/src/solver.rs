@@ -75,12 +75,30 @@ fn ceil_div(num: i32, den: i32) -> i32 {
     ((x * MAGIC[den as usize & 31]) >> 32) as i32 - 4096
 }
 
+/// What `load_coefficients` reads off the bits besides the exponents, in the same pass (C
+/// `Scan`): the largest and smallest exponent of the nonzero coefficients (the spread, unless
+/// `reduce` drops terms) and the number of sign changes with zeros (of either sign) skipped:
+/// Descartes' bound on the positive roots, which clears a solve with no sign change before any
+/// preparation.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Scan {
+    /// No NaN, no infinity.
+    pub(crate) finite: bool,
+    /// `i32::MIN` when every coefficient is 0.
+    pub(crate) emax: i32,
+    /// `i32::MAX` when every coefficient is 0.
+    pub(crate) emin: i32,
+    pub(crate) changes: i32,
+}
+
 /// C `load_coefficients`: copies `src` (n + 1 = src.len() <= 17 entries) to c and reads the
 /// exponents from the bits in the same pass: e[i] = ilogb(c[i]), nz[i] = (c[i] != 0), e[i] = 0
-/// for zeros.  False when a coefficient is not finite (invalid input).
+/// for zeros; the `Scan` of the same bits (`.finite` false: invalid input).  Branch-free but
+/// for subnormals, as in C.
 #[inline]
-pub(crate) fn load_coefficients(src: &[f64], c: &mut Coeffs, e: &mut [i32; MAXN + 1], nz: &mut [bool; MAXN + 1]) -> bool {
-    let mut bad = false;
+pub(crate) fn load_coefficients(src: &[f64], c: &mut Coeffs, e: &mut [i32; MAXN + 1], nz: &mut [bool; MAXN + 1]) -> Scan {
+    let (mut bad, mut hi, mut lo, mut changes) = (false, i32::MIN, i32::MAX, 0);
+    let mut last = 0u64; // the sign bit of the last nonzero, + 1; 0: none yet
     for (((&x, ci), ei), nzi) in src.iter().zip(c.iter_mut()).zip(e.iter_mut()).zip(nz.iter_mut()) {
         let b = x.to_bits();
         // SAFETY: ci is a valid, aligned &mut f64.  (A volatile store is a plain one here; it
@@ -89,16 +107,24 @@ pub(crate) fn load_coefficients(src: &[f64], c: &mut Coeffs, e: &mut [i32; MAXN 
         unsafe { std::ptr::write_volatile(ci, x) };
         let be = ((b >> 52) & 0x7ff) as i32;
         bad |= be == 0x7ff;
-        *nzi = (b << 1) != 0;
-        *ei = if be != 0 {
+        let z = (b << 1) != 0;
+        *nzi = z;
+        let exp = if be != 0 {
             be - 1023
-        } else if *nzi {
+        } else if z {
             ilogb(x) // subnormal: rare
         } else {
             0
         };
+        *ei = exp;
+        let (h, l) = if z { (exp, exp) } else { (i32::MIN, i32::MAX) };
+        hi = if h > hi { h } else { hi };
+        lo = if l < lo { l } else { lo };
+        let sg = (b >> 63) + 1;
+        changes += i32::from(z & (last != 0) & (last != sg));
+        last = if z { sg } else { last };
     }
-    !bad
+    Scan { finite: !bad, emax: hi, emin: lo, changes }
 }
 
 /// C `root_bound_exponent`: every root is below 2^(the result); `None` when all c_i (i < n)
@@ -270,17 +296,19 @@ pub(crate) const fn max_spread() -> i32 {
     MAX_SPREAD
 }
 
-/// C `normalise`: scales exactly so that max |c_i| (exponent emax) is in [1/2, 1); returns E.
-pub(crate) fn normalise(c: &mut Coeffs, n: usize, emax: i32) -> i32 {
+/// C `normalise`: scales exactly by sign 2^-E (sign +-1) so that max |c_i| (exponent emax) is
+/// in [1/2, 1); returns E.  (The sign costs no pass of its own: the interval method wants
+/// p(0) > 0, and -c has c's roots.)
+pub(crate) fn normalise(c: &mut Coeffs, n: usize, emax: i32, sign: f64) -> i32 {
     let big_e = emax + 1;
     if (-1021..=1022).contains(&big_e) {
-        let f = pow2(-big_e);
+        let f = sign * pow2(-big_e);
         for v in c.iter_mut().take(n + 1) {
             *v *= f;
         }
     } else {
         for v in c.iter_mut().take(n + 1) {
-            *v = ldexp(*v, -i64::from(big_e));
+            *v = ldexp(sign * *v, -i64::from(big_e));
         }
     }
     big_e
@@ -1346,22 +1374,18 @@ fn derivative_method(c: &[f64], n: usize, lo: f64, t_end: f64, skin: f64) -> Opt
     None
 }
 
-/// First root in (0, T] of c (degree n >= 3, normalised, c[0] != 0).
-pub(crate) fn first_root_interval(c: &Coeffs, n: usize, t_end: f64, skin: f64) -> Option<(f64, bool)> {
-    let mut p = [0.0f64; MAXN + 1];
-    let s = if c[0] > 0.0 { 1.0 } else { -1.0 };
-    for (pi, &ci) in p.iter_mut().zip(c).take(n + 1) {
-        *pi = s * ci;
-    }
+/// First root in (0, T] of p (degree n >= 3, normalised, p[0] > 0).
+pub(crate) fn first_root_interval(p: &Coeffs, n: usize, t_end: f64, skin: f64) -> Option<(f64, bool)> {
+    debug_assert!(p[0] > 0.0);
     let mut lo = 0.0;
     if t_end <= if n <= 8 { FAST_LIMIT_LOW } else { FAST_LIMIT_HIGH } {
-        match isolate_first_root(&p, n, skin, t_end) {
+        match isolate_first_root(p, n, skin, t_end) {
             Isolation::Isolated(t, g) => return Some((t, g)),
             Isolation::Cleared => return None,
             Isolation::Unresolved(a) => lo = a,
         }
     }
-    derivative_method(&p, n, lo, t_end, skin)
+    derivative_method(p, n, lo, t_end, skin)
 }
 
 /// The quadratic, for the entry point.
@@ -1522,7 +1546,7 @@ mod ceil {
 
 #[cfg(test)]
 mod preparation {
-    use super::{load_coefficients, root_bound, Coeffs, MAXN};
+    use super::{load_coefficients, root_bound, Coeffs, Scan, MAXN};
 
     #[test]
     fn inverse_binomials_are_the_rounded_quotients() {
@@ -1542,14 +1566,87 @@ mod preparation {
     fn exponents_from_the_bits() {
         let src = [1.0, -0.75, 0.0, -0.0, 5e-324, 3.0e-310, f64::MAX, -f64::MIN_POSITIVE];
         let (mut c, mut e, mut nz): (Coeffs, _, _) = ([9.0; MAXN + 1], [9; MAXN + 1], [true; MAXN + 1]);
-        assert!(load_coefficients(&src, &mut c, &mut e, &mut nz));
+        assert!(load_coefficients(&src, &mut c, &mut e, &mut nz).finite);
         assert_eq!(&c[..src.len()], &src);
         assert_eq!(&e[..src.len()], &[0, -1, 0, 0, -1074, -1029, 1023, -1022]);
         assert_eq!(&nz[..src.len()], &[true, true, false, false, true, true, true, true]);
         // 3.0e-310 is in [2^-1029, 2^-1028) (subnormals: 2^k = bit 1074 + k)
         assert!(f64::from_bits(1 << 45) <= 3.0e-310 && 3.0e-310 < f64::from_bits(1 << 46));
         for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
-            assert!(!load_coefficients(&[1.0, bad, 2.0], &mut c, &mut e, &mut nz));
+            assert!(!load_coefficients(&[1.0, bad, 2.0], &mut c, &mut e, &mut nz).finite);
+        }
+    }
+
+    /// The plain definition of the scan: `2^e <= |x| < 2^(e + 1)` by comparison with exact
+    /// powers of two (subnormal ones included), sign changes between consecutive nonzero
+    /// coefficients (x == 0.0 is true for -0.0 too).
+    fn plain_scan(src: &[f64]) -> Scan {
+        let pow2 = |k: i32| if k >= -1022 { f64::from_bits(((k + 1023) as u64) << 52) } else { f64::from_bits(1u64 << (k + 1074)) };
+        let (mut emax, mut emin, mut changes, mut last) = (i32::MIN, i32::MAX, 0, 0);
+        for &x in src {
+            if x == 0.0 {
+                continue;
+            }
+            let a = x.abs();
+            let mut k = (a.log2().floor() as i32).clamp(-1074, 1023);
+            while pow2(k) > a {
+                k -= 1;
+            }
+            while k < 1023 && pow2(k + 1) <= a {
+                k += 1;
+            }
+            emax = emax.max(k);
+            emin = emin.min(k);
+            let s = if x > 0.0 { 1 } else { -1 };
+            changes += i32::from(last != 0 && s != last);
+            last = s;
+        }
+        Scan { finite: true, emax, emin, changes }
+    }
+
+    #[test]
+    fn scan_is_the_plain_definition() {
+        let (mut c, mut e, mut nz): (Coeffs, _, _) = ([0.0; MAXN + 1], [0; MAXN + 1], [false; MAXN + 1]);
+        let mut scan = |src: &[f64]| load_coefficients(src, &mut c, &mut e, &mut nz);
+        // zeros of both signs are skipped: -0.0 is no negative coefficient
+        let fixed: [(&[f64], i32, i32, i32); 8] = [
+            (&[1.0, -0.0, 2.0], 1, 0, 0),
+            (&[-1.0, 0.0, -0.0, -3.0], 1, 0, 0),
+            (&[-0.0, 1.0, -1.0], 0, 0, 1),
+            (&[0.5, 0.0, -0.0, -4.0, 0.0, 8.0], 3, -1, 2),
+            (&[5e-324, -f64::MAX], 1023, -1074, 1),
+            (&[-0.0], i32::MIN, i32::MAX, 0),
+            (&[0.0, -0.0, 0.0], i32::MIN, i32::MAX, 0),
+            (&[-2.0], 1, 1, 0),
+        ];
+        for (src, emax, emin, changes) in fixed {
+            assert_eq!(scan(src), Scan { finite: true, emax, emin, changes }, "{src:?}");
+        }
+        // random coefficients over the whole range, one in four a zero of either sign
+        let mut s = 0x2545_F491_4F6C_DD1Du64;
+        let mut next = move || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            s
+        };
+        for trial in 0..20000 {
+            let n = trial % (MAXN + 1);
+            let src: Vec<f64> = (0..=n)
+                .map(|_| {
+                    let r = next();
+                    match r % 8 {
+                        0 => 0.0,
+                        1 => -0.0,
+                        // any finite bit pattern: normal and subnormal, either sign
+                        _ => {
+                            let x = f64::from_bits(r >> 3 | (r & 1) << 63);
+                            if x.is_finite() { x } else { 1.5 }
+                        }
+                    }
+                })
+                .collect();
+            assert_eq!(scan(&src), plain_scan(&src), "{src:?}");
         }
     }
 
@@ -1559,11 +1656,11 @@ mod preparation {
         // 2^(ceil(4 / 2) + 1) = 8, above the largest root (5); the other terms give less
         let src = [3.75, -15.5, 1.75, 1.0];
         let (mut c, mut e, mut nz): (Coeffs, _, _) = ([0.0; MAXN + 1], [0; MAXN + 1], [false; MAXN + 1]);
-        assert!(load_coefficients(&src, &mut c, &mut e, &mut nz));
+        assert!(load_coefficients(&src, &mut c, &mut e, &mut nz).finite);
         assert_eq!(root_bound(&e, &nz, 3), 8.0);
         // only the leading term: no bound
         let (mut e2, mut nz2) = ([0; MAXN + 1], [false; MAXN + 1]);
-        assert!(load_coefficients(&[0.0, 0.0, 2.0], &mut c, &mut e2, &mut nz2));
+        assert!(load_coefficients(&[0.0, 0.0, 2.0], &mut c, &mut e2, &mut nz2).finite);
         assert_eq!(root_bound(&e2, &nz2, 2), 0.0);
     }
 }
