@@ -38,6 +38,7 @@ NOISE_STEP = 32 * U
 MAX_SPLITS = 40
 SPLIT_NEWTON = 2.0
 MIN_WIDTH = 2.0**-20
+EARLY_WIDTH = 0.25
 MAX_SPREAD = 1021
 INF = math.inf
 
@@ -717,6 +718,7 @@ def _isolate_first_root(p: Sequence[float], n: int, skin: float, T: float):
     stack = [first]
     splits = 0
     tested = True  # (0, T] has had its Bernstein test
+    early_tried = False
     while True:
         b = stack[-1]
         w = b.x - a.x
@@ -733,16 +735,26 @@ def _isolate_first_root(p: Sequence[float], n: int, skin: float, T: float):
         if odd and not tested and _bernstein_test(a, n, w, False).answer == BERN_ONE:
             return _polish_isolated(p, n, a.x, b.x, a.px, b.px), False
         tested = False
-        m = _isolation_split(a.x, b.x)
-        mt = a.x + SPLIT_NEWTON * _div(-a.px, a.dpx)
-        if a.dpx < 0 and a.x < mt < b.x and mt - a.x > MIN_WIDTH * b.x:
-            m = mt
-        if splits < MAX_SPLITS and w > MIN_WIDTH * b.x and a.x < m < b.x:
-            pt = _point_at(tk, ta, e, sk, n, m)
-            if pt is not None:
-                splits += 1
-                stack.append(pt)
-                continue
+        # two roots in (a, b] by both counts within a quarter of b (mostly a touch): to the
+        # derivative method at once, once per solve; else split, at the tangent rule's point,
+        # or just beyond a when the tangent meets 0 within MIN_WIDTH of it (see the C source)
+        early = (not early_tried and a.vp - b.vp == 2 and a.vq - b.vq == 2
+                 and w <= EARLY_WIDTH * b.x)
+        early_tried = early_tried or early
+        if not early:
+            m = _isolation_split(a.x, b.x)
+            mt = a.x + SPLIT_NEWTON * _div(-a.px, a.dpx)
+            hair = a.x + 4 * MIN_WIDTH * b.x
+            if a.dpx < 0 and a.x < mt < b.x and mt - a.x > MIN_WIDTH * b.x:
+                m = mt
+            elif a.dpx < 0 and mt > a.x and mt - a.x <= MIN_WIDTH * b.x and hair < b.x:
+                m = hair
+            if splits < MAX_SPLITS and w > MIN_WIDTH * b.x and a.x < m < b.x:
+                pt = _point_at(tk, ta, e, sk, n, m)
+                if pt is not None:
+                    splits += 1
+                    stack.append(pt)
+                    continue
         hit = _derivative_method(p, n, a.x, b.x, skin)
         if hit is not None:
             return hit
@@ -795,6 +807,19 @@ def _critical_points(d: list[list[float]], n: int, lo: float, T: float) -> list[
     return level
 
 
+def _crossing_before_critical(c: Sequence[float], d: list[list[float]], n: int, a: float,
+                              b: float, sa: int, pb: float) -> float:
+    """The root of p in (a, b], p monotone from sign sa at a to pb = p(b) (precise, the other
+    sign) at the critical point b: Newton from where p(b) + p''(b) (x - b)^2 / 2 meets 0 (for a
+    touch within rounding of the root; from the middle it crawls), else from the split point."""
+    x0 = _split_point(a, b)
+    h2 = _div(-2 * pb, horner(d[n - 2], n - 2, b, 0, False))
+    xq = b - math.sqrt(h2 if h2 > 0 else 0.0)
+    if a < xq < b:
+        x0 = xq
+    return _refine_root(c, d[n - 1], n, a, b, sa, 0.0, x0)
+
+
 def _derivative_method(c: Sequence[float], n: int, lo: float, T: float, skin: float):
     d = _derivative_chain(c, n)
     crit = _critical_points(d, n, lo, T)
@@ -807,7 +832,15 @@ def _derivative_method(c: Sequence[float], n: int, lo: float, T: float, skin: fl
         sb_known = False
         if sb == 0:
             return b, j < nc
+        # at a critical point the fma sign may be noise (a touch): the precise value decides
+        # whether p crosses in (a, b] (where b needs no scaling)
+        precise = sb != sa and j < nc and _scale_exponent(b, n) == 0
+        pb = _horner_compensated(c, n, b) if precise else 0.0
+        if precise and pb != 0 and (pb > 0) == (sa > 0):
+            sb = sa  # no crossing in (a, b]: maybe a touch at b (below)
         if sb != sa:
+            if precise:
+                return _crossing_before_critical(c, d, n, a, b, sa, pb), False
             return _refine_root(c, d[n - 1], n, a, b, sa, 0.0, _split_point(a, b)), False
         if skin >= 0 and j < nc and _within_noise(c, n, b, skin):
             b2 = crit[j + 1] if j + 1 < nc else T

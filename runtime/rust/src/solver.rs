@@ -35,6 +35,7 @@ const NOISE_STEP: f64 = 32.0 * U;
 const MAX_SPLITS: usize = 40;
 const SPLIT_NEWTON: f64 = 2.0;
 const MIN_WIDTH: f64 = 9.536_743_164_062_5e-7; // 2^-20
+const EARLY_WIDTH: f64 = 0.25;
 const MAX_SPREAD: i32 = 1021;
 
 pub(crate) type Coeffs = [f64; MAXN + 1];
@@ -1223,6 +1224,7 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64) -> Isolation {
     }
     top += 1;
     let mut tested = true; // (0, T] has had its Bernstein test
+    let mut early_tried = false;
     loop {
         // SAFETY: stack[..top] was written by point_at (every field: x, px, vp, vq; the arrays
         // are MaybeUninit, their entries 0..=n written).
@@ -1247,16 +1249,26 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64) -> Isolation {
             return Isolation::Isolated(polish_isolated(p, n, a.x, b.x, a.px, b.px), false);
         }
         tested = false;
+        // Two roots in (a, b] by both counts within a quarter of b (mostly a touch): to the
+        // derivative method at once, once per solve; else split, at the tangent rule's point,
+        // or just beyond a when the tangent meets 0 within MIN_WIDTH of it (see the C source)
         let bx = b.x;
-        let mut m = isolation_split(a.x, bx);
-        let mt = a.x + SPLIT_NEWTON * (-a.px / a.dpx);
-        if a.dpx < 0.0 && mt > a.x && mt < bx && mt - a.x > MIN_WIDTH * bx {
-            m = mt;
-        }
-        if splits < MAX_SPLITS && w > MIN_WIDTH * bx && m > a.x && m < bx && point_at(tb, n, m, &mut stack[top]) {
-            splits += 1;
-            top += 1;
-            continue;
+        let early = !early_tried && a.vp - b.vp == 2 && a.vq - b.vq == 2 && w <= EARLY_WIDTH * bx;
+        early_tried |= early;
+        if !early {
+            let mut m = isolation_split(a.x, bx);
+            let mt = a.x + SPLIT_NEWTON * (-a.px / a.dpx);
+            let hair = a.x + 4.0 * MIN_WIDTH * bx;
+            if a.dpx < 0.0 && mt > a.x && mt < bx && mt - a.x > MIN_WIDTH * bx {
+                m = mt;
+            } else if a.dpx < 0.0 && mt > a.x && mt - a.x <= MIN_WIDTH * bx && hair < bx {
+                m = hair;
+            }
+            if splits < MAX_SPLITS && w > MIN_WIDTH * bx && m > a.x && m < bx && point_at(tb, n, m, &mut stack[top]) {
+                splits += 1;
+                top += 1;
+                continue;
+            }
         }
         // SAFETY: as above.
         let b = unsafe { stack[top - 1].assume_init_ref() };
@@ -1339,6 +1351,20 @@ fn critical_points(d: &Chain, n: usize, lo: f64, t_end: f64, crit: &mut [f64; MA
     nl
 }
 
+/// C `crossing_before_critical`: the root of p in (a, b], p monotone from sign sa at a to
+/// pb = p(b) (precise, the other sign) at the critical point b; Newton starts where
+/// p(b) + p''(b) (x - b)^2 / 2 meets 0 (for a touch within rounding of the root), else at the
+/// split point.
+fn crossing_before_critical(c: &[f64], d: &Chain, n: usize, a: f64, b: f64, sa: i32, pb: f64) -> f64 {
+    let mut x0 = split_point(a, b);
+    let h2 = -2.0 * pb / horner(&d[n - 2], n - 2, b, 0, false);
+    let xq = b - (if h2 > 0.0 { h2 } else { 0.0 }).sqrt();
+    if xq > a && xq < b {
+        x0 = xq;
+    }
+    refine_root(c, &d[n - 1], n, a, b, sa, 0.0, x0)
+}
+
 fn derivative_method(c: &[f64], n: usize, lo: f64, t_end: f64, skin: f64) -> Option<(f64, bool)> {
     count::phase(3);
     count::event(7);
@@ -1358,8 +1384,20 @@ fn derivative_method(c: &[f64], n: usize, lo: f64, t_end: f64, skin: f64) -> Opt
         if sb == 0 {
             return Some((b, j < nc));
         }
+        // at a critical point the fma sign may be noise (a touch): the precise value decides
+        // whether p crosses in (a, b] (where b needs no scaling)
+        let precise = sb != sa && j < nc && scale_exponent(b, n) == 0;
+        let pb = if precise { horner_compensated(c, n, b) } else { 0.0 };
+        if precise && pb != 0.0 && (pb > 0.0) == (sa > 0) {
+            sb = sa; // no crossing in (a, b]: maybe a touch at b (below)
+        }
         if sb != sa {
-            return Some((refine_root(c, &d[n - 1], n, a, b, sa, 0.0, split_point(a, b)), false));
+            let t = if precise {
+                crossing_before_critical(c, &d, n, a, b, sa, pb)
+            } else {
+                refine_root(c, &d[n - 1], n, a, b, sa, 0.0, split_point(a, b))
+            };
+            return Some((t, false));
         }
         if skin >= 0.0 && j < nc && within_noise(c, n, b, skin) {
             let b2 = if j + 1 < nc { crit[j + 1] } else { t_end };
