@@ -35,6 +35,8 @@
 //! does not change sign; rounding turns it into two close roots or into none.  A critical
 //! point before the first sign change where `|p(x)| <= 2 gamma_{2n} sum |c_i| x^i` (the
 //! Horner rounding-error bound, safety factor 2) is reported as `Root { t: x, graze: true }`.
+//! Whether the sign changes before a critical point is decided there by compensated Horner,
+//! as in C: at a touch the sign of the fma Horner value is noise.
 //! [`first_root_skin`] adds a contact skin `eps >= 0` (in the units of `c`: distance squared
 //! for the shipped equations) to that bound: a near-miss whose minimum is within `eps` counts
 //! as contact at the time of closest approach; crossings are unchanged; `eps = 0` is the
