@@ -18,7 +18,7 @@ degree (3-8) and the window (0, tmax] around d from a seeded RNG.  Kept are thos
   nearest the exact critical point near d (mpmath, 200 bits), while p's exact value there is
   positive: the fma sign is noise where the runtimes look.  (Their own critical point is
   found to 2^-36 relative, so their fma value is another draw of the noise: at seed 4031 it
-  has the wrong sign in 15 of the 24 solves, where a runtime without the re-check reports a
+  has the wrong sign in 19 of the 24 solves, where a runtime without the re-check reports a
   crossing.)
 
 For each, C, Rust and Python (pure and through its C backend) must report the touch: status 1,
@@ -36,6 +36,7 @@ import mpmath
 import pytest
 
 from . import exact_roots as ex
+from .cases import poly_from_roots
 from .test_descartes_exit import CALLS, Vector, _c_answers, _python_answers, _rust_answers
 
 SEED = 4031
@@ -43,27 +44,21 @@ COUNT = 24
 TOUCH_REL = 1e-6
 
 
-def _times(a: list[Fraction], b: list[Fraction]) -> list[Fraction]:
-    out = [Fraction(0)] * (len(a) + len(b) - 1)
-    for i, x in enumerate(a):
-        for j, y in enumerate(b):
-            out[i + j] += x * y
-    return out
-
-
 def _touch(rng: random.Random) -> tuple[tuple[float, ...], float, float]:
-    """(coefficients, d, tmax): (t - d)^2 f(t), f > 0 for t > 0, rounded once to doubles."""
+    """(coefficients, d, tmax): (t - d)^2 f(t), f > 0 for t > 0 (negative real roots and
+    complex pairs), multiplied out exactly and rounded once to doubles."""
     d = rng.uniform(0.05, 20.0)
-    f = [Fraction(rng.uniform(0.5, 2.0))]
+    real, pairs = [d, d], []
     degree = rng.randint(1, 6)
-    while len(f) - 1 < degree:
-        if degree - (len(f) - 1) >= 2 and rng.random() < 0.5:  # a complex pair re +- i im
-            re, im = rng.uniform(-20.0, 20.0), rng.uniform(0.1, 20.0)
-            f = _times(f, [Fraction(re) ** 2 + Fraction(im) ** 2, -2 * Fraction(re), Fraction(1)])
-        else:  # a negative real root -r
-            f = _times(f, [Fraction(rng.uniform(0.01, 20.0)), Fraction(1)])
-    exact = _times([Fraction(d) ** 2, -2 * Fraction(d), Fraction(1)], f)
-    return tuple(float(x) for x in exact), d, d * rng.uniform(1.5, 10.0)
+    while degree > 0:
+        if degree >= 2 and rng.random() < 0.5:
+            pairs.append((rng.uniform(-20.0, 20.0), rng.uniform(0.1, 20.0)))
+            degree -= 2
+        else:
+            real.append(-rng.uniform(0.01, 20.0))
+            degree -= 1
+    c = poly_from_roots(real, pairs, lead=rng.uniform(0.5, 2.0))
+    return c, d, d * rng.uniform(1.5, 10.0)
 
 
 def _fma_horner(c: tuple[float, ...], x: float) -> float:
