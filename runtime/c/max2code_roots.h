@@ -68,6 +68,8 @@
  *     a touch is reported as a (double) root with *graze = 1.  Both can only
  *     lie where the envelope q = p - sign(p(0)) 2 gamma_{2n} sum |c_i| t^i
  *     has changed sign.
+ *     0. No sign change in c as given (zeros skipped), c[0] != 0 and no
+ *        skin: no root (Descartes), before any of the preparation above.
  *     1. Exclusion and isolation (T <= 2^100), cheapest first:
  *        a. Descartes on (0, T] in the Bernstein basis: the sign changes of
  *           the Bernstein coefficients of p and q on the window (from the
@@ -93,6 +95,11 @@
  *           has no root is cleared; one where p and q have exactly one root
  *           each is polished; otherwise the leftmost interval is bisected,
  *           up to 40 times in all and down to 2^-20 relative width.
+ *        Two roots by both counts in an interval within a quarter of its
+ *        right end (once per solve): a double root (a touch) or a close
+ *        pair, which bisection would only approach by halving; it goes to
+ *        step 2 at once.  A tangent at a that meets 0 within 2^-20 of a puts
+ *        the next split just beyond that, for the same reason.
  *        Only certified signs decide; a, b and c only decide sooner.
  *     2. An interval the counts do not resolve (a double root, a tight
  *        cluster, a sign too close to call) goes to the derivative method,
@@ -101,8 +108,12 @@
  *        the derivatives in the interval, found recursively (to 2^-28
  *        relative, those of p' to 2^-36: they only bracket, and p' = 0 makes
  *        p insensitive to them), split it into monotone pieces, scanned left
- *        to right with the graze check at each critical point.  If it finds
- *        nothing there, step 1 goes on to the right of the interval.
+ *        to right with the graze check at each critical point.  At a
+ *        critical point the fma sign of p may be noise: a crossing before
+ *        it counts only if compensated Horner confirms the sign (else the
+ *        graze check runs there), and Newton towards it starts where
+ *        p(b) + p''(b) (x - b)^2 / 2 meets 0.  If it finds nothing there,
+ *        step 1 goes on to the right of the interval.
  *     Polishing: safeguarded Newton (bisection -- geometric when the bracket
  *     spans decades -- whenever Newton leaves the bracket or stalls) with
  *     plain Horner down to a step of 2^-26, then one or two steps with
