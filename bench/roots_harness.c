@@ -42,6 +42,7 @@
 #include <time.h>
 
 #include "max2code_roots.h"
+#include "timing.h"
 
 #define NMETHODS 4
 #define HORNER_BATCH 16
@@ -52,45 +53,6 @@ typedef struct {
     int degree;
     double c[M2C_MAX_DEGREE + 1];
 } Poly;
-
-static double now_ns(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec * 1e9 + (double)ts.tv_nsec;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median(double *v, int n)
-{
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-static unsigned long long rng_state = 88172645463325252ULL;
-static unsigned long long xorshift(void)
-{
-    rng_state ^= rng_state << 13;
-    rng_state ^= rng_state >> 7;
-    rng_state ^= rng_state << 17;
-    return rng_state;
-}
-
-volatile double sink;
-
-/* One degree-8 Horner evaluation: the unit of cost. */
-__attribute__((noinline)) static double horner8(const double c[9], double x)
-{
-    double acc = c[8];
-    for (int i = 7; i >= 0; i--)
-        acc = acc * x + c[i];
-    return acc;
-}
 
 #ifdef M2C_COUNT
 extern double m2c_count[10];
@@ -144,14 +106,7 @@ int main(int argc, char **argv)
 #else
     (void)counting;
 #endif
-    /* cost of an empty timed region */
-    double empty[4001];
-    for (int i = 0; i < 4001; i++) {
-        double t0 = now_ns();
-        double t1 = now_ns();
-        empty[i] = t1 - t0;
-    }
-    double overhead = median(empty, 4001);
+    double overhead = empty_region_ns();
 
     double *ns = malloc(n * NMETHODS * (size_t)sweeps * sizeof *ns);
     int *status = malloc(n * NMETHODS * sizeof *status);

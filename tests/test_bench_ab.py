@@ -1,0 +1,66 @@
+"""bench/roots_ab.py, the interleaved A/B timing against a named baseline: what it says about the
+answers must be right (a build against itself differs nowhere; a build whose roots are moved
+by an ulp differs exactly where a root is found), and it must name a bad baseline clearly.
+Its timings are not asserted (speed lives in the benchmark's output, not in tests)."""
+
+from __future__ import annotations
+
+import math
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+from conftest import ROOT, require
+
+SCRIPT = ROOT / "bench" / "roots_ab.py"
+C_SRC = ROOT / "runtime" / "c" / "max2code_roots.c"
+FAMILIES = "generic8,noroot8,graze8,collision8"
+
+
+def _run(*args: str) -> subprocess.CompletedProcess:
+    require("gcc")
+    return subprocess.run([sys.executable, str(SCRIPT), *args], capture_output=True, text=True,
+                          cwd=ROOT, timeout=600)
+
+
+def _rows(out: str) -> dict[str, list[float]]:
+    rows = {}
+    for line in out.splitlines():
+        m = re.match(r"\| (\w+) \| ([\d.]+) \| ([\d.]+) \| ([\d.]+) \| ([\d.]+) \|$", line)
+        if m:
+            rows[m.group(1)] = [float(x) for x in m.groups()[1:]]
+    return rows
+
+
+def test_the_runtime_against_itself_differs_nowhere() -> None:
+    r = _run(str(C_SRC), "--count", "6", "--sweeps", "3", "--families", FAMILIES)
+    assert r.returncode == 0, r.stderr
+    assert "0 of 24 differ" in r.stdout
+    rows = _rows(r.stdout)
+    assert sorted(rows) == sorted(FAMILIES.split(","))
+    assert all(a > 0 and b > 0 for a, b, _, _ in rows.values()), r.stdout
+
+
+def test_a_root_moved_by_an_ulp_is_reported_where_a_root_is_found(tmp_path: Path) -> None:
+    src = C_SRC.read_text()
+    marker = "    *t = root;\n"
+    assert src.count(marker) == 1, "solve() no longer stores the root like this: adapt the test"
+    moved = tmp_path / "moved.c"
+    moved.write_text(src.replace(marker, "    *t = nextafter(root, INFINITY);\n"))
+    r = _run(str(moved), "--count", "6", "--sweeps", "1", "--families", FAMILIES)
+    assert r.returncode == 0, r.stderr
+    m = re.search(r"(\d+) of 24 differ", r.stdout)
+    assert m, r.stdout
+    differ = [line.split() for line in r.stdout.splitlines() if line.strip().startswith("differ ")]
+    # every generic octic, graze and found collision has a root; "no root" ones never differ
+    assert int(m.group(1)) >= 12
+    assert len(differ) == min(int(m.group(1)), 10)  # (the report lists the first ten)
+    for _, _, sa, ta, _, sb, tb, _ in differ:  # A is the moved build: one ulp up, same status
+        assert sa == sb == "1" and float.fromhex(ta) == math.nextafter(float.fromhex(tb), math.inf)
+
+
+def test_a_bad_baseline_is_named() -> None:
+    r = _run("no-such-revision", "--count", "1", "--families", "generic8")
+    assert r.returncode != 0
+    assert "no-such-revision" in r.stderr and "git revision" in r.stderr
