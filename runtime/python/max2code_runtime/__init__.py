@@ -110,17 +110,16 @@ def _solve_python(cc: list[float], tmax: float, method: str, eps: float) -> tupl
     """The C runtime's solve(), on validated input."""
     degree = len(cc) - 1
     c = cc + [0.0] * (MAX_DEGREE + 1 - len(cc))
-    # C's load_coefficients scans the bits in one pass; here two simple loops, same numbers
-    _, _, spread, emax = solver.exponents(c, degree)
-    # Descartes on the input: no sign change (zeros skipped), c_0 != 0: no root in (0, inf)
+    # Descartes on the input: no sign change (zeros skipped), c_0 != 0: no root in (0, inf).
+    # (C counts the changes in the pass that reads the exponents, and reuses that pass's
+    # spread when reduce drops nothing; the numbers are the same as computed here.)
     if (solver._sign_changes(c, degree) == 0 and c[0] != 0 and eps == 0
             and method in ("interval", "interval-nograze")):
         return 0, math.nan, False
     n = solver.reduce(c, degree, tmax)
     if n <= 0:
         return 0, math.nan, False
-    if n != degree:  # reduce dropped terms: their spread
-        _, _, spread, emax = solver.exponents(c, n)
+    _, _, spread, emax = solver.exponents(c, n)
     if spread > solver.MAX_SPREAD:
         found = solver.first_root_sliced(c, n, tmax, eps, method == "interval-nograze")
     else:
