@@ -1249,39 +1249,57 @@ NOINLINE static int bernstein_clear(const BernQ *qb, int n)
     return 1;
 }
 
-/* A guess at the first root: plain Newton from x (where the Bernstein control
- * polygon of p on (0, T] first crosses 0), until the step is below
- * PRECISE_FROM; gives up (0) when it leaves (0, T), when p' = 0, when a step
- * from the fourth on has not halved, or after SPECULATE_STEPS.  Nothing is
- * certain about the guess: it is trusted only once a Bernstein test on
+/* A guess at the first root: Laguerre's method from 0, each step taken
+ * towards the right (the one of its two square-root signs that moves x
+ * up): for a polynomial whose roots are all real it converges monotonically
+ * to the first root after its start, cubically near it, from any start --
+ * and from 0, the first positive root is the one we want.  Gives up (0)
+ * where the square root's argument is negative (complex roots in the way),
+ * when no step to the right exists, when x leaves (0, T), when a step from
+ * the fifth on has not halved (a double root: convergence is linear), or
+ * after SPECULATE_STEPS; stops once a step is below PRECISE_FROM.  Nothing
+ * is certain about the guess: it is trusted only once a Bernstein test on
  * (0, r (1 + 2^-20)] finds exactly one root of p and of q there (then r is
  * the first root, polished as any isolated root).  Measured on the
- * benchmark families: this settles about 40 % of generic octics and half
- * the quartics without a single Taylor shift (generic octics 0.83 and
- * quartics 0.81 of the time without it); where it fails (complex pairs near
- * the window, no root) it costs a few Newton steps. */
+ * benchmark families (tried where p's control polygon on the window
+ * crosses 0): certified guesses on 146 of 250 generic octics, 157 of 250 at
+ * degree 16 and 128 of 250 quartics, against 104, 89 and 107 for Newton
+ * from where the control polygon crosses 0 (Newton from far away creeps:
+ * a step is about x / n while p ~ x^n, and the window is 17 times the first
+ * root at the median). */
 #define SPECULATE_STEPS 8
-static int speculate_first_root(const double p[], const double dp[], int n,
-                                double T, double x, double *r)
+static int speculate_first_root(const double p[], int n, double T, double *r)
 {
     PHASE(2);
-    double last = 0;
+    double x = 0, last = 0;
     for (int it = 0; it < SPECULATE_STEPS; it++) {
+        COUNT_MADDS(3 * n);
+        double f = p[n], d1 = 0, d2 = 0; /* p, p', p''/2 at x */
+        for (int i = n - 1; i >= 0; i--) {
+            d2 = d2 * x + d1;
+            d1 = d1 * x + f;
+            f = f * x + p[i];
+        }
+        if (f == 0) {
+            *r = x;
+            return x > 0;
+        }
+        double g = d1 / f, h = g * g - 2 * d2 / f;
+        double disc = (n - 1) * (n * h - g * g);
+        if (!(disc >= 0))
+            return 0;
+        double den = g - sqrt(disc); /* the step is -n / den: to the right */
+        if (!(den < 0))
+            return 0;
+        double s = n / den;
+        x -= s;
         if (!(x > 0 && x < T))
             return 0;
-        double df, size, f = value_and_slope(p, dp, n, x, 0, 0, &df, &size);
-        (void)size;
-        if (df == 0)
-            return 0;
-        double s = f / df;
-        x -= s;
         if (fabs(s) <= PRECISE_FROM * x) {
             *r = x;
-            return x > 0 && x < T;
+            return 1;
         }
-        /* converging to a simple root, the steps shrink fast from the
-         * second on; near a complex pair they wander */
-        if (it >= 3 && !(fabs(s) <= 0.5 * fabs(last)))
+        if (it >= 4 && !(fabs(s) <= 0.5 * fabs(last)))
             return 0;
         last = s;
     }
@@ -1320,7 +1338,7 @@ static int isolate_first_root(const double p[], int n, double skin,
     if (guess > 0) { /* a guess, then a certificate */
         double dp[MAXN], r;
         derivative(p, n, dp);
-        if (speculate_first_root(p, dp, n, T, guess, &r)) {
+        if (speculate_first_root(p, n, T, &r)) {
             double w = r + r * 0x1p-20;
             w = w < T ? w : T;
             PHASE(1);

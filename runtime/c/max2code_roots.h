@@ -77,10 +77,14 @@
  *           only beyond an error bound).  q's all positive: no root; one
  *           change each: one simple root of p (with nothing before it but,
  *           possibly, a stretch where p stays within the noise): polished.
- *        b. A guess, then a certificate: Newton from where p's control
- *           polygon first crosses 0; once it converges to r, the test of a
- *           on (0, r (1 + 2^-20)] must find one change each, which makes r
- *           the first root (else the guess is dropped).
+ *        b. A guess, then a certificate (where p's control polygon on the
+ *           window crosses 0): Laguerre's method from 0, each step to the
+ *           right (for real roots it converges monotonically to the first
+ *           root after its start, cubically near it; complex roots in the
+ *           way, a double root or no step to the right end the guess);
+ *           once it converges to r, the test of a on (0, r (1 + 2^-20)]
+ *           must find one change each, which makes r the first root (else
+ *           the guess is dropped).
  *        c. Exclusion by halving: when q's signs are certain with an even
  *           count (and p's count is even), the window is halved in the
  *           Bernstein basis (de Casteljau) until every piece has q's
