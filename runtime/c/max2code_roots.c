@@ -1428,7 +1428,7 @@ static int isolate_first_root(const double p[], int n, double skin,
          * rounding -- the fma noise of p' there sent the derivative method's
          * safeguarded Newton into bisection, to a neighbour of an exact
          * double root at 2 (tests/runtime/test_c_runtime.py). */
-        if (touch > 0) {
+        if (touch > 0 && skin >= 0) { /* (not for the no-graze baseline) */
             double lo = touch - touch * TOUCH_WIDTH, hi = touch + 3 * touch * TOUCH_WIDTH;
             hi = hi < T ? hi : T;
             if (bernstein_test(&a, n, lo, &pT, NULL, NULL) == BERN_CLEAR) {
