@@ -6,13 +6,14 @@
  *
  * Each input line:   N X W PT0 .. PTN QT0 .. QTN TOL0 .. TOLN   (hex floats)
  * Each output line (floats as %a):
- *   ANSWER PEND GUESS [Q0 .. QN ERR EVEN CLEARED] SPECULATED R ANSWER2 PEND2
+ *   ANSWER PEND GUESS [Q0 .. QN ERR EVEN CLEARED] SPECULATED R MADDS ANSWER2 PEND2
  * ANSWER, PEND, GUESS: bernstein_test(pt, N, W) with guess and qb; the bracket only unless
  * ANSWER is BERN_CLEAR (qb is not filled then): qb's coefficients, bound and even flag, and
- * bernstein_clear(qb) (whatever qb.even says).  SPECULATED, R: speculate_first_root on the
- * polynomial PT (derivative as isolate_first_root forms it), T = X + W, from GUESS when
- * GUESS > 0 (else 0 and 0).  ANSWER2, PEND2: bernstein_test without guess or qb (PEND2 NaN
- * when p's coefficients are not formed).
+ * bernstein_clear(qb) (whatever qb.even says).  SPECULATED, R, MADDS: speculate_first_root
+ * on the polynomial PT with T = X + W when GUESS > 0 (as isolate_first_root tries it), and
+ * the multiply-adds it counts (3 N per Laguerre step: its number of steps); else 0 0 0.
+ * ANSWER2, PEND2: bernstein_test without guess or qb (PEND2 NaN when p's coefficients are
+ * not formed).  Built with -DM2C_COUNT for MADDS.
  */
 #include "max2code_roots.c"
 
@@ -55,15 +56,14 @@ int main(void)
                 printf(" %a", qb.b[j]);
             printf(" %a %d %d", qb.err, qb.even != 0, bernstein_clear(&qb, n));
         }
-        double r = 0;
+        double r = 0, madds = 0;
         int speculated = 0;
         if (guess > 0) {
-            double dp[MAXN];
-            for (int i = 0; i < n; i++)
-                dp[i] = (i + 1) * pt.pt[i + 1];
-            speculated = speculate_first_root(pt.pt, dp, n, pt.x + w, guess, &r);
+            double before = m2c_count[2];
+            speculated = speculate_first_root(pt.pt, n, pt.x + w, &r);
+            madds = m2c_count[2] - before;
         }
-        printf(" %d %a", speculated, speculated ? r : 0.0);
+        printf(" %d %a %.0f", speculated, speculated ? r : 0.0, madds);
         double pend2 = NAN;
         int answer2 = bernstein_test(&pt, n, w, &pend2, NULL, NULL);
         printf(" %d %a\n", answer2, pend2);

@@ -102,9 +102,12 @@ def test_ports_take_the_same_steps(counts_driver: Path,  # noqa: F811 (the impor
     monkeypatch.setattr(rt, "_C", None)
     events = _counting(solver, monkeypatch)
     for (c, tmax), cr, rr in zip(VECTORS, c_rows, r_rows):
-        assert rr == cr, f"Rust {rr} vs C {cr}: c={c!r}, tmax={tmax!r}"
+        # (counts_cli prints the root in decimal, the C driver as %a: compared as numbers)
+        same = rr[0] == cr[0] and rr[2:] == cr[2:] and (
+            cr[0] != "1" or float(rr[1]) == float.fromhex(cr[1]))
+        assert same, f"Rust {rr} vs C {cr}: c={c!r}, tmax={tmax!r}"
         events[:] = [0] * len(events)
         st, t, graze = rt.first_root_status(list(c), tmax, "interval", 0.0)
-        assert (st, float(t).hex() if st == 1 else "0x0p+0", int(graze)) == \
-            (int(cr[0]), cr[1], int(cr[2])), f"Python {(st, t, graze)} vs C {cr[:3]}: c={c!r}"
+        assert (st, t if st == 1 else 0.0, int(graze)) == \
+            (int(cr[0]), float.fromhex(cr[1]), int(cr[2])), f"Python {(st, t, graze)} vs C {cr[:3]}: c={c!r}"
         assert events == [int(x) for x in cr[3:8]], f"Python {events} vs C {cr[3:8]}: c={c!r}"

@@ -868,7 +868,8 @@ enum Bernstein {
 }
 
 /// What the test on (0, T] reports besides its verdict (C's `guess` and `qb` arguments):
-/// where p's control polygon first crosses 0 (-1: nowhere), q's Bernstein coefficients
+/// where p's control polygon first crosses 0 (-1: nowhere; as in C, only whether it crosses
+/// is used now: it decides whether to speculate, from 0), q's Bernstein coefficients
 /// (entries 0..=n), the bound on their errors, and whether their signs are certain with an
 /// even number of changes and p's count is even too (then `bernstein_clear` may clear q).
 struct Start {
@@ -1103,35 +1104,64 @@ fn clear_pieces<const W: usize>(q: [f64; W], err: f64, n: usize) -> bool {
     true
 }
 
-/// Newton steps `speculate_first_root` takes at most.
+/// Laguerre steps `speculate_first_root` takes at most.
 const SPECULATE_STEPS: usize = 8;
 /// The certificate's interval reaches this far beyond the speculated root, relative (2^-20).
 const SPECULATE_MARGIN: f64 = 9.536_743_164_062_5e-7;
 
-/// C `speculate_first_root`: plain Newton from x (where p's control polygon on (0, T] first
-/// crosses 0) until the step is below PRECISE_FROM; `None` when it leaves (0, T), when
-/// p' = 0, when a step from the fourth on has not halved, or after SPECULATE_STEPS.  Nothing
-/// is certain about the result: the caller certifies it by a Bernstein test.
+/// C `speculate_first_root`: a guess at the first root by Laguerre's method from 0, each step
+/// taken to the right (of its two square-root signs, the one that moves x up).  Why Laguerre
+/// and not Newton from where p's control polygon crosses 0: Newton from far away creeps (a
+/// step is about x / n while p ~ x^n, and the window is many times the first root), while
+/// Laguerre, for a polynomial whose roots are all real, converges monotonically to the first
+/// root after its start, cubically near it, from any start -- and from 0 that is the first
+/// positive root.  `None` where the square root's argument is negative (complex roots in the
+/// way), when no step to the right exists, when x leaves (0, T), when a step from the fifth
+/// on has not halved (a double root: linear convergence), or after SPECULATE_STEPS; stops
+/// once a step is below PRECISE_FROM.  Nothing is certain about the result: the caller
+/// certifies it by a Bernstein test.  The arithmetic is C's, operation for operation (the
+/// results are bit-identical): three Horner chains in C's statement order, `2 * d2 / f` as
+/// `(2 d2) / f`, the integer factors converted as C converts them.
 #[inline(always)]
-fn speculate_first_root(p: &[f64], dp: &[f64], n: usize, t_end: f64, mut x: f64) -> Option<f64> {
+fn speculate_first_root(p: &[f64], n: usize, t_end: f64) -> Option<f64> {
     count::phase(2);
+    let p = &p[..=n];
+    // C's (n - 1) converted to double, exact (and no usize underflow)
+    let (nf, n1f) = (n as f64, n as f64 - 1.0);
+    let mut x = 0.0f64;
     let mut last = 0.0f64;
     for it in 0..SPECULATE_STEPS {
+        count::madds(3 * n);
+        // p, p' and p''/2 at x
+        let (mut f, mut d1, mut d2) = (p[n], 0.0f64, 0.0f64);
+        for &pi in p[..n].iter().rev() {
+            d2 = d2 * x + d1;
+            d1 = d1 * x + f;
+            f = f * x + pi;
+        }
+        if f == 0.0 {
+            return (x > 0.0).then_some(x);
+        }
+        let g = d1 / f;
+        let h = g * g - 2.0 * d2 / f;
+        let disc = n1f * (nf * h - g * g);
+        if !(disc >= 0.0) {
+            return None;
+        }
+        // the step is -n / den: to the right
+        let den = g - disc.sqrt();
+        if !(den < 0.0) {
+            return None;
+        }
+        let s = nf / den;
+        x -= s;
         if !(x > 0.0 && x < t_end) {
             return None;
         }
-        let (f, df, _) = value_and_slope(p, dp, n, x, 0, false);
-        if df == 0.0 {
-            return None;
-        }
-        let s = f / df;
-        x -= s;
         if s.abs() <= PRECISE_FROM * x {
-            return (x > 0.0 && x < t_end).then_some(x);
+            return Some(x);
         }
-        // converging to a simple root the steps shrink fast from the second on; near a
-        // complex pair they wander
-        if it >= 3 && !(s.abs() <= 0.5 * last.abs()) {
+        if it >= 4 && !(s.abs() <= 0.5 * last.abs()) {
             return None;
         }
         last = s;
@@ -1197,7 +1227,7 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64) -> Isolation {
     if start.guess > 0.0 {
         // a guess, then a certificate
         let dp = derivative(p, n);
-        if let Some(r) = speculate_first_root(p, &dp, n, t_end, start.guess) {
+        if let Some(r) = speculate_first_root(p, n, t_end) {
             let w = r + r * SPECULATE_MARGIN;
             let w = if w < t_end { w } else { t_end };
             count::phase(1);

@@ -1,0 +1,72 @@
+"""What evaluating a polynomial at several points at once costs, in degree-8 Horner evaluations.
+
+    python bench/horner_points.py [--regions N]
+
+Builds bench/horner_points.c with gcc -O2 (the flags the benchmark's runtime uses), checks
+that every k-point kernel gives the one-point kernel's bits, times them interleaved and writes
+the table to bench/results/horner_points.md (and stdout).  Issue 10 asks whether evaluating
+at several points at once would make the solver cheaper: this is the measured price of that,
+against which any rearrangement of the solver's evaluations can be judged before it is built.
+"""
+
+from __future__ import annotations
+
+import argparse
+import datetime
+import os
+import platform
+import shutil
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+RESULTS = ROOT / "bench" / "results"
+
+
+def build(into: Path) -> Path:
+    gcc = shutil.which("gcc")
+    if gcc is None:
+        sys.exit("horner_points: gcc not found (run 'make setup')")
+    exe = into / "horner_points"
+    cmd = [gcc, "-O2", "-std=c11", "-Wall", "-Wextra", str(ROOT / "bench" / "horner_points.c"),
+           "-o", str(exe)]
+    r = subprocess.run(cmd, capture_output=True, text=True)
+    if r.returncode != 0:
+        sys.exit(f"horner_points: compiling failed:\n{' '.join(cmd)}\n{r.stderr}")
+    return exe
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--regions", type=int, default=2001, help="timed regions per kernel (default 2001)")
+    ap.add_argument("-o", "--out", type=Path, default=RESULTS, help="directory for horner_points.md")
+    args = ap.parse_args(argv)
+    with tempfile.TemporaryDirectory() as tmp:
+        exe = build(Path(tmp))
+        check = subprocess.run([str(exe), "check"], capture_output=True, text=True, timeout=120)
+        if check.returncode != 0 or check.stdout.strip() != "ok":
+            sys.exit(f"horner_points: the kernels disagree: {check.stdout.strip()}")
+        r = subprocess.run([str(exe), str(args.regions)], capture_output=True, text=True,
+                           timeout=600, check=True)
+    command = "python bench/horner_points.py" + ("" if args.regions == 2001 else f" --regions {args.regions}")
+    text = "\n".join([
+        f"# Evaluations at several points at once ({datetime.date.today().isoformat()})", "",
+        f"Machine: {platform.machine()}, {os.cpu_count()} cores (shared: absolute times are noisy; "
+        f"the ratios come from one run, kernels interleaved). Command: `{command}`. gcc -O2, a "
+        "degree-8 polynomial, each call waiting for the last call's values (as a solve's "
+        "evaluations do); the unit is bench/timing.h's one-point Horner evaluation.", "",
+        r.stdout.strip(), ""])
+    args.out.mkdir(parents=True, exist_ok=True)
+    path = args.out / "horner_points.md"
+    tmp_path = path.with_suffix(".tmp")
+    tmp_path.write_text(text)
+    os.replace(tmp_path, path)
+    print(text)
+    print(f"wrote {path}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
