@@ -210,6 +210,22 @@ static int scaled_le(double a, double T, int et, int j, double k, double b)
     return ea < eb || (ea == eb && ma <= mb);
 }
 
+/* Does the exponents alone show the leading term far from negligible over
+ * [0, T] (T finite): |c_n| T^(n-i) above 4 n eps |c_i| by a factor 8 for
+ * every i, beyond all the roundings of the comparison?  Almost always, and
+ * then leading_negligible needs no floating-point loop. */
+static int leading_far(const int e[], const int nz[], int n, double T)
+{
+    if (!(T >= DBL_MIN && T <= DBL_MAX))
+        return 0;
+    /* T >= 2^eT, k < 2^(ek + 1), |c| in [2^e, 2^(e + 1)) */
+    int eT = exponent_of(T), ek = exponent_of(4.0 * n * DBL_EPSILON), far = 1;
+    int lhs = e[n] + eT; /* a lower bound on log2 |c_n| T^(n-i) */
+    for (int i = n - 1; i >= 0; i--, lhs += eT)
+        far &= !nz[i] | (lhs >= e[i] + ek + 5); /* (no branches) */
+    return far;
+}
+
 /* Is the leading term negligible over [0, T] (see header)?  Compared term by
  * term as |c_n| T^(n-i) <= k |c_i|; where a side leaves the normal range
  * (T^2 underflowed to 0 for T = 2^-1020, and every leading term looked
@@ -234,15 +250,8 @@ static int leading_negligible(const double c[], const int e[], const int nz[],
                                     : 0; /* (the exponents then) */
     }
     double k = 4.0 * n * DBL_EPSILON;
-    if (T >= DBL_MIN && T <= DBL_MAX) {
-        /* T >= 2^eT, k < 2^(ek + 1), |c| in [2^e, 2^(e + 1)) */
-        int eT = exponent_of(T), ek = exponent_of(k), far = 1;
-        int lhs = e[n] + eT; /* a lower bound on log2 |c_n| T^(n-i) */
-        for (int i = n - 1; i >= 0; i--, lhs += eT)
-            far &= !nz[i] | (lhs >= e[i] + ek + 5); /* (no branches) */
-        if (far)
-            return 0;
-    }
+    if (leading_far(e, nz, n, T))
+        return 0;
     double Tp = 1.0;
     for (int i = n - 1; i >= 0; i--) {
         Tp *= T; /* T^(n-i) */
@@ -897,19 +906,21 @@ static int point_at(const Taylor *tb, int n, double x, Point *pt)
  * behaves like A ((x - u)^2 + v^2): the first-order test needs intervals of
  * width about v^2 / |u - x|, this one clears the pair's whole neighbourhood
  * in one step (bisections near such pairs were most of the cost of "no root,
- * complex roots near the window"). */
-static int clearly_positive(const Point *pt, int n, double w, int dir)
+ * complex roots near the window").  bounds_positive: the same from q's
+ * Taylor coefficients and their error bounds as arrays. */
+static int bounds_positive(const double qt[], const double tol[], int n,
+                           double w, int dir)
 {
     COUNT_MADDS(n);
     double rel = 4.0 * (n + 1) * UNIT_ROUNDOFF;
     double r3 = 0; /* sum_{k>=3} max(0, -L_k) w^(k-3) */
     for (int k = n; k >= 3; k--) {
-        double lk = (dir < 0 && k % 2 ? -pt->qt[k] : pt->qt[k]) - pt->tol[k];
+        double lk = (dir < 0 && k % 2 ? -qt[k] : qt[k]) - tol[k];
         r3 = r3 * w + (lk < 0 ? -lk : 0);
     }
     double lk[3];
     for (int k = 0; k <= 2 && k <= n; k++)
-        lk[k] = (dir < 0 && k % 2 ? -pt->qt[k] : pt->qt[k]) - pt->tol[k];
+        lk[k] = (dir < 0 && k % 2 ? -qt[k] : qt[k]) - tol[k];
     double neg = r3;
     for (int k = n < 2 ? n : 2; k >= 1; k--)
         neg = neg * w + (lk[k] < 0 ? -lk[k] : 0);
@@ -927,6 +938,11 @@ static int clearly_positive(const Point *pt, int n, double w, int dir)
     double m = L0 + h * (L1 + h * L2);
     double size = fabs(L0) + h * (fabs(L1) + h * L2);
     return m > 2 * rel * size;
+}
+
+static int clearly_positive(const Point *pt, int n, double w, int dir)
+{
+    return bounds_positive(pt->qt, pt->tol, n, w, dir);
 }
 
 /* The Bernstein coefficients of p and q on [x, x + w] (x = pt->x), from their
@@ -1375,7 +1391,8 @@ static int speculate_first_root(const double p[], int n, double T, double *r,
  * is nothing in (0, T], or UNRESOLVED with *a the left end of what is left
  * to the derivative method. */
 static int isolate_first_root(const double p[], int n, double skin,
-                              double T, double *t, int *graze, double *a_out)
+                              double T, double failed_w, double *t, int *graze,
+                              double *a_out)
 {
     PHASE(1);
     double e = skin >= 0 ? noise_factor(n) : 0;
@@ -1386,8 +1403,10 @@ static int isolate_first_root(const double p[], int n, double skin,
     point_at_zero(p, n, e, sk, &a);
     if (!(a.qt[0] - a.tol[0] > 0))
         return UNRESOLVED; /* within the skin at 0: no envelope to count */
-    if (a.vq == 0 || clearly_positive(&a, n, T, 1))
-        return CLEARED; /* Descartes, or q(0) beats every negative term */
+    /* Descartes, or q(0) beats every negative term (unless that very test
+     * has failed already: cleared_at_once) */
+    if (a.vq == 0 || (T != failed_w && clearly_positive(&a, n, T, 1)))
+        return CLEARED;
     double pT;
     double guess;
     BernQ qb;
@@ -1678,11 +1697,11 @@ static int derivative_method(const double c[], int n, double lo, double T,
 
 /* First root in (0, T] of p (degree n >= 3, normalised, p[0] > 0). */
 static int first_root_interval(const double p[], int n, double T,
-                               double skin, double *t, int *graze)
+                               double skin, double failed_w, double *t, int *graze)
 {
     double lo = 0;
     if (T <= (n <= 8 ? FAST_LIMIT_LOW : FAST_LIMIT_HIGH)) {
-        int r = isolate_first_root(p, n, skin, T, t, graze, &lo);
+        int r = isolate_first_root(p, n, skin, T, failed_w, t, graze, &lo);
         if (r != UNRESOLVED)
             return r == ISOLATED;
     }
@@ -2247,11 +2266,40 @@ static int first_root_closed(const double c[], int n, double tmax, double *t,
 /* Entry points                                                         */
 /* ------------------------------------------------------------------ */
 
+/* Step 0b (see header): no root in (0, tmax] by the bounds of
+ * clearly_positive at 0 over the whole of [0, tmax], on the coefficients as
+ * given, before the preparation -- which, with the Point it fills, is most
+ * of the cost of a solve that this test settles.  The lower bounds L_k are
+ * those point_at_zero and clearly_positive form from p = c 2^-E sign(c_0)
+ * (normalise's exact scaling), bit for bit.  Only where reduce would keep
+ * every term (the exponents show it) and the spread is in range, so that
+ * the polynomial tested is the one the full path solves; any window
+ * [0, w] may be tested, so that its bound B on the roots is not needed.
+ * Where it fails, the full path runs as before (then with w = min(tmax,
+ * B), which may clear what this did not).  Returns 1 (no root), 0 (the test
+ * failed) or -1 (not tried). */
+NOINLINE static int cleared_at_once(const double c[], const int e[],
+                                    const int nz[], int n, double tmax, Scan sc)
+{
+    int E = sc.emax + 1;
+    if (!nz[n] || sc.emax - sc.emin > MAX_SPREAD || E < DBL_MIN_EXP ||
+        E > DBL_MAX_EXP - 2 || !leading_far(e, nz, n, tmax))
+        return -1;
+    double f = (c[0] < 0 ? -1 : 1) * pow2(-E), en = noise_factor(n);
+    double qt[MAXN + 1], tol[MAXN + 1];
+    for (int k = 0; k <= n; k++) {
+        double p = c[k] * f;
+        qt[k] = p - en * fabs(p);
+        tol[k] = DBL_EPSILON * fabs(p);
+    }
+    return bounds_positive(qt, tol, n, tmax, 1);
+}
+
 /* solve() once the coefficients span at most 2^MAX_SPREAD (always, but for
  * extremes): scaled exactly, then by degree and method. */
 static int solve_normalised(double c[], const int e[], const int nz[], int n,
                             int emax, double tu, int method, double eps,
-                            double *root, int *g)
+                            double failed_w, double *root, int *g)
 {
     int closed = method == M2C_METHOD_CLOSED && n <= 4;
     int interval = n > 2 && method != M2C_METHOD_GSL && !closed;
@@ -2275,7 +2323,7 @@ static int solve_normalised(double c[], const int e[], const int nz[], int n,
     /* all roots lie below the bound: a smaller window, fewer steps */
     double B = root_bound(e, nz, n); /* (the exponents before scaling: the same) */
     double T = tu < B ? tu : B;      /* (fmin is a library call) */
-    return T > 0 && first_root_interval(c, n, T, skin, root, g);
+    return T > 0 && first_root_interval(c, n, T, skin, failed_w, root, g);
 }
 
 /* The common path of every entry point: eps is the contact skin (>= 0, in
@@ -2307,6 +2355,17 @@ static int solve(const double c_in[], int degree, double tmax, int method,
     if (sc.changes == 0 && c[0] != 0 && eps == 0 &&
         (method == M2C_METHOD_INTERVAL || method == M2C_METHOD_INTERVAL_NOGRAZE))
         return 0;
+    /* Step 0b: the window's first test, before the preparation; where it
+     * fails, the window [0, tmax] it failed on (0: not tried), which the
+     * default method then does not test again */
+    double failed_w = 0;
+    if (eps == 0 && tmax < INFINITY && c[0] != 0 && degree >= 3 &&
+        (method == M2C_METHOD_INTERVAL || method == M2C_METHOD_INTERVAL_NOGRAZE)) {
+        int cleared = cleared_at_once(c, e, nz, degree, tmax, sc);
+        if (cleared > 0)
+            return 0;
+        failed_w = cleared == 0 && method == M2C_METHOD_INTERVAL ? tmax : 0;
+    }
     int n = reduce(c, e, nz, degree, tmax);
     if (n <= 0)
         return 0;
@@ -2318,7 +2377,7 @@ static int solve(const double c_in[], int degree, double tmax, int method,
         found = first_root_sliced(c, n, tmax, eps,
                                   method == M2C_METHOD_INTERVAL_NOGRAZE, &root, &g);
     else
-        found = solve_normalised(c, e, nz, n, emax, tmax, method, eps, &root, &g);
+        found = solve_normalised(c, e, nz, n, emax, tmax, method, eps, failed_w, &root, &g);
     if (!found)
         return 0;
     /* a root that underflows to 0 or overflows is not representable: none */

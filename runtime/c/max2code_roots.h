@@ -70,6 +70,13 @@
  *     has changed sign.
  *     0. No sign change in c as given (zeros skipped), c[0] != 0 and no
  *        skin: no root (Descartes), before any of the preparation above.
+ *        Else, with tmax finite, no skin, degree >= 3 and the preparation
+ *        bound to keep every term (the exponents show it): d's lower bound
+ *        on q from its Taylor coefficients at 0 -- q(0) beats every
+ *        negative term, to first or second order -- over all of [0, tmax],
+ *        on c scaled as below; it holds: no root, before the rest of the
+ *        preparation (which the interval methods then start with that
+ *        bound over [0, T], unless T = tmax: the same test).
  *     1. Exclusion and isolation (T <= 2^100), cheapest first:
  *        a. Descartes on (0, T] in the Bernstein basis: the sign changes of
  *           the Bernstein coefficients of p and q on the window (from the
@@ -84,7 +91,15 @@
  *           way, a double root or no step to the right end the guess);
  *           once it converges to r, the test of a on (0, r (1 + 2^-20)]
  *           must find one change each, which makes r the first root (else
- *           the guess is dropped).
+ *           the guess is dropped).  A touch ahead shows as Laguerre's
+ *           linear convergence (3 step ratios in a row in [0.25, 0.31]:
+ *           0.284 at degree 8 for a double root); the guess then goes to
+ *           the critical point c by Newton on p', and where p(c) is within
+ *           2^20 times the rounding bound and q's Bernstein coefficients on
+ *           (0, c (1 - 2^-10)] are all certainly positive (nothing before
+ *           it), the derivative method (step 2) settles (c (1 - 2^-10),
+ *           c (1 + 3 2^-10)]; if it finds nothing there, d goes on from its
+ *           right end.  With the graze check only.
  *        c. Exclusion by halving: when q's signs are certain with an even
  *           count (and p's count is even), the window is halved in the
  *           Bernstein basis (de Casteljau) until every piece has q's
