@@ -26,15 +26,14 @@ from typing import Sequence
 import pytest
 
 from . import exact_roots as ex
+from . import paths
 from . import test_fuzz_runtimes as tf
 from . import test_rust_runtime as rust
 from .test_python_control_flow import _counting, _num, counts_driver  # noqa: F401
 
 SKIN = tf.SKIN
 INF = math.inf
-# (Python method, C method, eps, Rust roots_cli method)
-CALLS = (("interval", 0, 0.0, "interval"), ("interval-nograze", 1, 0.0, "nograze"),
-         ("interval", 0, SKIN, f"skin:{SKIN!r}"))
+CALLS = paths.CALLS
 
 Vector = tuple[tuple[float, ...], float]
 
@@ -76,41 +75,11 @@ def test_the_vectors_are_what_they_claim() -> None:
     assert sum(abs(c[0]) <= SKIN for c, _ in NO_CHANGE) >= 4
 
 
-def _c_answers(vecs: list[Vector], tmp: Path) -> list[tuple[int, float, bool]]:
-    driver = tf.build_driver(tmp / "roots_driver")
-    lines = [tf.c_line(f"{m}:{eps!r}" if eps else m, c, t) for c, t in vecs for _, m, eps, _ in CALLS]
-    return [a[:3] for a in tf.run_timed(driver, lines)]
-
-
-def _rust_answers(vecs: list[Vector]) -> list[tuple[int, float, bool]]:
-    exe = rust.build_cli(rust.require_cargo())
-    queries = [f"{name} {rust.fmt(t)} {' '.join(rust.fmt(x) for x in c)}"
-               for c, t in vecs for *_, name in CALLS]
-    out = subprocess.run([str(exe)], input="\n".join(queries) + "\n", capture_output=True,
-                         text=True, timeout=120, check=True).stdout.splitlines()
-    assert len(out) == len(queries)
-    got = []
-    for line in out:
-        w = line.split()
-        got.append((1, float(w[1]), w[2] == "1") if w[0] == "root" else
-                   (0, math.nan, False) if w[0] == "noroot" else (-1, math.nan, False))
-    return got
-
-
-def _python_answers(vecs: list[Vector], backend: str, monkeypatch: pytest.MonkeyPatch
-                    ) -> list[tuple[int, float, bool]]:
-    import max2code_runtime as rt
-
-    tf.select_backend(backend, monkeypatch)
-    return [rt.first_root_status(list(c), t, method, eps) for c, t in vecs for method, _, eps, _ in CALLS]
-
-
 @pytest.mark.parametrize("runtime", ["c", "rust", "python", "python-c"])
 def test_every_runtime_against_the_oracle(runtime: str, tmp_path: Path,
                                           monkeypatch: pytest.MonkeyPatch) -> None:
     vecs = NO_CHANGE + ONE_CHANGE
-    answers = (_c_answers(vecs, tmp_path) if runtime == "c" else _rust_answers(vecs) if runtime == "rust"
-               else _python_answers(vecs, "python" if runtime == "python" else "c", monkeypatch))
+    answers = paths.answers(runtime, vecs, tmp_path, monkeypatch)
     bad, found, roots = [], 0, 0
     for i, (c, tmax) in enumerate(vecs):
         truth = ex.first_root(c, tmax)

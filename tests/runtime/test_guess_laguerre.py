@@ -23,15 +23,13 @@ first positive one, and the window from 1.5 times the last positive root to infi
 from __future__ import annotations
 
 import random
-import subprocess
 from pathlib import Path
 
 import pytest
 
-from . import cases
+from . import cases, paths
 from . import exact_roots as ex
-from . import test_rust_runtime as rust
-from .test_python_control_flow import _counting, _num, counts_driver  # noqa: F401
+from .test_python_control_flow import counts_driver  # noqa: F401
 
 INF = float("inf")
 Vector = tuple[tuple[float, ...], float]
@@ -61,20 +59,8 @@ def _vectors() -> list[Vector]:
 VECTORS = _vectors()
 
 
-def _c_lines(vecs: list[Vector]) -> list[str]:
-    return [" ".join(["0", "0", _num(t), str(len(c) - 1), *(_num(x) for x in c)]) for c, t in vecs]
-
-
-def _run(cmd: list[str], lines: list[str]) -> list[list[str]]:
-    r = subprocess.run(cmd, input="\n".join(lines) + "\n", capture_output=True, text=True, timeout=120)
-    assert r.returncode == 0 and r.stderr == "", r.stderr[-2000:]
-    rows = [line.split() for line in r.stdout.splitlines()]
-    assert len(rows) == len(lines)
-    return rows
-
-
 def test_c_settles_by_the_guess(counts_driver: Path) -> None:  # noqa: F811 (the imported fixture)
-    rows = _run([str(counts_driver), "--madds"], _c_lines(VECTORS))
+    rows = paths.c_rows(counts_driver, VECTORS)
     bad = []
     for (c, tmax), row in zip(VECTORS, rows):
         st, t, graze = int(row[0]), float.fromhex(row[1]), row[2] == "1"
@@ -91,23 +77,4 @@ def test_c_settles_by_the_guess(counts_driver: Path) -> None:  # noqa: F811 (the
 
 def test_ports_take_the_same_steps(counts_driver: Path,  # noqa: F811 (the imported fixture)
                                    monkeypatch: pytest.MonkeyPatch) -> None:
-    import max2code_runtime as rt
-    from max2code_runtime import solver
-
-    c_rows = _run([str(counts_driver), "--madds"], _c_lines(VECTORS))
-    exe = rust.build_cli(rust.require_cargo(), "counts_cli", ("count",))
-    r_lines = [" ".join(["0", "0", rust.fmt(t), str(len(c) - 1), *(rust.fmt(x) for x in c)])
-               for c, t in VECTORS]
-    r_rows = _run([str(exe)], r_lines)
-    monkeypatch.setattr(rt, "_C", None)
-    events = _counting(solver, monkeypatch)
-    for (c, tmax), cr, rr in zip(VECTORS, c_rows, r_rows):
-        # (counts_cli prints the root in decimal, the C driver as %a: compared as numbers)
-        same = rr[0] == cr[0] and rr[2:] == cr[2:] and (
-            cr[0] != "1" or float(rr[1]) == float.fromhex(cr[1]))
-        assert same, f"Rust {rr} vs C {cr}: c={c!r}, tmax={tmax!r}"
-        events[:] = [0] * len(events)
-        st, t, graze = rt.first_root_status(list(c), tmax, "interval", 0.0)
-        assert (st, t if st == 1 else 0.0, int(graze)) == \
-            (int(cr[0]), float.fromhex(cr[1]), int(cr[2])), f"Python {(st, t, graze)} vs C {cr[:3]}: c={c!r}"
-        assert events == [int(x) for x in cr[3:8]], f"Python {events} vs C {cr[3:8]}: c={c!r}"
+    paths.assert_ports_take_c_path(counts_driver, VECTORS, monkeypatch)
