@@ -65,9 +65,24 @@ LEFT_STEP = ([float.fromhex(h) for h in (
     "-0x1.9f7115da4c66cp+3", "0x1.d3e5ac3389772p+3", "0x1.44bb3eb7b0090p+0",
     "-0x1.3b59ac04469b1p+3", "0x1.63bb50a05bef4p+2", "-0x1.0000000000000p+0")], 10.0)
 
+# Two octics with a complex pair d +- i v close to the axis before their first root (A: d =
+# 0.1108, v/d = 4e-5, first root 0.653; B: d = 8.03, v/d = 2e-5, first root 53.0), where p at
+# the critical point is 2^10-2^20 times the rounding bound: a touch for the guess (C's
+# TOUCH_NEAR = 2^20; with 2^10 both took the Taylor points instead), and the counts go on
+# from the right end of the touch's interval: A's window has q's even Bernstein count, whose
+# halving C skips after a touch; B's next interval has an odd count, which gets its Bernstein
+# test after a touch.  Found by a random search: without them no input here told those apart.
+NEAR_TOUCHES = [([float.fromhex(h) for h in hs.split()], float.fromhex(t)) for hs, t in (
+    ("0x1.329761bef6c69p-3 -0x1.af2d7d2af1411p+1 0x1.93e31b471e0b5p+4 -0x1.24c08e4b7658ap+6 "
+     "0x1.7060f5949df85p+6 -0x1.42f9d59ac890fp+5 -0x1.1cf7e6d5578a7p+3 0x1.d49e76a729195p+2 "
+     "0x1.0000000000000p+0", "0x1.14130e9a5b13ep+1"),
+    ("-0x1.631f07bd67c70p+27 -0x1.3d32c6a891dbcp+28 -0x1.e56dd6ea35857p+23 0x1.d4e6d8d83bd96p+23 "
+     "0x1.a2ecd3018a061p+17 -0x1.b2d35f1504454p+17 0x1.49e934ce2e3d0p+13 -0x1.608a5256a72dap+7 "
+     "0x1.0000000000000p+0", "0x1.eb69bb05d7a42p+6"))]
+
 
 def _inputs() -> list[Vector]:
-    out: list[Vector] = [(c.coeffs, c.tmax) for c in cases.all_cases()] + [LEFT_STEP]
+    out: list[Vector] = [(c.coeffs, c.tmax) for c in cases.all_cases()] + [LEFT_STEP] + NEAR_TOUCHES
     out += [(c.coeffs, c.tmax) for c in cases.random_cases(COUNT)]
     out += _bench_polynomials(max(1, COUNT // 10))
     out += fuzz.vectors(COUNT, seed=7)

@@ -22,6 +22,11 @@
 //!
 //! An interval solve without a contact skin whose nonzero coefficients all have one sign
 //! (`c[0] != 0`) has no root in `(0, inf)` (Descartes' rule of signs) and returns at once.
+//! Else, with `tmax` finite, no skin, degree >= 3 and the preparation bound to keep every term
+//! (the exponents show it), the first exclusion test of the interval method (a lower bound on
+//! the noise envelope from its Taylor coefficients at 0) runs over all of `[0, tmax]` on the
+//! coefficients as given, scaled as below: where it holds there is no root, before the rest of
+//! the preparation (a third of a "no root in the window" solve's work).
 //! Leading coefficients that are exactly 0, or negligible over the window
 //! (`|c_n| T^n <= 4 n eps max_{i<n} |c_i| T^i`, `T = tmax`, or a Fujiwara bound on the roots
 //! of the rest when `tmax` is infinite), are dropped; `c[0] == 0` (touching now) divides by
@@ -173,6 +178,17 @@ fn solve(coef: &[f64], tmax: f64, method: Method, eps: f64) -> Status {
         return Status::NoRoot;
     }
     let degree = coef.len() - 1;
+    // Step 0b, as C: the window's first test, before the preparation; where it fails, the
+    // window [0, tmax] it failed on (0: not tried), which the default method then does not
+    // test again (the no-graze method's test at 0 has no noise envelope: not the same test)
+    let mut failed_w = 0.0;
+    if eps == 0.0 && tmax < f64::INFINITY && c[0] != 0.0 && degree >= 3 && matches!(method, Method::Interval | Method::IntervalNoGraze) {
+        let cleared = solver::cleared_at_once(&c, &e, &nz, degree, tmax, sc);
+        if cleared == Some(true) {
+            return Status::NoRoot;
+        }
+        failed_w = if cleared == Some(false) && method == Method::Interval { tmax } else { 0.0 };
+    }
     let n = solver::reduce(&mut c, &mut e, &mut nz, degree, tmax);
     if n <= 0 {
         return Status::NoRoot;
@@ -186,7 +202,7 @@ fn solve(coef: &[f64], tmax: f64, method: Method, eps: f64) -> Status {
     let hit = if spread > solver::max_spread() {
         solver::first_root_sliced(&c, n, tmax, eps, method == Method::IntervalNoGraze)
     } else {
-        solve_normalised(&mut c, &e, &nz, n, emax, tmax, method, eps)
+        solve_normalised(&mut c, &e, &nz, n, emax, tmax, method, eps, failed_w)
     };
     let Some((t, graze)) = hit else {
         return Status::NoRoot;
@@ -200,9 +216,10 @@ fn solve(coef: &[f64], tmax: f64, method: Method, eps: f64) -> Status {
 
 /// C `solve_normalised`: coefficients within 2^MAX_SPREAD, scaled exactly, then by degree and
 /// method.  e, nz: the exponents of c before scaling (the root bound depends only on their
-/// differences, which scaling by a power of two keeps).
+/// differences, which scaling by a power of two keeps).  failed_w: the window step 0b tested
+/// in vain (0: none).
 #[allow(clippy::too_many_arguments)]
-fn solve_normalised(c: &mut Coeffs, e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n: usize, emax: i32, tu: f64, method: Method, eps: f64) -> Option<(f64, bool)> {
+fn solve_normalised(c: &mut Coeffs, e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n: usize, emax: i32, tu: f64, method: Method, eps: f64, failed_w: f64) -> Option<(f64, bool)> {
     let closed_form = method == Method::Closed && n <= 4;
     let by_interval = n > 2 && !closed_form;
     // the interval method wants p(0) > 0: p = -c has the same roots (the sign goes into the
@@ -232,20 +249,20 @@ fn solve_normalised(c: &mut Coeffs, e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], 
                     if c[0] < 0.0 {
                         c.iter_mut().take(n + 1).for_each(|v| *v = -*v);
                     }
-                    interval(c, e, nz, n, tu, skin)
+                    interval(c, e, nz, n, tu, skin, 0.0)
                 }
             }
         }
-        _ => interval(c, e, nz, n, tu, skin),
+        _ => interval(c, e, nz, n, tu, skin, failed_w),
     }
 }
 
 /// The interval method on c (normalised, c[0] > 0) over (0, min(tu, the root bound)].
-fn interval(c: &Coeffs, e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n: usize, tu: f64, skin: f64) -> Option<(f64, bool)> {
+fn interval(c: &Coeffs, e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n: usize, tu: f64, skin: f64, failed_w: f64) -> Option<(f64, bool)> {
     let b = solver::root_bound(e, nz, n);
     let t_end = if tu < b { tu } else { b };
     if t_end > 0.0 {
-        solver::first_root_interval(c, n, t_end, skin)
+        solver::first_root_interval(c, n, t_end, skin, failed_w)
     } else {
         None
     }

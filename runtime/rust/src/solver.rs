@@ -183,9 +183,30 @@ fn scaled_le(a: f64, t: f64, et: Option<i32>, j: usize, k: f64, b: f64) -> bool 
     ea < eb || (ea == eb && ma <= mb)
 }
 
+/// C `leading_far`: do the exponents alone show the leading term far from negligible over
+/// [0, T] (T finite): |c_n| T^(n-i) above 4 n eps |c_i| by a factor 8 for every i, beyond all
+/// the roundings of the comparison?  Almost always; then `leading_negligible` needs no
+/// floating-point loop, and `cleared_at_once` knows that `reduce` keeps every term.
+/// Branch-free, as in C (which terms are nonzero is data).
+fn leading_far(e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n: usize, t: f64) -> bool {
+    if !(f64::MIN_POSITIVE..=f64::MAX).contains(&t) {
+        return false;
+    }
+    // T >= 2^eT, k < 2^(ek + 1), |c| in [2^e, 2^(e + 1))
+    let (e_t, ek) = (exponent_of(t), exponent_of(4.0 * n as f64 * f64::EPSILON));
+    let mut far = true;
+    let mut lhs = e[n] + e_t; // a lower bound on log2 |c_n| T^(n-i)
+    for i in (0..n).rev() {
+        far &= !nz[i] | (lhs >= e[i] + ek + 5);
+        lhs += e_t;
+    }
+    far
+}
+
 /// C `leading_negligible` (in exponents where a side leaves the normal range).  e, nz: the
 /// exponents of c (`load_coefficients`).  When the exponents alone show |c_n| T^(n-i) above
-/// k |c_i| by a factor 8 for every i, the answer is no without the floating-point loop.
+/// k |c_i| by a factor 8 for every i (`leading_far`), the answer is no without the
+/// floating-point loop.
 fn leading_negligible(c: &Coeffs, e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n: usize, tmax: f64) -> bool {
     let mut t = tmax;
     let mut et = None; // T's exponent when T is a power of two beyond range
@@ -209,18 +230,8 @@ fn leading_negligible(c: &Coeffs, e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n:
         };
     }
     let k = 4.0 * n as f64 * f64::EPSILON;
-    if (f64::MIN_POSITIVE..=f64::MAX).contains(&t) {
-        // T >= 2^eT, k < 2^(ek + 1), |c| in [2^e, 2^(e + 1)); branch-free, as in C
-        let (e_t, ek) = (exponent_of(t), exponent_of(k));
-        let mut far = true;
-        let mut lhs = e[n] + e_t; // a lower bound on log2 |c_n| T^(n-i)
-        for i in (0..n).rev() {
-            far &= !nz[i] | (lhs >= e[i] + ek + 5);
-            lhs += e_t;
-        }
-        if far {
-            return false;
-        }
+    if leading_far(e, nz, n, t) {
+        return false;
     }
     let mut tp = 1.0;
     for i in (0..n).rev() {
@@ -313,6 +324,36 @@ pub(crate) fn normalise(c: &mut Coeffs, n: usize, emax: i32, sign: f64) -> i32 {
         }
     }
     big_e
+}
+
+/// C `cleared_at_once`, step 0b of `solve` (see the C header): no root in (0, tmax] by the
+/// bounds of `clearly_positive` at 0 over the whole of [0, tmax], on the coefficients as
+/// given, before the preparation -- which, with the `Point` it fills, is most of the cost of a
+/// solve that this test settles.  The lower bounds L_k are those `point_at_zero` and
+/// `clearly_positive` form from p = c 2^-E sign(c_0) (`normalise`'s exact scaling), bit for
+/// bit.  Only where `reduce` would keep every term (the exponents show it: `leading_far`) and
+/// the spread is in range, so that the polynomial tested is the one the full path solves; any
+/// window [0, w] may be tested, so that the bound B on the roots is not needed.  Where it
+/// fails, the full path runs as before (then with w = min(tmax, B), which may clear what this
+/// did not).  `Some(true)`: no root (C 1); `Some(false)`: the test failed (C 0); `None`: not
+/// tried (C -1).  c: n + 1 coefficients with c[0] != 0, tmax finite.  Out of line, as in C.
+#[inline(never)]
+pub(crate) fn cleared_at_once(c: &Coeffs, e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n: usize, tmax: f64, sc: Scan) -> Option<bool> {
+    let big_e = sc.emax + 1;
+    // (DBL_MIN_EXP = -1021, DBL_MAX_EXP - 2 = 1022: the range where normalise scales by one
+    // product; the spread is computed only for a nonzero c_n, so never of the empty scan)
+    if !nz[n] || sc.emax - sc.emin > MAX_SPREAD || !(-1021..=1022).contains(&big_e) || !leading_far(e, nz, n, tmax) {
+        return None;
+    }
+    let f = (if c[0] < 0.0 { -1.0 } else { 1.0 }) * pow2(-big_e);
+    let en = noise_factor(n);
+    let (mut qt, mut tol) = ([0.0f64; MAXN + 1], [0.0f64; MAXN + 1]);
+    for k in 0..n + 1 {
+        let p = c[k] * f;
+        qt[k] = p - en * p.abs();
+        tol[k] = f64::EPSILON * p.abs();
+    }
+    Some(bounds_positive(&qt, &tol, n, tmax, 1))
 }
 
 #[inline]
@@ -648,6 +689,23 @@ impl Point {
         unsafe { self.tol[k].assume_init() }
     }
 
+    /// q's Taylor coefficients 0..=n as a slice.
+    #[inline(always)]
+    fn qts(&self, n: usize) -> &[f64] {
+        let n = n.min(MAXN);
+        // SAFETY: MaybeUninit<f64> has f64's layout, and entries 0..=n of every Point in use
+        // were written (point_at / point_at_zero).
+        unsafe { std::slice::from_raw_parts(self.qt.as_ptr().cast::<f64>(), n + 1) }
+    }
+
+    /// The error bounds 0..=n as a slice.
+    #[inline(always)]
+    fn tols(&self, n: usize) -> &[f64] {
+        let n = n.min(MAXN);
+        // SAFETY: as for qts.
+        unsafe { std::slice::from_raw_parts(self.tol.as_ptr().cast::<f64>(), n + 1) }
+    }
+
     /// C's `a = *b`, the entries in use only (0..=n), one double at a time: a struct copy is a
     /// memcpy of 440 bytes whose wide loads wait for point_at's 8-byte stores to retire (a
     /// store-forwarding stall), measured at 7 % of the benchmark's Rust time.
@@ -784,12 +842,15 @@ fn point_at(tb: &Taylor, n: usize, x: f64, slot: &mut MaybeUninit<Point>) -> boo
     true
 }
 
-/// C's clearly_positive: the first-order exclusion test, then the second-order one (see the
-/// C source).
-fn clearly_positive(pt: &Point, n: usize, w: f64, dir: i32) -> bool {
+/// C `bounds_positive`: is q > 0 on [x, x + w] (dir = 1) or [x - w, x] (dir = -1), from q's
+/// Taylor coefficients at x (`qt`) and the bounds on their errors (`tol`), entries 0..=n?  The
+/// first-order exclusion test, then the second-order one (see the C source).  On arrays, so
+/// that `cleared_at_once` can run it on the coefficients as given, before any `Point` exists.
+fn bounds_positive(qt: &[f64], tol: &[f64], n: usize, w: f64, dir: i32) -> bool {
     count::madds(n);
+    let (qt, tol) = (&qt[..=n], &tol[..=n]);
     let rel = 4.0 * (n + 1) as f64 * U;
-    let l = |k: usize| (if dir < 0 && k % 2 == 1 { -pt.qt(k) } else { pt.qt(k) }) - pt.tol(k);
+    let l = |k: usize| (if dir < 0 && k % 2 == 1 { -qt[k] } else { qt[k] }) - tol[k];
     let mut r3 = 0.0;
     for k in (3..n + 1).rev() {
         let lk = l(k);
@@ -821,6 +882,12 @@ fn clearly_positive(pt: &Point, n: usize, w: f64, dir: i32) -> bool {
     let m = l0 + h * (l1 + h * l2);
     let size = l0.abs() + h * (l1.abs() + h * l2);
     m > 2.0 * rel * size
+}
+
+/// C's clearly_positive: `bounds_positive` on a point's q and error bounds.
+#[inline(always)]
+fn clearly_positive(pt: &Point, n: usize, w: f64, dir: i32) -> bool {
+    bounds_positive(pt.qts(n), pt.tols(n), n, w, dir)
 }
 
 /// 1 / C(n, k) (C's INV_BINOM): each the correctly rounded quotient of exact integers, as C's
@@ -1104,10 +1171,34 @@ fn clear_pieces<const W: usize>(q: [f64; W], err: f64, n: usize) -> bool {
     true
 }
 
-/// Laguerre steps `speculate_first_root` takes at most.
+/// Laguerre steps `speculate_first_root` takes at most (but for a touch's, below).
 const SPECULATE_STEPS: usize = 8;
 /// The certificate's interval reaches this far beyond the speculated root, relative (2^-20).
 const SPECULATE_MARGIN: f64 = 9.536_743_164_062_5e-7;
+/// Laguerre steps beyond SPECULATE_STEPS while the ratios of a touch last.
+const TOUCH_EXTRA: usize = 4;
+/// Newton steps on p' towards a touch's critical point, at most.
+const TOUCH_STEPS: usize = 6;
+/// The step ratios of Laguerre converging linearly to a double root (0.25 at degree 3, 0.284
+/// at 8, 0.289 at 16) lie in [TOUCH_RATIO_LO, TOUCH_RATIO_HI].
+const TOUCH_RATIO_LO: f64 = 0.25;
+const TOUCH_RATIO_HI: f64 = 0.31;
+/// Ratios in a row in that range that make the guess turn to the critical point.
+const TOUCH_STEADY: usize = 3;
+/// A critical point is a touch where |p| is within this times the rounding bound (2^20).
+const TOUCH_NEAR: f64 = 1_048_576.0;
+/// Half-width (relative) of the interval around a touch that goes to the derivative method
+/// (2^-10; `isolate_first_root`).
+const TOUCH_WIDTH: f64 = 9.765_625e-4;
+
+/// What `speculate_first_root` found (C: its return value, `*r` and `*touch`).
+enum Guess {
+    /// Laguerre converged here: maybe the first root (the caller certifies it).
+    Root(f64),
+    /// The critical point of a touch ahead (p there within TOUCH_NEAR rounding bounds).
+    Touch(f64),
+    Nothing,
+}
 
 /// C `speculate_first_root`: a guess at the first root by Laguerre's method from 0, each step
 /// taken to the right (of its two square-root signs, the one that moves x up).  Why Laguerre
@@ -1115,22 +1206,38 @@ const SPECULATE_MARGIN: f64 = 9.536_743_164_062_5e-7;
 /// step is about x / n while p ~ x^n, and the window is many times the first root), while
 /// Laguerre, for a polynomial whose roots are all real, converges monotonically to the first
 /// root after its start, cubically near it, from any start -- and from 0 that is the first
-/// positive root.  `None` where the square root's argument is negative (complex roots in the
-/// way), when no step to the right exists, when x leaves (0, T), when a step from the fifth
-/// on has not halved (a double root: linear convergence), or after SPECULATE_STEPS; stops
-/// once a step is below PRECISE_FROM.  Nothing is certain about the result: the caller
-/// certifies it by a Bernstein test.  The arithmetic is C's, operation for operation (the
-/// results are bit-identical): three Horner chains in C's statement order, `2 * d2 / f` as
-/// `(2 d2) / f`, the integer factors converted as C converts them.
+/// positive root.  Nothing where the square root's argument is negative (complex roots in the
+/// way), when no step to the right exists, when x leaves (0, T), when a step from the fifth on
+/// has neither halved nor shrunk by more than the step before (far from every root Laguerre
+/// creeps, then speeds up: it gives up only while it is not slowing down), or after
+/// SPECULATE_STEPS; stops once a step is below PRECISE_FROM.  Nothing is certain about the
+/// result: the caller certifies a root by a Bernstein test.
+///
+/// A touch ahead (a double root, or two real roots or a complex pair within the rounding noise
+/// of one) shows as linear convergence: each step 1 - n / (2 + sqrt((n - 1)(2n - 4))) times
+/// the one before.  After TOUCH_STEADY ratios in a row in [TOUCH_RATIO_LO, TOUCH_RATIO_HI] (up
+/// to TOUCH_EXTRA steps beyond SPECULATE_STEPS while they last) the guess turns to Newton on
+/// p' -- the critical point is a simple root of p', so that converges quadratically where
+/// Laguerre would crawl -- and reports a touch where p there is within TOUCH_NEAR times the
+/// rounding bound (a complex pair clear of the axis is not: not worth the derivative method).
+/// Like the root, it only chooses where to look (`isolate_first_root`).
+///
+/// The arithmetic is C's, operation for operation (the results are bit-identical): three
+/// Horner chains in C's statement order, `2 * d2 / f` as `(2 d2) / f`, the integer factors
+/// converted as C converts them, the exit rules at the same places.
 #[inline(always)]
-fn speculate_first_root(p: &[f64], n: usize, t_end: f64) -> Option<f64> {
+fn speculate_first_root(p: &[f64], n: usize, t_end: f64) -> Guess {
     count::phase(2);
     let p = &p[..=n];
     // C's (n - 1) converted to double, exact (and no usize underflow)
     let (nf, n1f) = (n as f64, n as f64 - 1.0);
-    let mut x = 0.0f64;
-    let mut last = 0.0f64;
-    for it in 0..SPECULATE_STEPS {
+    let (mut x, mut last, mut qprev) = (0.0f64, 0.0f64, 0.0f64);
+    // critical > 0: Newton on p' (after the double-root signature), its step number
+    let (mut critical, mut steady) = (0usize, 0usize);
+    for it in 0..SPECULATE_STEPS + TOUCH_EXTRA + TOUCH_STEPS {
+        if critical == 0 && it >= SPECULATE_STEPS && (steady == 0 || it >= SPECULATE_STEPS + TOUCH_EXTRA) {
+            return Guess::Nothing;
+        }
         count::madds(3 * n);
         // p, p' and p''/2 at x
         let (mut f, mut d1, mut d2) = (p[n], 0.0f64, 0.0f64);
@@ -1139,34 +1246,64 @@ fn speculate_first_root(p: &[f64], n: usize, t_end: f64) -> Option<f64> {
             d1 = d1 * x + f;
             f = f * x + pi;
         }
+        if critical > 0 {
+            // Newton on p' towards the critical point: a simple root of p' where p'' > 0 (a
+            // minimum of p > 0)
+            if !(d2 > 0.0) {
+                return Guess::Nothing;
+            }
+            let s = d1 / (2.0 * d2);
+            x -= s;
+            if !(x > 0.0 && x < t_end) {
+                return Guess::Nothing;
+            }
+            if s.abs() <= PRECISE_FROM * x {
+                let near = f.abs() <= TOUCH_NEAR * noise_factor(n) * horner_abs(p, n, x, 0);
+                return if near { Guess::Touch(x) } else { Guess::Nothing };
+            }
+            if critical > 1 && !(s.abs() <= 0.5 * last.abs()) {
+                return Guess::Nothing;
+            }
+            critical += 1;
+            last = s;
+            continue;
+        }
         if f == 0.0 {
-            return (x > 0.0).then_some(x);
+            return if x > 0.0 { Guess::Root(x) } else { Guess::Nothing };
         }
         let g = d1 / f;
         let h = g * g - 2.0 * d2 / f;
         let disc = n1f * (nf * h - g * g);
         if !(disc >= 0.0) {
-            return None;
+            return Guess::Nothing;
         }
         // the step is -n / den: to the right
         let den = g - disc.sqrt();
         if !(den < 0.0) {
-            return None;
+            return Guess::Nothing;
         }
         let s = nf / den;
         x -= s;
         if !(x > 0.0 && x < t_end) {
-            return None;
+            return Guess::Nothing;
         }
         if s.abs() <= PRECISE_FROM * x {
-            return Some(x);
+            return Guess::Root(x);
         }
-        if it >= 4 && !(s.abs() <= 0.5 * last.abs()) {
-            return None;
+        let q = if it > 0 { s / last } else { 0.0 };
+        steady = if (TOUCH_RATIO_LO..=TOUCH_RATIO_HI).contains(&q) { steady + 1 } else { 0 };
+        if steady >= TOUCH_STEADY {
+            critical = 1; // linear convergence: a double root ahead
+            last = s;
+            continue;
         }
+        if it >= 4 && !(s.abs() <= 0.5 * last.abs()) && !(q < qprev) {
+            return Guess::Nothing;
+        }
+        qprev = q;
         last = s;
     }
-    None
+    Guess::Nothing
 }
 
 fn isolation_split(a: f64, b: f64) -> f64 {
@@ -1206,7 +1343,10 @@ enum Isolation {
     Unresolved(f64),
 }
 
-fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64) -> Isolation {
+/// C `isolate_first_root`: the first event in (0, T] for p (T <= FAST_LIMIT, p(0) > 0) by
+/// Budan-Fourier bisection.  `failed_w`: the window on which `cleared_at_once` has already
+/// run the first exclusion test at 0 and failed (0: none), so that it is not run again.
+fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64, failed_w: f64) -> Isolation {
     count::phase(1);
     let e = if skin >= 0.0 { noise_factor(n) } else { 0.0 };
     let sk = if skin > 0.0 { skin } else { 0.0 };
@@ -1215,7 +1355,9 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64) -> Isolation {
     if !(a.qt(0) - a.tol(0) > 0.0) {
         return Isolation::Unresolved(0.0);
     }
-    if a.vq == 0 || clearly_positive(a, n, t_end, 1) {
+    // Descartes, or q(0) beats every negative term (unless that very test has failed already:
+    // cleared_at_once)
+    if a.vq == 0 || (t_end != failed_w && clearly_positive(a, n, t_end, 1)) {
         return Isolation::Cleared;
     }
     let mut start = Start { guess: -1.0, q: [0.0; MAXN + 1], err: 0.0, even: false };
@@ -1224,21 +1366,52 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64) -> Isolation {
         Bernstein::One(p_end) => return Isolation::Isolated(polish_isolated(p, n, 0.0, t_end, a.px, p_end), false),
         Bernstein::Unknown => {}
     }
+    let mut from = 0.0; // > 0: (0, from] is settled, the counts go on from it
     if start.guess > 0.0 {
         // a guess, then a certificate
         let dp = derivative(p, n);
-        if let Some(r) = speculate_first_root(p, n, t_end) {
-            let w = r + r * SPECULATE_MARGIN;
-            let w = if w < t_end { w } else { t_end };
-            count::phase(1);
-            if let Bernstein::One(_) = bernstein_test(a, n, w, None) {
-                count::phase(2);
-                return Isolation::Isolated(refine_root(p, &dp, n, 0.0, w, 1, 0.0, r), false);
+        let mut touch = 0.0;
+        match speculate_first_root(p, n, t_end) {
+            Guess::Root(r) => {
+                let w = r + r * SPECULATE_MARGIN;
+                let w = if w < t_end { w } else { t_end };
+                count::phase(1);
+                if let Bernstein::One(_) = bernstein_test(a, n, w, None) {
+                    count::phase(2);
+                    return Isolation::Isolated(refine_root(p, &dp, n, 0.0, w, 1, 0.0, r), false);
+                }
             }
+            Guess::Touch(x) => touch = x,
+            Guess::Nothing => {}
         }
         count::phase(1);
+        // A touch ahead: (0, lo] certified clear by the Bernstein test (q's coefficients all
+        // positive), then the derivative method settles (lo, hi] -- small, so with few roots of
+        // the derivatives in it -- and the counts go on from hi if it finds nothing there.
+        // This replaces, on the grazes, the Taylor points that bisect down to the touch and
+        // the derivative method on the wide interval they leave.  hi is 3 widths to the right:
+        // from the middle of a symmetric interval (the critical point to within rounding) the
+        // fma noise of p' there sent the derivative method's Newton into bisection, to a
+        // neighbour of an exact double root (see the C source).  Not for the no-graze
+        // baseline (skin < 0), whose answers stay as they were.
+        if touch > 0.0 && skin >= 0.0 {
+            let lo = touch - touch * TOUCH_WIDTH;
+            let hi = touch + 3.0 * touch * TOUCH_WIDTH;
+            let hi = if hi < t_end { hi } else { t_end };
+            if let Bernstein::Clear = bernstein_test(a, n, lo, None) {
+                let hit = derivative_method(p, n, lo, hi, skin);
+                count::phase(1);
+                if let Some((t, g)) = hit {
+                    return Isolation::Isolated(t, g);
+                }
+                if hi == t_end {
+                    return Isolation::Cleared;
+                }
+                from = hi;
+            }
+        }
     }
-    if start.even && bernstein_clear(&start.q, start.err, n) {
+    if from == 0.0 && start.even && bernstein_clear(&start.q, start.err, n) {
         // (after a guess that failed)
         return Isolation::Cleared;
     }
@@ -1250,10 +1423,26 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64) -> Isolation {
     let mut top = 0usize;
     let mut splits = 0usize;
     if !point_at(tb, n, t_end, &mut stack[top]) {
-        return Isolation::Unresolved(0.0);
+        // (C: *a_out = from when from > 0, else the 0 it started with)
+        return Isolation::Unresolved(from);
     }
     top += 1;
-    let mut tested = true; // (0, T] has had its Bernstein test
+    // after a touch the counts start at from: a, the point at 0 until now, is the one there
+    let a = if from > 0.0 {
+        if !point_at(tb, n, from, &mut a_slot) {
+            return Isolation::Unresolved(from);
+        }
+        // SAFETY: point_at_zero wrote every field of a_slot, and point_at has just rewritten
+        // them all (it returned true).
+        let a = unsafe { a_slot.assume_init_mut() };
+        if !(a.qt(0) - a.tol(0) > 0.0) {
+            return Isolation::Unresolved(from);
+        }
+        a
+    } else {
+        a
+    };
+    let mut tested = from == 0.0; // (0, T] has had its Bernstein test
     let mut early_tried = false;
     loop {
         // SAFETY: stack[..top] was written by point_at (every field: x, px, vp, vq; the arrays
@@ -1322,14 +1511,41 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64) -> Isolation {
 // Derivative method
 // ---------------------------------------------------------------------------------------
 
-type Chain = [[f64; MAXN + 1]; MAXN + 1];
+/// All derivatives of p (degree n; C's `d[MAXN + 1][MAXN + 1]`): row m is the derivative of
+/// order n - m, of degree m.  Only entries 0..=m of rows 1..=n are written and only those are
+/// read (as in C, where the rest stays uninitialised): zeroing the 2.3 kB table was 14 % of
+/// the instructions of a graze's solve, once the touch path made its derivative method small.
+struct Chain {
+    t: [[MaybeUninit<f64>; MAXN + 1]; MAXN + 1],
+    n: usize,
+}
 
+impl Chain {
+    /// Row m (1 <= m <= n): the coefficients 0..=m of the derivative of degree m.
+    #[inline(always)]
+    fn row(&self, m: usize) -> &[f64] {
+        assert!((1..=self.n).contains(&m));
+        // SAFETY: derivative_chain wrote entries 0..=m of every row 1 <= m <= n (asserted);
+        // MaybeUninit<f64> has f64's layout.
+        unsafe { std::slice::from_raw_parts(self.t[m].as_ptr().cast::<f64>(), m + 1) }
+    }
+}
+
+/// C `derivative_chain` (and its `derivative` calls, row m into row m - 1, in place).
+#[inline(always)]
 fn derivative_chain(c: &[f64], n: usize) -> Chain {
-    let mut d = [[0.0; MAXN + 1]; MAXN + 1];
-    d[n][..=n].copy_from_slice(&c[..=n]);
+    let n = n.min(MAXN);
+    let mut d = Chain { t: [[MaybeUninit::uninit(); MAXN + 1]; MAXN + 1], n };
+    for (v, &ci) in d.t[n].iter_mut().zip(&c[..=n]) {
+        *v = MaybeUninit::new(ci);
+    }
     for m in (2..=n).rev() {
-        let dm = derivative(&d[m], m);
-        d[m - 1][..m].copy_from_slice(&dm[..m]);
+        for i in 0..m {
+            // SAFETY: entries 0..=m of row m are written (row n above, row m < n by the
+            // previous m), and i + 1 <= m.
+            let p = unsafe { d.t[m][i + 1].assume_init() };
+            d.t[m - 1][i] = MaybeUninit::new((i + 1) as f64 * p);
+        }
     }
     d
 }
@@ -1363,7 +1579,7 @@ fn critical_points(d: &Chain, n: usize, lo: f64, t_end: f64, crit: &mut [f64; MA
     if n < 3 {
         return 0; // (never: degree >= 3 here; as C says so)
     }
-    if let (Some(r), _) = quad_roots(d[2][2], d[2][1], d[2][0]) {
+    if let (Some(r), _) = quad_roots(d.row(2)[2], d.row(2)[1], d.row(2)[0]) {
         for x in r {
             if x > lo && x < t_end && (nl == 0 || x > level[nl - 1]) {
                 level[nl] = x;
@@ -1374,7 +1590,7 @@ fn critical_points(d: &Chain, n: usize, lo: f64, t_end: f64, crit: &mut [f64; MA
     for m in 3..n {
         let mut next = [0.0f64; MAXN];
         let tol = if m == n - 1 { TOL_CRITICAL } else { TOL_LEVEL };
-        nl = roots_in_pieces(&d[m], &d[m - 1], m, lo, &level[..nl], t_end, tol, &mut next);
+        nl = roots_in_pieces(d.row(m), d.row(m - 1), m, lo, &level[..nl], t_end, tol, &mut next);
         level[..nl].copy_from_slice(&next[..nl]);
     }
     crit[..nl].copy_from_slice(&level[..nl]);
@@ -1387,12 +1603,12 @@ fn critical_points(d: &Chain, n: usize, lo: f64, t_end: f64, crit: &mut [f64; MA
 /// split point.
 fn crossing_before_critical(c: &[f64], d: &Chain, n: usize, a: f64, b: f64, sa: i32, pb: f64) -> f64 {
     let mut x0 = split_point(a, b);
-    let h2 = -2.0 * pb / horner(&d[n - 2], n - 2, b, 0, false);
+    let h2 = -2.0 * pb / horner(d.row(n - 2), n - 2, b, 0, false);
     let xq = b - (if h2 > 0.0 { h2 } else { 0.0 }).sqrt();
     if xq > a && xq < b {
         x0 = xq;
     }
-    refine_root(c, &d[n - 1], n, a, b, sa, 0.0, x0)
+    refine_root(c, d.row(n - 1), n, a, b, sa, 0.0, x0)
 }
 
 fn derivative_method(c: &[f64], n: usize, lo: f64, t_end: f64, skin: f64) -> Option<(f64, bool)> {
@@ -1425,7 +1641,7 @@ fn derivative_method(c: &[f64], n: usize, lo: f64, t_end: f64, skin: f64) -> Opt
             let t = if precise {
                 crossing_before_critical(c, &d, n, a, b, sa, pb)
             } else {
-                refine_root(c, &d[n - 1], n, a, b, sa, 0.0, split_point(a, b))
+                refine_root(c, d.row(n - 1), n, a, b, sa, 0.0, split_point(a, b))
             };
             return Some((t, false));
         }
@@ -1443,11 +1659,12 @@ fn derivative_method(c: &[f64], n: usize, lo: f64, t_end: f64, skin: f64) -> Opt
 }
 
 /// First root in (0, T] of p (degree n >= 3, normalised, p[0] > 0).
-pub(crate) fn first_root_interval(p: &Coeffs, n: usize, t_end: f64, skin: f64) -> Option<(f64, bool)> {
+/// `failed_w`: see `isolate_first_root`.
+pub(crate) fn first_root_interval(p: &Coeffs, n: usize, t_end: f64, skin: f64, failed_w: f64) -> Option<(f64, bool)> {
     debug_assert!(p[0] > 0.0);
     let mut lo = 0.0;
     if t_end <= if n <= 8 { FAST_LIMIT_LOW } else { FAST_LIMIT_HIGH } {
-        match isolate_first_root(p, n, skin, t_end) {
+        match isolate_first_root(p, n, skin, t_end, failed_w) {
             Isolation::Isolated(t, g) => return Some((t, g)),
             Isolation::Cleared => return None,
             Isolation::Unresolved(a) => lo = a,
