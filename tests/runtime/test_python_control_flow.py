@@ -125,7 +125,8 @@ def _outcomes(solver: Any, monkeypatch: pytest.MonkeyPatch) -> Counter[str]:
             return r
         monkeypatch.setattr(solver, name, observed)
 
-    wrap("_speculate_first_root", lambda r: "no guess root" if r is None else "guess root")
+    wrap("_speculate_first_root", lambda r: "no guess root" if r.root is None else "guess root")
+    wrap("_speculate_first_root", lambda r: "touch" if r.touch > 0 else "no touch")
     wrap("_bernstein_clear", lambda r: "cleared by halving" if r else "not cleared by halving")
     return seen
 
@@ -208,7 +209,8 @@ def _bernstein_calls(monkeypatch: pytest.MonkeyPatch) -> list[tuple[Any, int, fl
 def _kernel_line(solver: Any, pt: Any, n: int, w: float, seen: Counter[str],
                  steps: list[int]) -> list[str]:
     """What bernstein_driver.c prints for the Point, computed by the pure-Python kernels; seen
-    counts the ends reached, steps[0] the Laguerre steps (solver._laguerre_terms calls)."""
+    counts the ends reached, steps[0] the Laguerre and Newton-on-p' steps (solver._laguerre_terms
+    calls), steps[1] the rounding bounds at a critical point (solver._horner_abs calls)."""
     first = solver._bernstein_test(pt, n, w, True)
     out = [str(first.answer), _num(first.pend), _num(first.guess)]
     seen[f"answer {first.answer}"] += 1
@@ -217,14 +219,16 @@ def _kernel_line(solver: Any, pt: Any, n: int, w: float, seen: Counter[str],
         seen["cleared by halving" if cleared else "not cleared by halving"] += 1
         out += [_num(v) for v in first.q.b]
         out += [_num(first.q.err), str(int(first.q.even)), str(int(cleared))]
-    r = None
-    steps[0] = 0
+    r, touch = None, 0.0
+    steps[:] = [0, 0]
     if first.guess > 0:
-        r = solver._speculate_first_root(pt.pt, n, pt.x + w)
+        r, touch = solver._speculate_first_root(pt.pt, n, pt.x + w)
         seen["no guess root" if r is None else "guess root"] += 1
+        seen["touch" if touch > 0 else "no touch"] += 1
         seen[f"{steps[0]} Laguerre steps"] += 1
     out += ["0", _num(0.0)] if r is None else ["1", _num(r)]
-    out.append(str(3 * n * steps[0]))  # C's count: 3 n multiply-adds a step
+    out.append(_num(touch))
+    out.append(str(3 * n * steps[0] + n * steps[1]))  # C's count: 3 n a step, n a bound
     second = solver._bernstein_test(pt, n, w, False)
     return out + [str(second.answer), _num(second.pend)]
 
@@ -246,13 +250,18 @@ def test_bernstein_kernels_bit_for_bit(bernstein_driver: Path,
     from max2code_runtime import solver
 
     calls = _bernstein_calls(monkeypatch)
-    steps = [0]
-    terms = solver._laguerre_terms
+    steps = [0, 0]
+    terms, bound = solver._laguerre_terms, solver._horner_abs
 
     def counted(*args: Any) -> Any:
         steps[0] += 1
         return terms(*args)
+
+    def bounded(*args: Any) -> Any:
+        steps[1] += 1
+        return bound(*args)
     monkeypatch.setattr(solver, "_laguerre_terms", counted)
+    monkeypatch.setattr(solver, "_horner_abs", bounded)
     lines, mine = [], []
     seen: Counter[str] = Counter()
     for pt, n, w in calls:
