@@ -6,12 +6,14 @@
  *
  * Each input line:   N X W PT0 .. PTN QT0 .. QTN TOL0 .. TOLN   (hex floats)
  * Each output line (floats as %a):
- *   ANSWER PEND GUESS [Q0 .. QN ERR EVEN CLEARED] SPECULATED R MADDS ANSWER2 PEND2
+ *   ANSWER PEND GUESS [Q0 .. QN ERR EVEN CLEARED] SPECULATED R TOUCH MADDS ANSWER2 PEND2
  * ANSWER, PEND, GUESS: bernstein_test(pt, N, W) with guess and qb; the bracket only unless
  * ANSWER is BERN_CLEAR (qb is not filled then): qb's coefficients, bound and even flag, and
- * bernstein_clear(qb) (whatever qb.even says).  SPECULATED, R, MADDS: speculate_first_root
- * on the polynomial PT with T = X + W when GUESS > 0 (as isolate_first_root tries it), and
- * the multiply-adds it counts (3 N per Laguerre step: its number of steps); else 0 0 0.
+ * bernstein_clear(qb) (whatever qb.even says).  SPECULATED, R, TOUCH, MADDS:
+ * speculate_first_root on the polynomial PT with T = X + W when GUESS > 0 (as
+ * isolate_first_root tries it), its touch, and the multiply-adds it counts (3 N per Laguerre
+ * or Newton-on-p' step, N for the rounding bound at a critical point: its number of steps);
+ * else 0 0 0 0.
  * ANSWER2, PEND2: bernstein_test without guess or qb (PEND2 NaN when p's coefficients are
  * not formed).  Built with -DM2C_COUNT for MADDS.
  */
@@ -56,14 +58,14 @@ int main(void)
                 printf(" %a", qb.b[j]);
             printf(" %a %d %d", qb.err, qb.even != 0, bernstein_clear(&qb, n));
         }
-        double r = 0, madds = 0;
+        double r = 0, touch = 0, madds = 0;
         int speculated = 0;
         if (guess > 0) {
             double before = m2c_count[2];
-            speculated = speculate_first_root(pt.pt, n, pt.x + w, &r);
+            speculated = speculate_first_root(pt.pt, n, pt.x + w, &r, &touch);
             madds = m2c_count[2] - before;
         }
-        printf(" %d %a %.0f", speculated, speculated ? r : 0.0, madds);
+        printf(" %d %a %a %.0f", speculated, speculated ? r : 0.0, touch, madds);
         double pend2 = NAN;
         int answer2 = bernstein_test(&pt, n, w, &pend2, NULL, NULL);
         printf(" %d %a\n", answer2, pend2);

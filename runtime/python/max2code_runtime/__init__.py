@@ -83,9 +83,10 @@ def _valid(cc: list[float], tmax: float, eps: float) -> bool:
             and all(math.isfinite(x) for x in cc) and 0 <= eps < math.inf)
 
 
-def _solve_normalised(c: list[float], n: int, emax: int, tu: float, method: str, eps: float
-                      ) -> tuple[float, bool] | None:
-    """The C runtime's solve_normalised (spread within 2^MAX_SPREAD)."""
+def _solve_normalised(c: list[float], n: int, emax: int, tu: float, method: str, eps: float,
+                      failed_w: float) -> tuple[float, bool] | None:
+    """The C runtime's solve_normalised (spread within 2^MAX_SPREAD); failed_w: the window
+    step 0b's test failed on (0 if none), not tested again."""
     closed = method == "closed" and n <= 4
     interval = n > 2 and not closed
     # the interval method wants p(0) > 0: p = -c, same roots, the sign in the exact scaling
@@ -103,7 +104,7 @@ def _solve_normalised(c: list[float], n: int, emax: int, tu: float, method: str,
         return _first_root_closed(c, n, tu)
     B = solver.root_bound(c, n)
     T = tu if tu < B else B
-    return solver.first_root_interval(c, n, T, skin) if T > 0 else None
+    return solver.first_root_interval(c, n, T, skin, failed_w) if T > 0 else None
 
 
 def _solve_python(cc: list[float], tmax: float, method: str, eps: float) -> tuple[int, float, bool]:
@@ -116,6 +117,15 @@ def _solve_python(cc: list[float], tmax: float, method: str, eps: float) -> tupl
     if (solver._sign_changes(c, degree) == 0 and c[0] != 0 and eps == 0
             and method in ("interval", "interval-nograze")):
         return 0, math.nan, False
+    # Step 0b: the window's first exclusion test, before the preparation; where it fails, the
+    # window [0, tmax] it failed on (0: not tried), which the default method does not test again
+    failed_w = 0.0
+    if (eps == 0 and tmax < math.inf and c[0] != 0 and degree >= 3
+            and method in ("interval", "interval-nograze")):
+        cleared = solver.cleared_at_once(c, degree, tmax)
+        if cleared > 0:
+            return 0, math.nan, False
+        failed_w = tmax if cleared == 0 and method == "interval" else 0.0
     n = solver.reduce(c, degree, tmax)
     if n <= 0:
         return 0, math.nan, False
@@ -123,7 +133,7 @@ def _solve_python(cc: list[float], tmax: float, method: str, eps: float) -> tupl
     if spread > solver.MAX_SPREAD:
         found = solver.first_root_sliced(c, n, tmax, eps, method == "interval-nograze")
     else:
-        found = _solve_normalised(c, n, emax, tmax, method, eps)
+        found = _solve_normalised(c, n, emax, tmax, method, eps, failed_w)
     if found is None:
         return 0, math.nan, False
     t, graze = found

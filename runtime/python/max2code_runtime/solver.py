@@ -128,8 +128,26 @@ def _scaled_le(a: float, T: float, et: int | None, j: int, k: float, b: float) -
     return ea < eb or (ea == eb and ma <= mb)
 
 
+def _leading_far(e: Sequence[int], nz: Sequence[bool], n: int, T: float) -> bool:
+    """C leading_far: the exponents alone show |c_n| T^(n-i) above 4 n eps |c_i| by a factor 8
+    for every i (T finite), beyond all the roundings of the comparison -- almost always, and
+    then leading_negligible needs no floating-point loop; step 0b (cleared_at_once) asks it
+    so that the polynomial it tests is the one reduce keeps."""
+    if not (DBL_MIN <= T <= DBL_MAX):
+        return False
+    # T >= 2^eT, k < 2^(ek + 1), |c| in [2^e, 2^(e + 1))
+    eT, ek = ilogb(T), ilogb(4.0 * n * EPS)
+    lhs = e[n] + eT  # a lower bound on log2 |c_n| T^(n-i)
+    far = True
+    for i in range(n - 1, -1, -1):
+        far = far and (not nz[i] or lhs >= e[i] + ek + 5)
+        lhs += eT
+    return far
+
+
 def _leading_negligible(c: Coeffs, n: int, tmax: float) -> bool:
-    """C leading_negligible (in exponents where a side leaves the normal range)."""
+    """C leading_negligible (in exponents where a side leaves the normal range; no loop where
+    _leading_far shows the answer, as C)."""
     T, et = tmax, None
     if math.isinf(T):
         m = n - 1
@@ -140,6 +158,9 @@ def _leading_negligible(c: Coeffs, n: int, tmax: float) -> bool:
         et = _root_bound_exponent(c, m) or 0
         T = INF if et >= 1024 else math.ldexp(1.0, et) if et >= -1022 else 0.0
     k = 4.0 * n * EPS
+    e, nz, _, _ = exponents(c, n)
+    if _leading_far(e, nz, n, T):
+        return False
     Tp = 1.0
     for i in range(n - 1, -1, -1):
         Tp *= T
@@ -445,9 +466,15 @@ def _point_at(tk: list[list[float]], ta: list[list[float]], e: float, skin: floa
 
 
 def _clearly_positive(pt: _Point, n: int, w: float, direction: int) -> bool:
-    """The C runtime's first-order exclusion test, then its second-order one."""
+    """The C runtime's first-order exclusion test, then its second-order one, at a Point."""
+    return _bounds_positive(pt.qt, pt.tol, n, w, direction)
+
+
+def _bounds_positive(qt: Sequence[float], tol: Sequence[float], n: int, w: float,
+                     direction: int) -> bool:
+    """C bounds_positive: clearly_positive's tests from q's Taylor coefficients and their error
+    bounds as arrays, so that step 0b (cleared_at_once) runs them before any Point exists."""
     rel = 4.0 * (n + 1) * U
-    qt, tol = pt.qt, pt.tol
 
     def low(k: int) -> float:
         return (-qt[k] if direction < 0 and k % 2 else qt[k]) - tol[k]
@@ -475,6 +502,33 @@ def _clearly_positive(pt: _Point, n: int, w: float, direction: int) -> bool:
     m = L0 + h * (L1 + h * L2)
     size = abs(L0) + h * (abs(L1) + h * L2)
     return m > 2 * rel * size
+
+
+def cleared_at_once(c: Sequence[float], n: int, tmax: float) -> int:
+    """Step 0b (C cleared_at_once): no root in (0, tmax] by _bounds_positive at 0 over the
+    whole of [0, tmax], on the coefficients as given (degree n, c[0] != 0, tmax finite, no
+    skin), before reduce, the root bound and the Point at 0 -- which are most of the cost of a
+    solve this test settles.  The lower bounds are those _point_at_zero forms from p = c 2^-E
+    sign(c_0), normalise's exact scaling, with e = noise_factor(n) (the graze check's, also
+    for the no-graze method: a smaller q, so a clearing still holds), bit for bit.  Only where
+    reduce keeps every term (the exponents show it) and the spread is in range, so that the
+    polynomial tested is the one the full path solves.  Returns 1 (no root), 0 (the test
+    failed: the default method then skips the identical test at T = tmax) or -1 (not
+    tried)."""
+    e, nz, spread, emax = exponents(c, n)  # (C: the Scan of load_coefficients)
+    E = emax + 1
+    if (not nz[n] or spread > MAX_SPREAD or E < -1021 or E > 1022
+            or not _leading_far(e, nz, n, tmax)):
+        return -1
+    f = (-1.0 if c[0] < 0 else 1.0) * math.ldexp(1.0, -E)  # exact, as in normalise
+    en = noise_factor(n)
+    qt = [0.0] * (n + 1)
+    tol = [0.0] * (n + 1)
+    for k in range(n + 1):
+        p = c[k] * f
+        qt[k] = p - en * abs(p)
+        tol[k] = EPS * abs(p)
+    return int(_bounds_positive(qt, tol, n, tmax, 1))
 
 
 # bernstein_test's answers
@@ -627,12 +681,24 @@ def _bernstein_clear(q: _BernQ, n: int) -> bool:
 SPECULATE_STEPS = 8
 # the certificate's interval (0, r + r 2^-20]: 0x1p-20
 SPECULATE_MARGIN = 9.5367431640625e-07
+# the touch signature (C speculate_first_root says why and how they were measured): up to
+# TOUCH_EXTRA Laguerre steps beyond SPECULATE_STEPS while TOUCH_STEADY step ratios in a row
+# stay in [TOUCH_RATIO_LO, TOUCH_RATIO_HI] (linear convergence to a double root), then up to
+# TOUCH_STEPS Newton steps on p'; a touch where p is within TOUCH_NEAR rounding bounds
+TOUCH_EXTRA = 4
+TOUCH_STEPS = 6
+TOUCH_RATIO_LO = 0.25
+TOUCH_RATIO_HI = 0.31
+TOUCH_STEADY = 3
+TOUCH_NEAR = 2.0**20
+# half-width (relative) of the interval around a touch that goes to the derivative method
+TOUCH_WIDTH = 2.0**-10
 
 
 def _laguerre_terms(p: Sequence[float], n: int, x: float) -> tuple[float, float, float]:
     """p, p' and p''/2 at x by three Horner chains in C's statement order: one step of C
-    speculate_first_root, which C counts as 3 n multiply-adds in phase 2 (its own function so
-    the control-flow test can count the steps)."""
+    speculate_first_root, Laguerre's or Newton's on p', which C counts as 3 n multiply-adds in
+    phase 2 (its own function so the control-flow test can count the steps)."""
     f, d1, d2 = p[n], 0.0, 0.0
     for i in range(n - 1, -1, -1):
         d2 = d2 * x + d1
@@ -641,40 +707,82 @@ def _laguerre_terms(p: Sequence[float], n: int, x: float) -> tuple[float, float,
     return f, d1, d2
 
 
-def _speculate_first_root(p: Sequence[float], n: int, T: float) -> float | None:
-    """A guess at the first root of p in (0, T), or None where C speculate_first_root gives up
-    (it says when and why): Laguerre's method from 0, each step to the right.  Not Newton from
-    where the control polygon crosses 0, as before: from far away Newton creeps (while p ~ x^n
-    a step is about x / n, and the window is 17 times the first root at the median), whereas
-    for real roots Laguerre from 0 converges monotonically to the first root after 0,
-    cubically near it.  No Newton step is counted (C counts none here).  Python's float
-    division overflows to inf as C's does; no division here can be by 0 (f != 0, den < 0),
-    and the disc test comes before sqrt, which raises on a negative argument where C's
-    would give NaN."""
-    x = last = 0.0
-    for it in range(SPECULATE_STEPS):
+class _Guess(NamedTuple):
+    """What C speculate_first_root finds: its root (None where it returns 0) and *touch (0
+    unless Newton on p' reached a critical point where p is within TOUCH_NEAR rounding
+    bounds)."""
+    root: float | None
+    touch: float
+
+
+def _speculate_first_root(p: Sequence[float], n: int, T: float) -> _Guess:
+    """A guess at the first root of p in (0, T), or at a touch before it, as C
+    speculate_first_root (which says when and why it gives up): Laguerre's method from 0, each
+    step to the right.  Not Newton from where the control polygon crosses 0, as before: from
+    far away Newton creeps (while p ~ x^n a step is about x / n, and the window is 17 times the
+    first root at the median), whereas for real roots Laguerre from 0 converges monotonically
+    to the first root after 0, cubically near it.  A double root ahead shows as linear
+    convergence, a steady step ratio (0.284 at degree 8); then Newton on p' goes to the
+    critical point -- a simple root of p', quadratic convergence where Laguerre crawls -- and
+    reports it as a touch when p there is near the rounding bound.  No Newton step is counted
+    (C counts none here, neither Laguerre's nor those on p').  Python's float division
+    overflows to inf as C's does; no division here can be by 0 but s / last (f != 0, den < 0,
+    d2 > 0; last is a step that did not converge, so nonzero: _div all the same), and the disc
+    test comes before sqrt, which raises on a negative argument where C's would give NaN."""
+    x = last = qprev = 0.0
+    critical = steady = 0  # Newton on p' (after the double-root signature)
+    for it in range(SPECULATE_STEPS + TOUCH_EXTRA + TOUCH_STEPS):
+        if not critical and it >= SPECULATE_STEPS and (
+                steady == 0 or it >= SPECULATE_STEPS + TOUCH_EXTRA):
+            return _Guess(None, 0.0)
         f, d1, d2 = _laguerre_terms(p, n, x)
+        if critical:
+            # Newton on p' towards the critical point: a simple root of p' where p'' > 0 (a
+            # minimum of p > 0)
+            if not (d2 > 0):
+                return _Guess(None, 0.0)
+            s = d1 / (2 * d2)
+            x -= s
+            if not (x > 0 and x < T):
+                return _Guess(None, 0.0)
+            if abs(s) <= PRECISE_FROM * x:
+                near = abs(f) <= TOUCH_NEAR * noise_factor(n) * _horner_abs(p, n, x, 0)
+                return _Guess(None, x if near else 0.0)
+            if critical > 1 and not (abs(s) <= 0.5 * abs(last)):
+                return _Guess(None, 0.0)
+            critical += 1
+            last = s
+            continue
         if f == 0:
-            return x if x > 0 else None
+            return _Guess(x if x > 0 else None, 0.0)
         g = d1 / f
         h = g * g - 2 * d2 / f
         disc = (n - 1) * (n * h - g * g)
         if not (disc >= 0):  # complex roots in the way (or NaN)
-            return None
+            return _Guess(None, 0.0)
         den = g - math.sqrt(disc)  # the step is -n / den: to the right
         if not (den < 0):
-            return None
+            return _Guess(None, 0.0)
         s = n / den
         x -= s
         if not (x > 0 and x < T):
-            return None
+            return _Guess(None, 0.0)
         if abs(s) <= PRECISE_FROM * x:
-            return x
-        # from the fifth step on, a step that has not halved: a double root (linear)
-        if it >= 4 and not (abs(s) <= 0.5 * abs(last)):
-            return None
+            return _Guess(x, 0.0)
+        q = _div(s, last) if it > 0 else 0.0
+        steady = steady + 1 if TOUCH_RATIO_LO <= q <= TOUCH_RATIO_HI else 0
+        if steady >= TOUCH_STEADY:
+            critical = 1  # linear convergence: a double root ahead
+            last = s
+            continue
+        # from the fifth step on, a step that has neither halved nor shrunk by more than the
+        # one before: Laguerre far from every root creeps, then speeds up; give up only while
+        # it is not slowing down
+        if it >= 4 and not (abs(s) <= 0.5 * abs(last)) and not (q < qprev):
+            return _Guess(None, 0.0)
+        qprev = q
         last = s
-    return None
+    return _Guess(None, 0.0)
 
 
 def _derivative(p: Sequence[float], n: int) -> list[float]:
@@ -704,14 +812,17 @@ def _isolation_split(a: float, b: float) -> float:
 _CLEARED = object()
 
 
-def _isolate_first_root(p: Sequence[float], n: int, skin: float, T: float):
-    """(t, graze), _CLEARED, or a float: the left end left to the derivative method."""
+def _isolate_first_root(p: Sequence[float], n: int, skin: float, T: float, failed_w: float):
+    """(t, graze), _CLEARED, or a float: the left end left to the derivative method.  failed_w:
+    the window step 0b's test failed on (cleared_at_once; 0 when not tried), whose first
+    _clearly_positive is that very test when T equals it: skipped then, as C does."""
     e = noise_factor(n) if skin >= 0 else 0.0
     sk = skin if skin > 0 else 0.0
     a = _point_at_zero(p, n, e, sk)
     if not (a.qt[0] - a.tol[0] > 0):
         return 0.0
-    if a.vq == 0 or _clearly_positive(a, n, T, 1):
+    # Descartes, or q(0) beats every negative term (unless that very test failed already)
+    if a.vq == 0 or (T != failed_w and _clearly_positive(a, n, T, 1)):
         return _CLEARED
     start = _bernstein_test(a, n, T, True)
     if start.answer == BERN_CLEAR:
@@ -720,24 +831,48 @@ def _isolate_first_root(p: Sequence[float], n: int, skin: float, T: float):
         return _polish_isolated(p, n, 0.0, T, a.px, start.pend), False
     q = start.q
     assert q is not None  # (asked for, and not cleared)
+    frm = 0.0  # > 0: (0, frm] is settled, the counts go on from it (C's `from`)
     if start.guess > 0:  # a guess, then a certificate
         dp = _derivative(p, n)
-        r = _speculate_first_root(p, n, T)
+        guess = _speculate_first_root(p, n, T)
+        r = guess.root
         if r is not None:
             w = r + r * SPECULATE_MARGIN
             w = w if w < T else T
             if _bernstein_test(a, n, w, False).answer == BERN_ONE:
                 return _refine_root(p, dp, n, 0.0, w, 1, 0.0, r), False
-    if q.even and _bernstein_clear(q, n):  # (after a guess that failed)
+        # A touch ahead, with the graze check only: (0, lo] certified clear by the Bernstein
+        # test, then the derivative method on (lo, hi] -- small, so few roots of the
+        # derivatives in it -- instead of Taylor points bisecting down to the touch; the
+        # counts go on from hi if it finds nothing.  hi is 3 widths to the right: from the
+        # middle of a symmetric interval the fma noise of p' at the critical point sent the
+        # derivative method's Newton into bisection (see the C source).
+        touch = guess.touch
+        if touch > 0 and skin >= 0:
+            lo = touch - touch * TOUCH_WIDTH
+            hi = touch + 3 * touch * TOUCH_WIDTH
+            hi = hi if hi < T else T
+            if _bernstein_test(a, n, lo, False).answer == BERN_CLEAR:
+                hit = _derivative_method(p, n, lo, hi, skin)
+                if hit is not None:
+                    return hit
+                if hi == T:
+                    return _CLEARED
+                frm = hi
+    if frm == 0 and q.even and _bernstein_clear(q, n):  # (after a guess that failed)
         return _CLEARED
     tk = [[BINOM[k][j] * p[j + k] if j + k <= n else 0.0 for j in range(n + 1)] for k in range(n + 1)]
     ta = [[abs(v) for v in row] for row in tk]
     first = _point_at(tk, ta, e, sk, n, T)
     if first is None:
-        return 0.0
+        return frm
+    if frm > 0:  # the counts start from frm: its Point, q's sign there certain
+        a = _point_at(tk, ta, e, sk, n, frm)
+        if a is None or not (a.qt[0] - a.tol[0] > 0):
+            return frm
     stack = [first]
     splits = 0
-    tested = True  # (0, T] has had its Bernstein test
+    tested = frm == 0  # (0, T] has had its Bernstein test
     early_tried = False
     while True:
         b = stack[-1]
@@ -872,11 +1007,13 @@ def _derivative_method(c: Sequence[float], n: int, lo: float, T: float, skin: fl
     return None
 
 
-def first_root_interval(p: Sequence[float], n: int, T: float, skin: float) -> tuple[float, bool] | None:
-    """First root in (0, T] of p (degree n >= 3, normalised, p[0] > 0: normalise's sign)."""
+def first_root_interval(p: Sequence[float], n: int, T: float, skin: float,
+                        failed_w: float) -> tuple[float, bool] | None:
+    """First root in (0, T] of p (degree n >= 3, normalised, p[0] > 0: normalise's sign);
+    failed_w: the window step 0b's test failed on, 0 if none (_isolate_first_root)."""
     lo = 0.0
     if T <= (FAST_LIMIT_LOW if n <= 8 else FAST_LIMIT_HIGH):
-        r = _isolate_first_root(p, n, skin, T)
+        r = _isolate_first_root(p, n, skin, T, failed_w)
         if r is _CLEARED:
             return None
         if isinstance(r, tuple):
