@@ -24,10 +24,10 @@ CALLS = (("interval", 0, 0.0, "interval"), ("interval-nograze", 1, 0.0, "nograze
 
 
 def answers(runtime: str, vecs: Sequence[Vector], tmp: Path,
-            monkeypatch: pytest.MonkeyPatch) -> list[tuple[int, float, bool]]:
+            monkeypatch: pytest.MonkeyPatch | None = None) -> list[tuple[int, float, bool]]:
     """(status, root, graze) of every call in CALLS on every vector, vector by vector, from
     "c" (the plain C driver), "rust" (roots_cli), "python" or "python-c" (the pure-Python
-    solver, or the C runtime through cffi)."""
+    solver, or the C runtime through cffi; these two need monkeypatch)."""
     if runtime == "c":
         driver = tf.build_driver(tmp / "roots_driver")
         lines = [tf.c_line(f"{m}:{eps!r}" if eps else m, c, t) for c, t in vecs for _, m, eps, _ in CALLS]
@@ -47,6 +47,7 @@ def answers(runtime: str, vecs: Sequence[Vector], tmp: Path,
         return got
     import max2code_runtime as rt
 
+    assert monkeypatch is not None, "the Python runtimes are selected through monkeypatch"
     tf.select_backend("python" if runtime == "python" else "c", monkeypatch)
     return [rt.first_root_status(list(c), t, method, eps) for c, t in vecs for method, _, eps, _ in CALLS]
 

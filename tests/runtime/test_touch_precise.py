@@ -37,7 +37,8 @@ import pytest
 
 from . import exact_roots as ex
 from .cases import poly_from_roots
-from .test_descartes_exit import CALLS, Vector, _c_answers, _python_answers, _rust_answers
+from . import paths
+from .paths import CALLS, Vector
 
 SEED = 4031
 COUNT = 24
@@ -109,7 +110,7 @@ def touches() -> list[tuple[Vector, float]]:
 @pytest.fixture(scope="module")
 def c_reference(touches: list[tuple[Vector, float]],
                 tmp_path_factory: pytest.TempPathFactory) -> list[tuple[int, float, bool]]:
-    return _c_answers([v for v, _ in touches], tmp_path_factory.mktemp("touch"))
+    return paths.answers("c", [v for v, _ in touches], tmp_path_factory.mktemp("touch"))
 
 
 @pytest.mark.parametrize("runtime", ["c", "rust", "python", "python-c"])
@@ -117,8 +118,7 @@ def test_noisy_touch_is_a_touch(runtime: str, touches: list[tuple[Vector, float]
                                 c_reference: list[tuple[int, float, bool]], tmp_path: Path,
                                 monkeypatch: pytest.MonkeyPatch) -> None:
     vecs = [v for v, _ in touches]
-    answers = (c_reference if runtime == "c" else _rust_answers(vecs) if runtime == "rust"
-               else _python_answers(vecs, "python" if runtime == "python" else "c", monkeypatch))
+    answers = c_reference if runtime == "c" else paths.answers(runtime, vecs, tmp_path, monkeypatch)
     bad = []
     for i, ((c, tmax), d) in enumerate(touches):
         for j, (method, _, eps, _) in enumerate(CALLS):
