@@ -30,74 +30,37 @@
 #define NPOLY 1024
 #define BATCH 16 /* calls per timed region, each waiting for the last */
 
-/* p at k points: the k Horner chains interleaved, step by step */
-#define AT_POINTS(K)                                                                         \
-    __attribute__((noinline)) static void at##K(const double c[9], const double x[],        \
-                                                double out[])                              \
+/* p and its first D derivatives over k! (out[k K + j], k = 0..D) at K points: the K (D + 1)
+ * Horner chains interleaved, step by step (D = 1: a Newton step's evaluation, D = 2: a
+ * Laguerre step's) */
+#define AT_POINTS(NAME, K, D)                                                                \
+    __attribute__((noinline)) static void NAME(const double c[9], const double x[],         \
+                                               double out[])                               \
     {                                                                                       \
-        double acc[K];                                                                      \
-        for (int j = 0; j < K; j++)                                                         \
-            acc[j] = c[8];                                                                  \
-        _Pragma("GCC unroll 8") for (int i = 7; i >= 0; i--)                                \
-            _Pragma("GCC unroll 8") for (int j = 0; j < K; j++)                             \
-                acc[j] = acc[j] * x[j] + c[i];                                              \
-        for (int j = 0; j < K; j++)                                                         \
-            out[j] = acc[j];                                                                \
-    }
-AT_POINTS(1)
-AT_POINTS(2)
-AT_POINTS(3)
-AT_POINTS(4)
-AT_POINTS(6)
-AT_POINTS(8)
-
-/* p and p' (out[j], out[K + j]) at K points */
-#define SLOPE_AT_POINTS(K)                                                                   \
-    __attribute__((noinline)) static void slope##K(const double c[9], const double x[],     \
-                                                   double out[])                           \
-    {                                                                                       \
-        double f[K], d[K];                                                                  \
-        for (int j = 0; j < K; j++) {                                                       \
-            f[j] = c[8];                                                                    \
-            d[j] = 0;                                                                       \
+        double t[D + 1][K];                                                                 \
+        _Pragma("GCC unroll 8") for (int j = 0; j < K; j++) {                               \
+            t[0][j] = c[8];                                                                 \
+            _Pragma("GCC unroll 4") for (int k = 1; k <= D; k++) t[k][j] = 0;              \
         }                                                                                   \
         _Pragma("GCC unroll 8") for (int i = 7; i >= 0; i--)                                \
             _Pragma("GCC unroll 8") for (int j = 0; j < K; j++) {                           \
-                d[j] = d[j] * x[j] + f[j];                                                  \
-                f[j] = f[j] * x[j] + c[i];                                                  \
+                _Pragma("GCC unroll 4") for (int k = D; k >= 1; k--)                        \
+                    t[k][j] = t[k][j] * x[j] + t[k - 1][j];                                 \
+                t[0][j] = t[0][j] * x[j] + c[i];                                            \
             }                                                                               \
-        for (int j = 0; j < K; j++) {                                                       \
-            out[j] = f[j];                                                                  \
-            out[K + j] = d[j];                                                              \
-        }                                                                                   \
+        _Pragma("GCC unroll 8") for (int j = 0; j < K; j++)                                 \
+            _Pragma("GCC unroll 4") for (int k = 0; k <= D; k++) out[k * K + j] = t[k][j];  \
     }
-SLOPE_AT_POINTS(1)
-SLOPE_AT_POINTS(4)
-
-/* p, p' and p''/2 (out[j], out[K + j], out[2K + j]) at K points */
-#define CURVE_AT_POINTS(K)                                                                   \
-    __attribute__((noinline)) static void curve##K(const double c[9], const double x[],     \
-                                                   double out[])                           \
-    {                                                                                       \
-        double f[K], d[K], h[K];                                                            \
-        for (int j = 0; j < K; j++) {                                                       \
-            f[j] = c[8];                                                                    \
-            d[j] = h[j] = 0;                                                                \
-        }                                                                                   \
-        _Pragma("GCC unroll 8") for (int i = 7; i >= 0; i--)                                \
-            _Pragma("GCC unroll 8") for (int j = 0; j < K; j++) {                           \
-                h[j] = h[j] * x[j] + d[j];                                                  \
-                d[j] = d[j] * x[j] + f[j];                                                  \
-                f[j] = f[j] * x[j] + c[i];                                                  \
-            }                                                                               \
-        for (int j = 0; j < K; j++) {                                                       \
-            out[j] = f[j];                                                                  \
-            out[K + j] = d[j];                                                              \
-            out[2 * K + j] = h[j];                                                          \
-        }                                                                                   \
-    }
-CURVE_AT_POINTS(1)
-CURVE_AT_POINTS(4)
+AT_POINTS(at1, 1, 0)
+AT_POINTS(at2, 2, 0)
+AT_POINTS(at3, 3, 0)
+AT_POINTS(at4, 4, 0)
+AT_POINTS(at6, 6, 0)
+AT_POINTS(at8, 8, 0)
+AT_POINTS(slope1, 1, 1)
+AT_POINTS(slope4, 4, 1)
+AT_POINTS(curve1, 1, 2)
+AT_POINTS(curve4, 4, 2)
 
 /* the unit itself (timing.h), in the kernels' form */
 __attribute__((noinline)) static void unit(const double c[9], const double x[], double out[])

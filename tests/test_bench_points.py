@@ -34,12 +34,12 @@ def test_table_has_every_kernel(tmp_path: Path) -> None:
 
 
 def test_a_wrong_kernel_is_refused(tmp_path: Path) -> None:
-    """A 4-point kernel that reads its third point's coefficients one step late must be caught
+    """A 4-point kernel whose third point reads its coefficients one step late must be caught
     by the bit-for-bit check, and the script must stop with its message."""
     src = (ROOT / "bench" / "horner_points.c").read_text()
-    marker = "                acc[j] = acc[j] * x[j] + c[i];                                              \\\n"
+    marker = "                t[0][j] = t[0][j] * x[j] + c[i];                                            \\\n"
     assert src.count(marker) == 1, "the kernels' loop changed: adapt the test"
-    wrong = src.replace(marker, "                acc[j] = acc[j] * x[j] + c[i + (j == 2 && K == 4 && i < 7)]; \\\n")
+    wrong = src.replace(marker, "                t[0][j] = t[0][j] * x[j] + c[i + (j == 2 && K == 4 && i < 7)]; \\\n")
     bench = tmp_path / "bench"
     bench.mkdir()
     (bench / "horner_points.c").write_text(wrong)
