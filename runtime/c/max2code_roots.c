@@ -1465,10 +1465,11 @@ static int isolate_first_root(const double p[], int n, double skin,
         return CLEARED;
     Taylor tb;
     taylor_table(p, n, e, sk, &tb);
-    if (!point_at(&tb, n, T, &stack[top++]))
-        return from > 0 ? (*a_out = from, UNRESOLVED) : UNRESOLVED;
-    if (from > 0 && !(point_at(&tb, n, from, &a) && a.qt[0] - a.tol[0] > 0)) {
-        *a_out = from;
+    /* the counts start from `from` when a touch's interval was settled: its
+     * Point, with q's sign there certain */
+    if (!point_at(&tb, n, T, &stack[top++]) ||
+        (from > 0 && !(point_at(&tb, n, from, &a) && a.qt[0] - a.tol[0] > 0))) {
+        *a_out = from; /* (0 unless so) */
         return UNRESOLVED;
     }
     int tested = from == 0; /* (0, T] has had its Bernstein test */
