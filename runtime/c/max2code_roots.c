@@ -1160,60 +1160,69 @@ static double polish_isolated(const double p[], int n, double a, double b,
     return refine_root(p, dp, n, a, b, 1, 0, x0);
 }
 
-/* The Bernstein coefficients of the left half of the interval (de
- * Casteljau at 1/2: n rounds of averages of neighbours; out[k] is the
- * first entry after round k); out may be in.  The right half is the left
- * half of the reversed coefficients, reversed (the same averages, each with
- * its two terms swapped: the same values).  Written out up to degree 8
- * (entries above n never reach out[0..n]) for the reason of binomial_sums. */
-static void left_half(const double in[], int n, double out[])
+/* The Bernstein coefficients of both halves of the interval (de Casteljau
+ * at 1/2: n rounds of averages of neighbours, one triangle): left[k] is the
+ * first entry after round k, right[n - k] the last.  (Each half used to be
+ * a triangle of its own, the right one on the reversed coefficients: the
+ * same averages with their terms swapped, so the same values, at twice the
+ * cost.)  left and right may not be in.  Written out for degree 8 -- the
+ * common degree, and the one whose last entries sit in fixed registers --
+ * for the reason of binomial_sums. */
+static void halves(const double in[], int n, double left[], double right[])
 {
-    if (n <= 8) {
-        double w0 = in[0], w1 = n >= 1 ? in[1] : 0, w2 = n >= 2 ? in[2] : 0,
-               w3 = n >= 3 ? in[3] : 0, w4 = n >= 4 ? in[4] : 0, w5 = n >= 5 ? in[5] : 0,
-               w6 = n >= 6 ? in[6] : 0, w7 = n >= 7 ? in[7] : 0, w8 = n >= 8 ? in[8] : 0;
-        double o[9];
-        o[0] = w0;
+    if (n == 8) {
+        double w0 = in[0], w1 = in[1], w2 = in[2], w3 = in[3], w4 = in[4], w5 = in[5],
+               w6 = in[6], w7 = in[7], w8 = in[8];
+        left[0] = w0;
+        right[8] = w8;
 #define AVG(j, k) w##j = (w##j + w##k) * 0.5
         AVG(0, 1); AVG(1, 2); AVG(2, 3); AVG(3, 4); AVG(4, 5); AVG(5, 6); AVG(6, 7); AVG(7, 8);
-        o[1] = w0;
+        left[1] = w0;
+        right[7] = w7;
         AVG(0, 1); AVG(1, 2); AVG(2, 3); AVG(3, 4); AVG(4, 5); AVG(5, 6); AVG(6, 7);
-        o[2] = w0;
+        left[2] = w0;
+        right[6] = w6;
         AVG(0, 1); AVG(1, 2); AVG(2, 3); AVG(3, 4); AVG(4, 5); AVG(5, 6);
-        o[3] = w0;
+        left[3] = w0;
+        right[5] = w5;
         AVG(0, 1); AVG(1, 2); AVG(2, 3); AVG(3, 4); AVG(4, 5);
-        o[4] = w0;
+        left[4] = w0;
+        right[4] = w4;
         AVG(0, 1); AVG(1, 2); AVG(2, 3); AVG(3, 4);
-        o[5] = w0;
+        left[5] = w0;
+        right[3] = w3;
         AVG(0, 1); AVG(1, 2); AVG(2, 3);
-        o[6] = w0;
+        left[6] = w0;
+        right[2] = w2;
         AVG(0, 1); AVG(1, 2);
-        o[7] = w0;
+        left[7] = w0;
+        right[1] = w1;
         AVG(0, 1);
-        o[8] = w0;
+        left[8] = w0;
+        right[0] = w0;
 #undef AVG
-        for (int j = 0; j <= n; j++)
-            out[j] = o[j];
         return;
     }
     double w[MAXN + 1];
     for (int j = 0; j <= n; j++)
         w[j] = in[j];
-    out[0] = w[0];
+    left[0] = in[0];
+    right[n] = in[n];
     for (int k = 1; k <= n; k++) {
         for (int j = 0; j <= n - k; j++)
             w[j] = (w[j] + w[j + 1]) * 0.5;
-        out[k] = w[0];
+        left[k] = w[0];
+        right[n - k] = w[n - k];
     }
 }
 
 /* Is q > 0 on the interval of qb (its Bernstein coefficients, certain signs,
  * an even count)?  Bisection in the Bernstein basis: de Casteljau's
- * midpoint steps give both halves' coefficients by n(n + 1)/2 averages each
- * (no Taylor shift), a piece is cleared when its coefficients are certainly
- * positive, and the answer is no (0: not known) at the first piece whose
- * signs are uncertain or change an odd number of times (q crosses 0 there)
- * or beyond CLEAR_DEPTH halvings (left_half).  Each average rounds once, by at most u
+ * midpoint steps give both halves' coefficients by n(n + 1)/2 averages
+ * (halves; no Taylor shift), a piece is cleared when its coefficients are
+ * certainly positive, and the answer is no (0: not known) at the first piece
+ * whose signs are uncertain or change an odd number of times (q crosses 0
+ * there) or beyond CLEAR_DEPTH halvings.  Each average rounds once, by at most u
  * times the largest coefficient M of the parent (the children's are convex
  * combinations of its), and the parent's errors are averaged: a child's
  * bound is the parent's plus 2 n u M (twice, for safety) plus DBL_MIN (for
@@ -1252,14 +1261,12 @@ NOINLINE static int bernstein_clear(const BernQ *qb, int n)
             return 0;
         /* halves: the right one over b's slot, the left one above it (so
          * it is looked at first) */
-        COUNT_MADDS(n * (n + 1));
-        double rev[MAXN + 1];
-        for (int j = 0; j <= n; j++)
-            rev[j] = b[n - j];
-        left_half(b, n, st[top + 1]);
-        left_half(rev, n, rev); /* the right half, reversed */
-        for (int j = 0; j <= n; j++)
-            b[j] = rev[n - j];
+        COUNT_MADDS(n * (n + 1) / 2);
+        double whole[MAXN + 1];
+        whole[0] = b[0]; /* (gcc -Wmaybe-uninitialized cannot see n >= 1) */
+        for (int j = 1; j <= n; j++)
+            whole[j] = b[j];
+        halves(whole, n, st[top + 1], b);
         double ec = e + 2 * n * UNIT_ROUNDOFF * M + DBL_MIN;
         err[top] = err[top + 1] = ec;
         depth[top] = depth[top + 1] = d + 1;

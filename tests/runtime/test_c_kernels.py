@@ -63,25 +63,32 @@ int main(void)
                 ref[j] += ref[j - 1];
         for (int j = 0; j <= n; j++)
             CHECK(memcmp(&b[j], &ref[j], sizeof(double)) == 0, "binomial_sums n=%d j=%d\n", n, j);
-        /* left_half and the right half by reversal: de Casteljau at 1/2 */
-        double w[MAXN + 1], left[MAXN + 1], right[MAXN + 1], l2[MAXN + 1], rev[MAXN + 1];
-        for (int j = 0; j <= n; j++)
+        /* halves: de Casteljau at 1/2, both edges of one triangle; the right
+         * edge is also the left edge of the reversed coefficients' triangle
+         * (how it was formed before), reversed */
+        double w[MAXN + 1], left[MAXN + 1], right[MAXN + 1], l2[MAXN + 1], r2[MAXN + 1],
+            rev[MAXN + 1], mirror[MAXN + 1];
+        for (int j = 0; j <= n; j++) {
             w[j] = a[j];
+            rev[j] = a[n - j];
+        }
         left[0] = w[0];
         right[n] = w[n];
+        mirror[n] = rev[0];
         for (int k = 1; k <= n; k++) {
-            for (int j = 0; j <= n - k; j++)
+            for (int j = 0; j <= n - k; j++) {
                 w[j] = (w[j] + w[j + 1]) * 0.5;
+                rev[j] = (rev[j] + rev[j + 1]) * 0.5;
+            }
             left[k] = w[0];
             right[n - k] = w[n - k];
+            mirror[n - k] = rev[0];
         }
-        left_half(a, n, l2);
-        for (int j = 0; j <= n; j++)
-            rev[j] = a[n - j];
-        left_half(rev, n, rev);
+        halves(a, n, l2, r2);
         for (int j = 0; j <= n; j++) {
-            CHECK(memcmp(&l2[j], &left[j], sizeof(double)) == 0, "left_half n=%d j=%d\n", n, j);
-            CHECK(memcmp(&rev[n - j], &right[j], sizeof(double)) == 0, "right half n=%d j=%d\n", n, j);
+            CHECK(memcmp(&l2[j], &left[j], sizeof(double)) == 0, "halves left n=%d j=%d\n", n, j);
+            CHECK(memcmp(&r2[j], &right[j], sizeof(double)) == 0, "halves right n=%d j=%d\n", n, j);
+            CHECK(memcmp(&mirror[j], &right[j], sizeof(double)) == 0, "mirror n=%d j=%d\n", n, j);
         }
         /* point_at: the Taylor shift of p and |p| at x > 0 */
         double p[MAXN + 1];

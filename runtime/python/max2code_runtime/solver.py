@@ -633,18 +633,21 @@ def _bernstein_signs(b: Sequence[float], tol: float) -> tuple[bool, int, bool]:
     return certain, changes, clear
 
 
-def _left_half(b: Sequence[float], n: int) -> list[float]:
-    """The Bernstein coefficients of the left half of the interval: de Casteljau at 1/2, out[k]
-    the first entry after round k of averages (C left_half, whose degree-8 written-out form
-    gives this loop's values)."""
+def _halves(b: Sequence[float], n: int) -> tuple[list[float], list[float]]:
+    """The Bernstein coefficients of both halves of the interval: de Casteljau at 1/2, one
+    triangle of averages, left[k] its first entry after round k and right[n - k] its last
+    (C halves, whose degree-8 written-out form gives this loop's values)."""
     w = [b[j] for j in range(n + 1)]
-    out = [0.0] * (n + 1)
-    out[0] = w[0]
+    left = [0.0] * (n + 1)
+    right = [0.0] * (n + 1)
+    left[0] = w[0]
+    right[n] = w[n]
     for k in range(1, n + 1):
         for j in range(n - k + 1):
             w[j] = (w[j] + w[j + 1]) * 0.5
-        out[k] = w[0]
-    return out
+        left[k] = w[0]
+        right[n - k] = w[n - k]
+    return left, right
 
 
 CLEAR_DEPTH = 12
@@ -671,10 +674,10 @@ def _bernstein_clear(q: _BernQ, n: int) -> bool:
         M = -lo if -lo > hi else hi
         if d == CLEAR_DEPTH:
             return False
-        right = _left_half([b[n - j] for j in range(n + 1)], n)  # reversed
+        left, right = _halves(b, n)
         ec = e + 2 * n * U * M + DBL_MIN
-        stack.append(([right[n - j] for j in range(n + 1)], ec, d + 1))
-        stack.append((_left_half(b, n), ec, d + 1))
+        stack.append((right, ec, d + 1))
+        stack.append((left, ec, d + 1))
     return True
 
 

@@ -1062,42 +1062,34 @@ fn p_count(ap: &mut [f64; MAXN + 1], n: usize, tol: f64, mut certain: bool, one:
     (verdict, vp, jl, cross)
 }
 
-/// C `left_half`: the Bernstein coefficients of the left half of the interval (de Casteljau at
-/// 1/2: n rounds of averages of neighbours; out[k] is the first entry after round k), entries
-/// 0..=n of `inp` (those above n are not read) to entries 0..=n of the result (those above n
-/// are 0).  W = 9 (n <= 8): 8 rounds over 9 entries with constant bounds (the entries above n,
-/// zeros, never reach out[0..=n]), as C writes it out; else C's loop.
+/// C `halves`: the Bernstein coefficients of both halves of the interval (de Casteljau at 1/2,
+/// one triangle of n rounds of averages of neighbours: left[k] is its first entry after round
+/// k, right[n - k] its last), from entries 0..=n of `inp` (those above n are not read) to
+/// entries 0..=n of the results (those above n are 0).  At degree 8 on arrays of 9 with the
+/// degree a constant, so that the loops unroll as C writes them out.
 #[inline(always)]
-fn left_half<const W: usize>(inp: &[f64; W], n: usize) -> [f64; W] {
-    let mut w: [f64; W] = std::array::from_fn(|j| if j <= n { inp[j] } else { 0.0 });
-    let mut out = [0.0f64; W];
-    out[0] = w[0];
-    if W == 9 {
-        for k in 1..W {
-            for j in 0..W - k {
-                w[j] = (w[j] + w[j + 1]) * 0.5;
-            }
-            out[k] = w[0];
-        }
-        for (j, o) in out.iter_mut().enumerate() {
-            *o = if j <= n { *o } else { 0.0 };
-        }
-        return out;
+fn halves<const W: usize>(inp: &[f64; W], n: usize) -> ([f64; W], [f64; W]) {
+    if W == 9 && n == 8 {
+        halves_of_degree(inp, 8)
+    } else {
+        halves_of_degree(inp, n.min(W - 1))
     }
-    let n = n.min(W - 1);
+}
+
+#[inline(always)]
+fn halves_of_degree<const W: usize>(inp: &[f64; W], n: usize) -> ([f64; W], [f64; W]) {
+    let mut w: [f64; W] = std::array::from_fn(|j| if j <= n { inp[j] } else { 0.0 });
+    let (mut left, mut right) = ([0.0f64; W], [0.0f64; W]);
+    left[0] = w[0];
+    right[n] = w[n];
     for k in 1..n + 1 {
         for j in 0..n - k + 1 {
             w[j] = (w[j] + w[j + 1]) * 0.5;
         }
-        out[k] = w[0];
+        left[k] = w[0];
+        right[n - k] = w[n - k];
     }
-    out
-}
-
-/// `[v[n], v[n - 1], .., v[0], 0, ..]`: the coefficients of the reversed interval.
-#[inline(always)]
-fn reversed<const W: usize>(v: &[f64; W], n: usize) -> [f64; W] {
-    std::array::from_fn(|j| if j <= n { v[n - j] } else { 0.0 })
+    (left, right)
 }
 
 /// Halvings after which `bernstein_clear` gives up.
@@ -1158,11 +1150,9 @@ fn clear_pieces<const W: usize>(q: [f64; W], err: f64, n: usize) -> bool {
         if d == CLEAR_DEPTH {
             return false;
         }
-        // halves: the right one over b's slot, the left one above it (looked at first); the
-        // right half is the left half of the reversed coefficients, reversed
-        count::madds(n * (n + 1));
-        let left = left_half(&b, n);
-        let right = reversed(&left_half(&reversed(&b, n), n), n);
+        // halves: the right one over b's slot, the left one above it (looked at first)
+        count::madds(n * (n + 1) / 2);
+        let (left, right) = halves(&b, n);
         let ec = e + (2 * n) as f64 * U * m + f64::MIN_POSITIVE;
         st[top] = MaybeUninit::new(Piece { b: right, err: ec, depth: d + 1 });
         st[top + 1] = MaybeUninit::new(Piece { b: left, err: ec, depth: d + 1 });
@@ -1955,7 +1945,7 @@ mod preparation {
 /// checks C's written-out forms).
 #[cfg(test)]
 mod kernels {
-    use super::{binomial_sums, left_half, taylor_shift, taylor_shift_8, taylor_table, Taylor, MAXN};
+    use super::{binomial_sums, halves, taylor_shift, taylor_shift_8, taylor_table, Taylor, MAXN};
     use std::mem::MaybeUninit;
 
     /// xorshift; values of both signs over 2^-30..2^30, one in 16 an exact zero.
@@ -2000,23 +1990,41 @@ mod kernels {
     }
 
     #[test]
-    fn left_half_is_the_loop() {
+    fn halves_are_the_loop() {
+        // left: the first entries of de Casteljau's triangle; right: its last ones, which are
+        // also the left half of the reversed coefficients, reversed (the old way)
         let mut r = Rnd(0x1234_5678_9ABC_DEF1);
         for trial in 0..20000 {
             let n = 1 + trial % 8;
             let a = r.array(); // entries above n must not matter
             let mut w = a;
-            let mut want = [0.0; MAXN + 1];
-            want[0] = w[0];
+            let (mut left, mut right) = ([0.0; MAXN + 1], [0.0; MAXN + 1]);
+            left[0] = w[0];
+            right[n] = w[n];
             for k in 1..=n {
                 for j in 0..=n - k {
                     w[j] = (w[j] + w[j + 1]) * 0.5;
                 }
-                want[k] = w[0];
+                left[k] = w[0];
+                right[n - k] = w[n - k];
             }
+            let mut v: Vec<f64> = (0..=n).rev().map(|j| a[j]).collect();
+            let mut mirrored = vec![0.0; n + 1];
+            mirrored[n] = v[0];
+            for k in 1..=n {
+                for j in 0..=n - k {
+                    v[j] = (v[j] + v[j + 1]) * 0.5;
+                }
+                mirrored[n - k] = v[0];
+            }
+            assert_eq!(bits(&right[..=n]), bits(&mirrored), "degree {n} (reversed)");
             let a9: [f64; 9] = std::array::from_fn(|j| a[j]);
-            assert_eq!(bits(&left_half(&a9, n)[..=n]), bits(&want[..=n]), "degree {n}");
-            assert_eq!(bits(&left_half(&a, n)[..=n]), bits(&want[..=n]), "degree {n} (loop)");
+            let (l9, r9) = halves(&a9, n);
+            assert_eq!(bits(&l9[..=n]), bits(&left[..=n]), "degree {n}");
+            assert_eq!(bits(&r9[..=n]), bits(&right[..=n]), "degree {n}");
+            let (l, rr) = halves(&a, n);
+            assert_eq!(bits(&l[..=n]), bits(&left[..=n]), "degree {n} (loop)");
+            assert_eq!(bits(&rr[..=n]), bits(&right[..=n]), "degree {n} (loop)");
         }
     }
 
