@@ -14,7 +14,13 @@
  *
  * Output: "# horner8_ns H empty_ns E differ D", then per polynomial
  * "FAMILY NS_A NS_B" (medians over the sweeps, the empty region's cost
- * subtracted), then per differing polynomial "# differ INDEX ...". */
+ * subtracted), then per differing polynomial "# differ INDEX ...".
+ *
+ * "roots_ab work A|B|H REPS" (run under valgrind by roots_ab.py
+ * --instructions) only reads the polynomials and solves each REPS times by
+ * one build (H: evaluates the degree-8 Horner unit REPS times per
+ * polynomial instead), printing nothing: the difference between two REPS
+ * counts the work of the solves alone, instruction by instruction. */
 #define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
 #include <stdlib.h>
@@ -38,7 +44,14 @@ typedef struct {
 
 int main(int argc, char **argv)
 {
-    int sweeps = argc > 1 ? atoi(argv[1]) : 15;
+    int work = argc > 3 && strcmp(argv[1], "work") == 0;
+    char which = work ? argv[2][0] : 0;
+    int reps = work ? atoi(argv[3]) : 0;
+    if (work && (reps < 0 || (which != 'A' && which != 'B' && which != 'H'))) {
+        fprintf(stderr, "roots_ab: work A|B|H REPS\n");
+        return 2;
+    }
+    int sweeps = work ? 1 : argc > 1 ? atoi(argv[1]) : 15;
     if (sweeps < 1 || sweeps > MAXSWEEPS) {
         fprintf(stderr, "roots_ab: sweeps must be 1..%d\n", MAXSWEEPS);
         return 2;
@@ -77,6 +90,21 @@ int main(int argc, char **argv)
     if (ps == NULL || n == 0) {
         fprintf(stderr, "roots_ab: no polynomials\n");
         return 2;
+    }
+    if (work) {
+        double hc[9] = {1, -2, 3, -4, 5, -6, 7, -8, 1};
+        for (int r = 0; r < reps; r++)
+            for (size_t i = 0; i < n; i++) {
+                double t = 0;
+                int g = 0, st = 0;
+                if (which == 'H')
+                    t = horner8(hc, 0.7);
+                else
+                    st = which == 'B' ? B_ex(ps[i].c, ps[i].degree, ps[i].tmax, &t, 0, &g)
+                                      : A_ex(ps[i].c, ps[i].degree, ps[i].tmax, &t, 0, &g);
+                sink = t + st;
+            }
+        return 0;
     }
     size_t differ = 0;
     for (size_t i = 0; i < n; i++) {
