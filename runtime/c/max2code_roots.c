@@ -961,11 +961,8 @@ static int clearly_positive(const Point *pt, int n, double w, int dir)
  * positive (q > 0 on the interval: nothing in it), BERN_ONE when every sign
  * of p and q is certain and each changes sign once (so, as with counts 1 and
  * 1 above, exactly one simple root of p and nothing before it but noise),
- * else BERN_UNKNOWN.  *pend gets p(x + w) (the last coefficient) when p's
- * coefficients were formed: always when guess is not NULL; then *guess gets
- * where p's control polygon (the points (x + j w / n, b_j)) first crosses
- * 0, or -1 (a start for speculate_first_root: the polygon tends to the graph
- * as intervals shrink). */
+ * else BERN_UNKNOWN.  *pend gets p(x + w) (the last coefficient) with
+ * BERN_ONE. */
 #define BERN_UNKNOWN 0
 #define BERN_CLEAR 1
 #define BERN_ONE 2
@@ -1026,7 +1023,7 @@ static void binomial_sums(double a[], int n)
 }
 
 static int bernstein_test(const Point *pt, int n, double w, double *pend,
-                          double *guess, BernQ *qb)
+                          BernQ *qb)
 {
     static const double INV_BINOM[MAXN + 1][MAXN + 1] = {
         {1},
@@ -1091,34 +1088,23 @@ static int bernstein_test(const Point *pt, int n, double w, double *pend,
         qb->err = tol;
         qb->even = certain && vq % 2 == 0;
     }
-    int one = certain && vq == 1;
-    if (!one && guess == NULL)
+    /* (an odd count for p means p(x + w) < 0, so q(x + w) < 0 too: q's
+     * count is odd, and qb->even already 0) */
+    if (!(certain && vq == 1))
         return BERN_UNKNOWN;
     COUNT_MADDS(n * (n + 1) / 2);
     binomial_sums(ap, n);
     b = ap;
     *pend = b[n];
-    int vp = 0, jl = 0, cross = -1;
+    int vp = 0;
     last = 0;
     for (int j = 0; j <= n; j++) {
         int s = (b[j] > 0) - (b[j] < 0);
         certain &= fabs(b[j]) > tol;
-        if (s * last < 0) {
-            vp++;
-            if (cross < 0)
-                cross = j;
-        }
-        if (s != 0 && cross < 0) {
-            jl = j;
-        }
+        vp += s * last < 0;
         last = s != 0 ? s : last;
     }
-    if (guess != NULL) /* where the control polygon first crosses 0 */
-        *guess = cross < 0 ? -1
-                           : pt->x + w * ((jl + (cross - jl) * (b[jl] / (b[jl] - b[cross]))) / n);
-    if (qb != NULL) /* an odd count for p: a root is certain, q cannot be cleared */
-        qb->even &= vp % 2 == 0;
-    return one && certain && vp == 1 ? BERN_ONE : BERN_UNKNOWN;
+    return certain && vp == 1 ? BERN_ONE : BERN_UNKNOWN;
 }
 
 /* A point of (a, b) to split at: the midpoint, geometric when the interval
@@ -1289,8 +1275,8 @@ NOINLINE static int bernstein_clear(const BernQ *qb, int n)
  * is certain about the guess: it is trusted only once a Bernstein test on
  * (0, r (1 + 2^-20)] finds exactly one root of p and of q there (then r is
  * the first root, polished as any isolated root).  Measured on the
- * benchmark families (tried where p's control polygon on the window
- * crosses 0): certified guesses on 146 of 250 generic octics, 157 of 250 at
+ * benchmark families (tried, then, where p's control polygon on the window
+ * crossed 0): certified guesses on 146 of 250 generic octics, 157 of 250 at
  * degree 16 and 128 of 250 quartics, against 104, 89 and 107 for Newton
  * from where the control polygon crosses 0 (Newton from far away creeps:
  * a step is about x / n while p ~ x^n, and the window is 17 times the first
@@ -1414,10 +1400,34 @@ static int isolate_first_root(const double p[], int n, double skin,
      * has failed already: cleared_at_once) */
     if (a.vq == 0 || (T != failed_w && clearly_positive(&a, n, T, 1)))
         return CLEARED;
-    double pT;
-    double guess;
+    /* A guess first, then a certificate: the guess (Laguerre from 0) and
+     * one Bernstein test on (0, r (1 + 2^-20)] settle most solves with a
+     * root, which the test on the whole window before them (when it did
+     * not settle the solve itself) only delayed.  Measured (bench/roots_ab.py
+     * --instructions and the timed mode) against the guess after that test,
+     * and only where its control polygon crossed 0: generic octics 0.92 of
+     * the instructions, 0.85 of the time (median), degree 16 0.89 / 0.79,
+     * quartics 0.90 / 0.88; no root in the window 1.02 / 0.95-0.98; windows
+     * the whole-window test would have settled at once pay the failed
+     * guess: collision polynomials 0.93 / 1.2-1.3 (median, the mean 0.94-
+     * 1.01), tmax = inf 0.99 / 1.1 (mean 1.0). */
+    double pT, r, touch;
+    if (speculate_first_root(p, n, T, &r, &touch)) {
+        double w = r + r * 0x1p-20;
+        w = w < T ? w : T;
+        PHASE(1);
+        if (bernstein_test(&a, n, w, &pT, NULL) == BERN_ONE) {
+            double dp[MAXN];
+            derivative(p, n, dp);
+            PHASE(2);
+            *t = refine_root(p, dp, n, 0, w, 1, 0, r);
+            *graze = 0;
+            return ISOLATED;
+        }
+    }
+    PHASE(1);
     BernQ qb;
-    int bern = bernstein_test(&a, n, T, &pT, &guess, &qb);
+    int bern = bernstein_test(&a, n, T, &pT, &qb);
     if (bern == BERN_CLEAR)
         return CLEARED;
     if (bern == BERN_ONE) {
@@ -1426,46 +1436,30 @@ static int isolate_first_root(const double p[], int n, double skin,
         return ISOLATED;
     }
     double from = 0; /* > 0: (0, from] is settled, the counts go on from it */
-    if (guess > 0) { /* a guess, then a certificate */
-        double dp[MAXN], r, touch;
-        derivative(p, n, dp);
-        if (speculate_first_root(p, n, T, &r, &touch)) {
-            double w = r + r * 0x1p-20;
-            w = w < T ? w : T;
+    /* A touch ahead (speculate_first_root): (0, lo] is certified clear
+     * by the Bernstein test (q's coefficients all positive), then the
+     * derivative method settles (lo, hi] -- small, so with few roots of
+     * the derivatives in it -- and the counts go on from hi if it finds
+     * nothing there.  Replaces, on the grazes, the Taylor points that
+     * bisect down to the touch (6.3 a graze) and the derivative method
+     * on the wide interval they leave (measured: bench/roots_ab.py
+     * graze8 median 0.56, mean 0.63 of the time without it; other
+     * families within noise).  hi is 3 widths to the right: from the
+     * middle of a symmetric interval -- the critical point to within
+     * rounding -- the fma noise of p' there sent the derivative method's
+     * safeguarded Newton into bisection, to a neighbour of an exact
+     * double root at 2 (tests/runtime/test_c_runtime.py). */
+    if (touch > 0 && skin >= 0) { /* (not for the no-graze baseline) */
+        double lo = touch - touch * TOUCH_WIDTH, hi = touch + 3 * touch * TOUCH_WIDTH;
+        hi = hi < T ? hi : T;
+        if (bernstein_test(&a, n, lo, &pT, NULL) == BERN_CLEAR) {
+            int hit = derivative_method(p, n, lo, hi, skin, t, graze);
             PHASE(1);
-            if (bernstein_test(&a, n, w, &pT, NULL, NULL) == BERN_ONE) {
-                PHASE(2);
-                *t = refine_root(p, dp, n, 0, w, 1, 0, r);
-                *graze = 0;
+            if (hit)
                 return ISOLATED;
-            }
-        }
-        PHASE(1);
-        /* A touch ahead (speculate_first_root): (0, lo] is certified clear
-         * by the Bernstein test (q's coefficients all positive), then the
-         * derivative method settles (lo, hi] -- small, so with few roots of
-         * the derivatives in it -- and the counts go on from hi if it finds
-         * nothing there.  Replaces, on the grazes, the Taylor points that
-         * bisect down to the touch (6.3 a graze) and the derivative method
-         * on the wide interval they leave (measured: bench/roots_ab.py
-         * graze8 median 0.56, mean 0.63 of the time without it; other
-         * families within noise).  hi is 3 widths to the right: from the
-         * middle of a symmetric interval -- the critical point to within
-         * rounding -- the fma noise of p' there sent the derivative method's
-         * safeguarded Newton into bisection, to a neighbour of an exact
-         * double root at 2 (tests/runtime/test_c_runtime.py). */
-        if (touch > 0 && skin >= 0) { /* (not for the no-graze baseline) */
-            double lo = touch - touch * TOUCH_WIDTH, hi = touch + 3 * touch * TOUCH_WIDTH;
-            hi = hi < T ? hi : T;
-            if (bernstein_test(&a, n, lo, &pT, NULL, NULL) == BERN_CLEAR) {
-                int hit = derivative_method(p, n, lo, hi, skin, t, graze);
-                PHASE(1);
-                if (hit)
-                    return ISOLATED;
-                if (hi == T)
-                    return CLEARED;
-                from = hi;
-            }
+            if (hi == T)
+                return CLEARED;
+            from = hi;
         }
     }
     if (from == 0 && qb.even && bernstein_clear(&qb, n)) /* (after a guess that failed) */
@@ -1504,7 +1498,7 @@ static int isolate_first_root(const double p[], int n, double skin,
          * an odd count, where a root is certain and the test may find it
          * alone (measured: testing even counts too -- grazes, complex pairs
          * -- cost more than it saved); (0, T] had it before the loop */
-        if (odd && !tested && bernstein_test(&a, n, w, &pT, NULL, NULL) == BERN_ONE) {
+        if (odd && !tested && bernstein_test(&a, n, w, &pT, NULL) == BERN_ONE) {
             *t = polish_isolated(p, n, a.x, b->x, a.px, b->px);
             *graze = 0;
             return ISOLATED;

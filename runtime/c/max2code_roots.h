@@ -78,39 +78,40 @@
  *        preparation (which the interval methods then start with that
  *        bound over [0, T], unless T = tmax: the same test).
  *     1. Exclusion and isolation (T <= 2^100), cheapest first:
- *        a. Descartes on (0, T] in the Bernstein basis: the sign changes of
- *           the Bernstein coefficients of p and q on the window (from the
- *           coefficients, by n rounds of running sums; each sign trusted
- *           only beyond an error bound).  q's all positive: no root; one
+ *        a. A guess, then a certificate: Laguerre's method from 0, each step
+ *           to the right (for real roots it converges monotonically to the
+ *           first root after its start, cubically near it; complex roots in
+ *           the way, a double root or no step to the right end the guess);
+ *           once it converges to r, Descartes' rule in the Bernstein basis
+ *           on (0, r (1 + 2^-20)] (the sign changes of the Bernstein
+ *           coefficients of p and q there, from the Taylor coefficients at
+ *           0 by n rounds of running sums, each sign trusted only beyond an
+ *           error bound) must find one change each, which makes r the first
+ *           root (else the guess is dropped).  A touch ahead shows as
+ *           Laguerre's linear convergence (3 step ratios in a row in [0.25,
+ *           0.31]: 0.284 at degree 8 for a double root); the guess then
+ *           goes to the critical point c by Newton on p', and keeps it
+ *           where p(c) is within 2^20 times the rounding bound (see c).
+ *        b. Descartes on (0, T] in the Bernstein basis, the same test on the
+ *           whole window: q's coefficients all positive: no root; one
  *           change each: one simple root of p (with nothing before it but,
  *           possibly, a stretch where p stays within the noise): polished.
- *        b. A guess, then a certificate (where p's control polygon on the
- *           window crosses 0): Laguerre's method from 0, each step to the
- *           right (for real roots it converges monotonically to the first
- *           root after its start, cubically near it; complex roots in the
- *           way, a double root or no step to the right end the guess);
- *           once it converges to r, the test of a on (0, r (1 + 2^-20)]
- *           must find one change each, which makes r the first root (else
- *           the guess is dropped).  A touch ahead shows as Laguerre's
- *           linear convergence (3 step ratios in a row in [0.25, 0.31]:
- *           0.284 at degree 8 for a double root); the guess then goes to
- *           the critical point c by Newton on p', and where p(c) is within
- *           2^20 times the rounding bound and q's Bernstein coefficients on
- *           (0, c (1 - 2^-10)] are all certainly positive (nothing before
- *           it), the derivative method (step 2) settles (c (1 - 2^-10),
- *           c (1 + 3 2^-10)]; if it finds nothing there, d goes on from its
- *           right end.  With the graze check only.
- *        c. Exclusion by halving: when q's signs are certain with an even
- *           count (and p's count is even), the window is halved in the
+ *        c. A touch from a: where q's Bernstein coefficients on (0, c (1 -
+ *           2^-10)] are all certainly positive (nothing before it), the
+ *           derivative method (step 2) settles (c (1 - 2^-10), c (1 +
+ *           3 2^-10)]; if it finds nothing there, e goes on from its right
+ *           end.  With the graze check only.
+ *        d. Exclusion by halving: when q's signs are certain with an even
+ *           count on the window (b), the window is halved in the
  *           Bernstein basis (de Casteljau) until every piece has q's
  *           coefficients all positive -- no root -- or a piece is in doubt
- *           (then on to d).  This is what clears windows with complex roots
+ *           (then on to e).  This is what clears windows with complex roots
  *           close to the axis.
- *        d. Budan-Fourier counts of the roots of p and of q in subintervals
+ *        e. Budan-Fourier counts of the roots of p and of q in subintervals
  *           of (0, T] (sign changes of the Taylor coefficients, each trusted
  *           only beyond its rounding bound; any doubt goes to step 2), plus
  *           a lower bound on q from the Taylor coefficients at an end of the
- *           interval, and test a where a count is odd.  An interval where q
+ *           interval, and test b where a count is odd.  An interval where q
  *           has no root is cleared; one where p and q have exactly one root
  *           each is polished; otherwise the leftmost interval is bisected,
  *           up to 40 times in all and down to 2^-20 relative width.
@@ -119,7 +120,7 @@
  *        pair, which bisection would only approach by halving; it goes to
  *        step 2 at once.  A tangent at a that meets 0 within 2^-20 of a puts
  *        the next split just beyond that, for the same reason.
- *        Only certified signs decide; a, b and c only decide sooner.
+ *        Only certified signs decide; a to d only decide sooner.
  *     2. An interval the counts do not resolve (a double root, a tight
  *        cluster, a sign too close to call) goes to the derivative method,
  *        which handles the whole window when it exceeds 2^100 or when step

@@ -6,16 +6,14 @@
  *
  * Each input line:   N X W PT0 .. PTN QT0 .. QTN TOL0 .. TOLN   (hex floats)
  * Each output line (floats as %a):
- *   ANSWER PEND GUESS [Q0 .. QN ERR EVEN CLEARED] SPECULATED R TOUCH MADDS ANSWER2 PEND2
- * ANSWER, PEND, GUESS: bernstein_test(pt, N, W) with guess and qb; the bracket only unless
- * ANSWER is BERN_CLEAR (qb is not filled then): qb's coefficients, bound and even flag, and
- * bernstein_clear(qb) (whatever qb.even says).  SPECULATED, R, TOUCH, MADDS:
- * speculate_first_root on the polynomial PT with T = X + W when GUESS > 0 (as
- * isolate_first_root tries it), its touch, and the multiply-adds it counts (3 N per Laguerre
- * or Newton-on-p' step, N for the rounding bound at a critical point: its number of steps);
- * else 0 0 0 0.
- * ANSWER2, PEND2: bernstein_test without guess or qb (PEND2 NaN when p's coefficients are
- * not formed).  Built with -DM2C_COUNT for MADDS.
+ *   ANSWER PEND [Q0 .. QN ERR EVEN CLEARED] SPECULATED R TOUCH MADDS ANSWER2 PEND2
+ * ANSWER, PEND: bernstein_test(pt, N, W) with qb (PEND NaN when p's coefficients are not
+ * formed); the bracket only unless ANSWER is BERN_CLEAR (qb is not filled then): qb's
+ * coefficients, bound and even flag, and bernstein_clear(qb) (whatever qb.even says).
+ * SPECULATED, R, TOUCH, MADDS: speculate_first_root on the polynomial PT with T = X + W, its
+ * touch, and the multiply-adds it counts (3 N per Laguerre or Newton-on-p' step, N for the
+ * rounding bound at a critical point: its number of steps).
+ * ANSWER2, PEND2: bernstein_test without qb.  Built with -DM2C_COUNT for MADDS.
  */
 #include "max2code_roots.c"
 
@@ -49,25 +47,21 @@ int main(void)
             pt.qt[k] = next(&p);
         for (int k = 0; k <= n; k++)
             pt.tol[k] = next(&p);
-        double pend = NAN, guess = NAN;
+        double pend = NAN;
         BernQ qb;
-        int answer = bernstein_test(&pt, n, w, &pend, &guess, &qb);
-        printf("%d %a %a", answer, pend, guess);
+        int answer = bernstein_test(&pt, n, w, &pend, &qb);
+        printf("%d %a", answer, pend);
         if (answer != BERN_CLEAR) {
             for (int j = 0; j <= n; j++)
                 printf(" %a", qb.b[j]);
             printf(" %a %d %d", qb.err, qb.even != 0, bernstein_clear(&qb, n));
         }
-        double r = 0, touch = 0, madds = 0;
-        int speculated = 0;
-        if (guess > 0) {
-            double before = m2c_count[2];
-            speculated = speculate_first_root(pt.pt, n, pt.x + w, &r, &touch);
-            madds = m2c_count[2] - before;
-        }
+        double r = 0, touch = 0, before = m2c_count[2];
+        int speculated = speculate_first_root(pt.pt, n, pt.x + w, &r, &touch);
+        double madds = m2c_count[2] - before;
         printf(" %d %a %a %.0f", speculated, speculated ? r : 0.0, touch, madds);
         double pend2 = NAN;
-        int answer2 = bernstein_test(&pt, n, w, &pend2, NULL, NULL);
+        int answer2 = bernstein_test(&pt, n, w, &pend2, NULL);
         printf(" %d %a\n", answer2, pend2);
     }
     return 0;

@@ -552,8 +552,8 @@ def _binomial_sums(a: list[float], n: int) -> None:
 
 class _BernQ(NamedTuple):
     """C BernQ: q's Bernstein coefficients on the tested interval, the bound on their errors,
-    and whether q's signs are certain with an even count (and p's count even too): only then
-    can bernstein_clear show q > 0 there."""
+    and whether q's signs are certain with an even count: only then can bernstein_clear show
+    q > 0 there."""
     b: tuple[float, ...]
     err: float
     even: bool
@@ -561,19 +561,17 @@ class _BernQ(NamedTuple):
 
 class _Bernstein(NamedTuple):
     """What C bernstein_test finds: its answer, p(x + w) (NaN when p's coefficients were not
-    formed), where p's control polygon first crosses 0 (-1 if it does not; NaN when not asked)
-    and q's coefficients (None unless asked, or when the answer is BERN_CLEAR)."""
+    formed) and q's coefficients (None unless asked, or when the answer is BERN_CLEAR)."""
     answer: int
     pend: float
-    guess: float
     q: _BernQ | None
 
 
-def _bernstein_test(pt: _Point, n: int, w: float, explore: bool) -> _Bernstein:
+def _bernstein_test(pt: _Point, n: int, w: float, keep: bool) -> _Bernstein:
     """Descartes' rule on the Bernstein coefficients of q, then p, on [x, x + w] (C
-    bernstein_test, which says why).  explore is C's call with guess and qb (the test of (0, T]
-    before the Taylor table): p's coefficients are then always formed, for the guess, and q's
-    are kept for bernstein_clear; otherwise p's only when q's count is certainly 1."""
+    bernstein_test, which says why).  keep is C's call with qb (the test of (0, T] before the
+    Taylor table): q's coefficients are kept for bernstein_clear.  p's are formed only when
+    q's count is certainly 1."""
     inv = INV_BINOM[n]
     ap = [0.0] * (n + 1)
     aq = [0.0] * (n + 1)
@@ -589,34 +587,20 @@ def _bernstein_test(pt: _Point, n: int, w: float, explore: bool) -> _Bernstein:
     _binomial_sums(aq, n)
     certain, vq, clear = _bernstein_signs(aq, tol)
     if clear and certain:
-        return _Bernstein(BERN_CLEAR, math.nan, math.nan, None)
-    even = certain and vq % 2 == 0
-    one = certain and vq == 1
-    if not one and not explore:
-        return _Bernstein(BERN_UNKNOWN, math.nan, math.nan, None)
+        return _Bernstein(BERN_CLEAR, math.nan, None)
+    q = _BernQ(tuple(aq), tol, certain and vq % 2 == 0) if keep else None
+    # (an odd count for p means p(x + w) < 0, so q(x + w) < 0 too: q's count is odd, and
+    # q.even already false)
+    if not (certain and vq == 1):
+        return _Bernstein(BERN_UNKNOWN, math.nan, q)
     _binomial_sums(ap, n)
-    b = ap
-    # p's signs: zeros skipped (unlike q's); jl is the last nonzero entry before the first
-    # sign change, at cross
-    vp, jl, cross, last = 0, 0, -1, 0
-    for j in range(n + 1):
-        v = b[j]
+    vp, last = 0, 0  # p's sign changes, zeros skipped (unlike q's)
+    for v in ap:
         s = (v > 0) - (v < 0)
         certain = certain and abs(v) > tol
-        if s * last < 0:
-            vp += 1
-            if cross < 0:
-                cross = j
-        if s != 0 and cross < 0:
-            jl = j
+        vp += s * last < 0
         last = s if s != 0 else last
-    answer = BERN_ONE if one and certain and vp == 1 else BERN_UNKNOWN
-    if not explore:
-        return _Bernstein(answer, b[n], math.nan, None)
-    guess = -1.0
-    if cross >= 0:  # where the control polygon (x + j w / n, b_j) first crosses 0
-        guess = pt.x + w * ((jl + (cross - jl) * _div(b[jl], b[jl] - b[cross])) / n)
-    return _Bernstein(answer, b[n], guess, _BernQ(tuple(aq), tol, even and vp % 2 == 0))
+    return _Bernstein(BERN_ONE if certain and vp == 1 else BERN_UNKNOWN, ap[n], q)
 
 
 def _bernstein_signs(b: Sequence[float], tol: float) -> tuple[bool, int, bool]:
@@ -827,6 +811,16 @@ def _isolate_first_root(p: Sequence[float], n: int, skin: float, T: float, faile
     # Descartes, or q(0) beats every negative term (unless that very test failed already)
     if a.vq == 0 or (T != failed_w and _clearly_positive(a, n, T, 1)):
         return _CLEARED
+    # A guess first, then a certificate: the guess (Laguerre from 0) and one Bernstein test on
+    # (0, r (1 + 2^-20)] settle most solves with a root, which the test on the whole window
+    # before them only delayed (measured: see the C source).
+    guess = _speculate_first_root(p, n, T)
+    r = guess.root
+    if r is not None:
+        w = r + r * SPECULATE_MARGIN
+        w = w if w < T else T
+        if _bernstein_test(a, n, w, False).answer == BERN_ONE:
+            return _refine_root(p, _derivative(p, n), n, 0.0, w, 1, 0.0, r), False
     start = _bernstein_test(a, n, T, True)
     if start.answer == BERN_CLEAR:
         return _CLEARED
@@ -835,33 +829,24 @@ def _isolate_first_root(p: Sequence[float], n: int, skin: float, T: float, faile
     q = start.q
     assert q is not None  # (asked for, and not cleared)
     frm = 0.0  # > 0: (0, frm] is settled, the counts go on from it (C's `from`)
-    if start.guess > 0:  # a guess, then a certificate
-        dp = _derivative(p, n)
-        guess = _speculate_first_root(p, n, T)
-        r = guess.root
-        if r is not None:
-            w = r + r * SPECULATE_MARGIN
-            w = w if w < T else T
-            if _bernstein_test(a, n, w, False).answer == BERN_ONE:
-                return _refine_root(p, dp, n, 0.0, w, 1, 0.0, r), False
-        # A touch ahead, with the graze check only: (0, lo] certified clear by the Bernstein
-        # test, then the derivative method on (lo, hi] -- small, so few roots of the
-        # derivatives in it -- instead of Taylor points bisecting down to the touch; the
-        # counts go on from hi if it finds nothing.  hi is 3 widths to the right: from the
-        # middle of a symmetric interval the fma noise of p' at the critical point sent the
-        # derivative method's Newton into bisection (see the C source).
-        touch = guess.touch
-        if touch > 0 and skin >= 0:
-            lo = touch - touch * TOUCH_WIDTH
-            hi = touch + 3 * touch * TOUCH_WIDTH
-            hi = hi if hi < T else T
-            if _bernstein_test(a, n, lo, False).answer == BERN_CLEAR:
-                hit = _derivative_method(p, n, lo, hi, skin)
-                if hit is not None:
-                    return hit
-                if hi == T:
-                    return _CLEARED
-                frm = hi
+    # A touch ahead, with the graze check only: (0, lo] certified clear by the Bernstein test,
+    # then the derivative method on (lo, hi] -- small, so few roots of the derivatives in it
+    # -- instead of Taylor points bisecting down to the touch; the counts go on from hi if it
+    # finds nothing.  hi is 3 widths to the right: from the middle of a symmetric interval the
+    # fma noise of p' at the critical point sent the derivative method's Newton into
+    # bisection (see the C source).
+    touch = guess.touch
+    if touch > 0 and skin >= 0:
+        lo = touch - touch * TOUCH_WIDTH
+        hi = touch + 3 * touch * TOUCH_WIDTH
+        hi = hi if hi < T else T
+        if _bernstein_test(a, n, lo, False).answer == BERN_CLEAR:
+            hit = _derivative_method(p, n, lo, hi, skin)
+            if hit is not None:
+                return hit
+            if hi == T:
+                return _CLEARED
+            frm = hi
     if frm == 0 and q.even and _bernstein_clear(q, n):  # (after a guess that failed)
         return _CLEARED
     tk = [[BINOM[k][j] * p[j + k] if j + k <= n else 0.0 for j in range(n + 1)] for k in range(n + 1)]

@@ -934,13 +934,10 @@ enum Bernstein {
     Unknown,
 }
 
-/// What the test on (0, T] reports besides its verdict (C's `guess` and `qb` arguments):
-/// where p's control polygon first crosses 0 (-1: nowhere; as in C, only whether it crosses
-/// is used now: it decides whether to speculate, from 0), q's Bernstein coefficients
-/// (entries 0..=n), the bound on their errors, and whether their signs are certain with an
-/// even number of changes and p's count is even too (then `bernstein_clear` may clear q).
+/// What the test on (0, T] reports besides its verdict (C's `qb` argument): q's Bernstein
+/// coefficients (entries 0..=n), the bound on their errors, and whether their signs are
+/// certain with an even number of changes (then `bernstein_clear` may clear q).
 struct Start {
-    guess: f64,
     q: [f64; MAXN + 1],
     err: f64,
     even: bool,
@@ -1008,58 +1005,35 @@ fn bernstein_test(pt: &Point, n: usize, w: f64, start: Option<&mut Start>) -> Be
     if clear && certain {
         return Bernstein::Clear;
     }
-    let one = certain && vq == 1;
-    let Some(start) = start else {
-        if !one {
-            return Bernstein::Unknown;
+    if let Some(start) = start {
+        if n <= 8 {
+            start.q[..9].copy_from_slice(&b[..9]); // (constant size: no memcpy call)
+        } else {
+            start.q = *b;
         }
-        return p_count(&mut ap, n, tol, certain, one).0;
-    };
-    if n <= 8 {
-        start.q[..9].copy_from_slice(&b[..9]); // (constant size: no memcpy call)
-    } else {
-        start.q = *b;
+        start.err = tol;
+        start.even = certain && vq % 2 == 0;
     }
-    start.err = tol;
-    start.even = certain && vq % 2 == 0;
-    let (verdict, vp, jl, cross) = p_count(&mut ap, n, tol, certain, one);
-    // where the control polygon first crosses 0
-    start.guess = if cross < 0 {
-        -1.0
-    } else {
-        let (jl, cross) = (jl as usize, cross as usize);
-        pt.x + w * ((jl as f64 + (cross - jl) as f64 * (ap[jl] / (ap[jl] - ap[cross]))) / n as f64)
-    };
-    // an odd count for p: a root is certain, q cannot be cleared
-    start.even &= vp % 2 == 0;
-    verdict
-}
-
-/// The second half of `bernstein_test`: p's Bernstein coefficients (formed in `ap`, in
-/// place), the verdict, p's sign changes, and (as C's `jl` and `cross`) the last nonzero
-/// coefficient before the first sign change and where that change is (-1: none).
-#[inline(always)]
-fn p_count(ap: &mut [f64; MAXN + 1], n: usize, tol: f64, mut certain: bool, one: bool) -> (Bernstein, i32, i32, i32) {
+    // (an odd count for p means p(x + w) < 0, so q(x + w) < 0 too: q's count is odd, and
+    // start.even already false)
+    if !(certain && vq == 1) {
+        return Bernstein::Unknown;
+    }
     count::madds(n * (n + 1) / 2);
-    binomial_sums(ap, n);
+    binomial_sums(&mut ap, n);
     let pend = ap[n];
-    let (mut vp, mut jl, mut cross, mut last) = (0, 0, -1, 0);
-    for (j, &bj) in ap[..=n].iter().enumerate() {
+    let (mut vp, mut last) = (0, 0);
+    for &bj in &ap[..=n] {
         let s = i32::from(bj > 0.0) - i32::from(bj < 0.0);
         certain &= bj.abs() > tol;
-        if s * last < 0 {
-            vp += 1;
-            if cross < 0 {
-                cross = j as i32;
-            }
-        }
-        if s != 0 && cross < 0 {
-            jl = j as i32;
-        }
+        vp += i32::from(s * last < 0);
         last = if s != 0 { s } else { last };
     }
-    let verdict = if one && certain && vp == 1 { Bernstein::One(pend) } else { Bernstein::Unknown };
-    (verdict, vp, jl, cross)
+    if certain && vp == 1 {
+        Bernstein::One(pend)
+    } else {
+        Bernstein::Unknown
+    }
 }
 
 /// C `halves`: the Bernstein coefficients of both halves of the interval (de Casteljau at 1/2,
@@ -1350,55 +1324,55 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64, failed_w: f64)
     if a.vq == 0 || (t_end != failed_w && clearly_positive(a, n, t_end, 1)) {
         return Isolation::Cleared;
     }
-    let mut start = Start { guess: -1.0, q: [0.0; MAXN + 1], err: 0.0, even: false };
+    // A guess first, then a certificate: the guess (Laguerre from 0) and one Bernstein test on
+    // (0, r (1 + 2^-20)] settle most solves with a root, which the test on the whole window
+    // before them only delayed (measured: see the C source).
+    let mut touch = 0.0;
+    match speculate_first_root(p, n, t_end) {
+        Guess::Root(r) => {
+            let w = r + r * SPECULATE_MARGIN;
+            let w = if w < t_end { w } else { t_end };
+            count::phase(1);
+            if let Bernstein::One(_) = bernstein_test(a, n, w, None) {
+                let dp = derivative(p, n);
+                count::phase(2);
+                return Isolation::Isolated(refine_root(p, &dp, n, 0.0, w, 1, 0.0, r), false);
+            }
+        }
+        Guess::Touch(x) => touch = x,
+        Guess::Nothing => {}
+    }
+    count::phase(1);
+    let mut start = Start { q: [0.0; MAXN + 1], err: 0.0, even: false };
     match bernstein_test(a, n, t_end, Some(&mut start)) {
         Bernstein::Clear => return Isolation::Cleared,
         Bernstein::One(p_end) => return Isolation::Isolated(polish_isolated(p, n, 0.0, t_end, a.px, p_end), false),
         Bernstein::Unknown => {}
     }
     let mut from = 0.0; // > 0: (0, from] is settled, the counts go on from it
-    if start.guess > 0.0 {
-        // a guess, then a certificate
-        let dp = derivative(p, n);
-        let mut touch = 0.0;
-        match speculate_first_root(p, n, t_end) {
-            Guess::Root(r) => {
-                let w = r + r * SPECULATE_MARGIN;
-                let w = if w < t_end { w } else { t_end };
-                count::phase(1);
-                if let Bernstein::One(_) = bernstein_test(a, n, w, None) {
-                    count::phase(2);
-                    return Isolation::Isolated(refine_root(p, &dp, n, 0.0, w, 1, 0.0, r), false);
-                }
+    // A touch ahead: (0, lo] certified clear by the Bernstein test (q's coefficients all
+    // positive), then the derivative method settles (lo, hi] -- small, so with few roots of
+    // the derivatives in it -- and the counts go on from hi if it finds nothing there.  This
+    // replaces, on the grazes, the Taylor points that bisect down to the touch and the
+    // derivative method on the wide interval they leave.  hi is 3 widths to the right: from
+    // the middle of a symmetric interval (the critical point to within rounding) the fma
+    // noise of p' there sent the derivative method's Newton into bisection, to a neighbour of
+    // an exact double root (see the C source).  Not for the no-graze baseline (skin < 0),
+    // whose answers stay as they were.
+    if touch > 0.0 && skin >= 0.0 {
+        let lo = touch - touch * TOUCH_WIDTH;
+        let hi = touch + 3.0 * touch * TOUCH_WIDTH;
+        let hi = if hi < t_end { hi } else { t_end };
+        if let Bernstein::Clear = bernstein_test(a, n, lo, None) {
+            let hit = derivative_method(p, n, lo, hi, skin);
+            count::phase(1);
+            if let Some((t, g)) = hit {
+                return Isolation::Isolated(t, g);
             }
-            Guess::Touch(x) => touch = x,
-            Guess::Nothing => {}
-        }
-        count::phase(1);
-        // A touch ahead: (0, lo] certified clear by the Bernstein test (q's coefficients all
-        // positive), then the derivative method settles (lo, hi] -- small, so with few roots of
-        // the derivatives in it -- and the counts go on from hi if it finds nothing there.
-        // This replaces, on the grazes, the Taylor points that bisect down to the touch and
-        // the derivative method on the wide interval they leave.  hi is 3 widths to the right:
-        // from the middle of a symmetric interval (the critical point to within rounding) the
-        // fma noise of p' there sent the derivative method's Newton into bisection, to a
-        // neighbour of an exact double root (see the C source).  Not for the no-graze
-        // baseline (skin < 0), whose answers stay as they were.
-        if touch > 0.0 && skin >= 0.0 {
-            let lo = touch - touch * TOUCH_WIDTH;
-            let hi = touch + 3.0 * touch * TOUCH_WIDTH;
-            let hi = if hi < t_end { hi } else { t_end };
-            if let Bernstein::Clear = bernstein_test(a, n, lo, None) {
-                let hit = derivative_method(p, n, lo, hi, skin);
-                count::phase(1);
-                if let Some((t, g)) = hit {
-                    return Isolation::Isolated(t, g);
-                }
-                if hi == t_end {
-                    return Isolation::Cleared;
-                }
-                from = hi;
+            if hi == t_end {
+                return Isolation::Cleared;
             }
+            from = hi;
         }
     }
     if from == 0.0 && start.even && bernstein_clear(&start.q, start.err, n) {
