@@ -1403,14 +1403,17 @@ static int isolate_first_root(const double p[], int n, double skin,
     /* A guess first, then a certificate: the guess (Laguerre from 0) and
      * one Bernstein test on (0, r (1 + 2^-20)] settle most solves with a
      * root, which the test on the whole window before them (when it did
-     * not settle the solve itself) only delayed.  Measured (bench/roots_ab.py
-     * --instructions and the timed mode) against the guess after that test,
-     * and only where its control polygon crossed 0: generic octics 0.92 of
-     * the instructions, 0.85 of the time (median), degree 16 0.89 / 0.79,
-     * quartics 0.90 / 0.88; no root in the window 1.02 / 0.95-0.98; windows
-     * the whole-window test would have settled at once pay the failed
-     * guess: collision polynomials 0.93 / 1.2-1.3 (median, the mean 0.94-
-     * 1.01), tmax = inf 0.99 / 1.1 (mean 1.0). */
+     * not settle the solve itself) only delayed; and that test no longer
+     * forms p's coefficients for the control polygon, whose crossing was
+     * the guess's gate.  Measured against both (bench/roots_ab.py
+     * --instructions, and timed --sweeps 11, median / mean): generic
+     * octics 0.90 of the instructions, 0.87 / 0.91 of the time; quartics
+     * 0.88, 0.90 / 0.92; degree 16 0.85, 0.79 / 0.89; no root in the
+     * window 0.98, 0.97 / 0.96; tmax = inf 0.95, 1.03 / 0.93; collision
+     * polynomials 0.92, 1.33 / 1.00 -- that median lies between the
+     * family's two modes (solves settled at 0, and the rest at 0.8-1.0),
+     * where the windows the whole-window test would have settled at once
+     * pay the failed guess. */
     double pT, r, touch;
     if (speculate_first_root(p, n, T, &r, &touch)) {
         double w = r + r * 0x1p-20;
