@@ -349,12 +349,18 @@ def _value_and_slope(P: Sequence[float], D: Sequence[float], m: int, x: float, k
     return (_horner_compensated(P, m, x) if precise else f), df, sz
 
 
+# C PRECISE_NOW: _refine_root's tol for an x0 already converged (the guess's Laguerre iterate):
+# full accuracy, precise from the first step
+PRECISE_NOW = -1.0
+
+
 def _refine_root(P: Sequence[float], D: Sequence[float], m: int, lo: float, hi: float, slo: int,
                  tol: float, x0: float) -> float:
     x = x0
     step = step_old = hi - lo
-    precise = False
-    stop = tol if tol > 0 else PRECISE_FROM
+    precise = tol < 0  # PRECISE_NOW: x0 converged, precise from the first step
+    tol = 0.0 if tol < 0 else tol
+    stop = tol if tol > 0 else 2 * U if precise else PRECISE_FROM
     for it in range(MAX_ITER):
         k = _scale_exponent(x, m)
         f, df, size = _value_and_slope(P, D, m, x, k, precise)
@@ -820,7 +826,7 @@ def _isolate_first_root(p: Sequence[float], n: int, skin: float, T: float, faile
         w = r + r * SPECULATE_MARGIN
         w = w if w < T else T
         if _bernstein_test(a, n, w, False).answer == BERN_ONE:
-            return _refine_root(p, _derivative(p, n), n, 0.0, w, 1, 0.0, r), False
+            return _refine_root(p, _derivative(p, n), n, 0.0, w, 1, PRECISE_NOW, r), False
     start = _bernstein_test(a, n, T, True)
     if start.answer == BERN_CLEAR:
         return _CLEARED

@@ -527,13 +527,24 @@ fn value_and_slope(p: &[f64], d: &[f64], m: usize, x: f64, k: i32, precise: bool
     (if precise { horner_compensated(p, m, x) } else { f }, df, sz)
 }
 
+/// C `PRECISE_NOW`: `refine_root`'s tol for an x0 already converged (the guess's Laguerre
+/// iterate): full accuracy, precise from the first step.
+const PRECISE_NOW: f64 = -1.0;
+
 #[allow(clippy::too_many_arguments)]
 fn refine_root(p: &[f64], d: &[f64], m: usize, mut lo: f64, mut hi: f64, slo: i32, tol: f64, x0: f64) -> f64 {
     let mut x = x0;
     let mut step = hi - lo;
     let mut step_old = step;
-    let mut precise = false;
-    let mut stop = if tol > 0.0 { tol } else { PRECISE_FROM };
+    let mut precise = tol < 0.0; // PRECISE_NOW: x0 converged, precise from the first step
+    let tol = if tol < 0.0 { 0.0 } else { tol };
+    let mut stop = if tol > 0.0 {
+        tol
+    } else if precise {
+        2.0 * U
+    } else {
+        PRECISE_FROM
+    };
     for it in 0..MAX_ITER {
         count::event(if precise { 5 } else { 4 });
         let k = scale_exponent(x, m);
@@ -1336,7 +1347,7 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64, failed_w: f64)
             if let Bernstein::One(_) = bernstein_test(a, n, w, None) {
                 let dp = derivative(p, n);
                 count::phase(2);
-                return Isolation::Isolated(refine_root(p, &dp, n, 0.0, w, 1, 0.0, r), false);
+                return Isolation::Isolated(refine_root(p, &dp, n, 0.0, w, 1, PRECISE_NOW, r), false);
             }
         }
         Guess::Touch(x) => touch = x,
