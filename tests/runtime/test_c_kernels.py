@@ -134,6 +134,12 @@ int main(void)
         CHECK(sc.emax == hi && sc.emin == lo && sc.changes == changes,
               "load_coefficients scan n=%d: %d %d %d, want %d %d %d\n", n, sc.emax,
               sc.emin, sc.changes, hi, lo, changes);
+        /* the copy and the exponents, whichever of its loops ran (no zero among them:
+         * the loop for normal numbers; else load_any) */
+        for (int i = 0; i <= n; i++)
+            CHECK(memcmp(&cp[i], &p[i], sizeof(double)) == 0 && nz[i] == (p[i] != 0) &&
+                      e[i] == (p[i] != 0 ? ilogb(p[i]) : 0),
+                  "load_coefficients n=%d i=%d: e %d nz %d\n", n, i, e[i], nz[i]);
         int want = INT_MIN;
         for (int i = 0; i < n; i++) {
             if (p[i] == 0)
@@ -155,6 +161,16 @@ int main(void)
     c[1] = 0x1p-1070; /* subnormal */
     Scan sc = load_coefficients(c, 2, out, e, nz);
     CHECK(sc.finite && e[1] == -1070 && nz[1] && sc.emin == -1070, "subnormal exponent\n");
+    /* the extremes of the normal range take the loop for normal numbers, and stay finite */
+    c[0] = DBL_MIN;
+    c[1] = -DBL_MAX;
+    c[2] = DBL_TRUE_MIN;
+    sc = load_coefficients(c, 1, out, e, nz);
+    CHECK(sc.finite && sc.emin == -1022 && sc.emax == 1023 && sc.changes == 1,
+          "normal extremes: %d %d %d %d\n", sc.finite, sc.emin, sc.emax, sc.changes);
+    sc = load_coefficients(c, 2, out, e, nz);
+    CHECK(sc.finite && sc.emin == -1074 && sc.emax == 1023 && sc.changes == 2 && e[2] == -1074,
+          "smallest subnormal: %d %d %d %d\n", sc.finite, sc.emin, sc.emax, sc.changes);
     printf("%d differences\n", bad);
     return bad != 0;
 }
