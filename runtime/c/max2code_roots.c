@@ -2407,14 +2407,18 @@ static int solve(const double c_in[], int degree, double tmax, int method,
      * fails, the window [0, tmax] it failed on (0: not tried), which the
      * default method then does not test again */
     double failed_w = 0;
+    int cleared = -1;
     if (eps == 0 && tmax < INFINITY && c[0] != 0 && degree >= 3 &&
         (method == M2C_METHOD_INTERVAL || method == M2C_METHOD_INTERVAL_NOGRAZE)) {
-        int cleared = cleared_at_once(c, e, nz, degree, tmax, sc);
+        cleared = cleared_at_once(c, e, nz, degree, tmax, sc);
         if (cleared > 0)
             return 0;
         failed_w = cleared == 0 && method == M2C_METHOD_INTERVAL ? tmax : 0;
     }
-    int n = reduce(c, e, nz, degree, tmax);
+    /* (a test step 0b ran -- only where c_n, c_0 != 0 and leading_far shows
+     * the leading term far from negligible over [0, tmax] -- means reduce
+     * would drop nothing: the same checks, not repeated) */
+    int n = cleared == 0 ? degree : reduce(c, e, nz, degree, tmax);
     if (n <= 0)
         return 0;
     double root = 0;

@@ -120,13 +120,16 @@ def _solve_python(cc: list[float], tmax: float, method: str, eps: float) -> tupl
     # Step 0b: the window's first exclusion test, before the preparation; where it fails, the
     # window [0, tmax] it failed on (0: not tried), which the default method does not test again
     failed_w = 0.0
+    cleared = -1
     if (eps == 0 and tmax < math.inf and c[0] != 0 and degree >= 3
             and method in ("interval", "interval-nograze")):
         cleared = solver.cleared_at_once(c, degree, tmax)
         if cleared > 0:
             return 0, math.nan, False
         failed_w = tmax if cleared == 0 and method == "interval" else 0.0
-    n = solver.reduce(c, degree, tmax)
+    # (a test step 0b ran -- only where c_n, c_0 != 0 and the exponents show the leading term
+    # far from negligible over [0, tmax] -- means reduce would drop nothing: not repeated)
+    n = degree if cleared == 0 else solver.reduce(c, degree, tmax)
     if n <= 0:
         return 0, math.nan, False
     _, _, spread, emax = solver.exponents(c, n)

@@ -182,14 +182,17 @@ fn solve(coef: &[f64], tmax: f64, method: Method, eps: f64) -> Status {
     // window [0, tmax] it failed on (0: not tried), which the default method then does not
     // test again (the no-graze method's test at 0 has no noise envelope: not the same test)
     let mut failed_w = 0.0;
+    let mut cleared = None;
     if eps == 0.0 && tmax < f64::INFINITY && c[0] != 0.0 && degree >= 3 && matches!(method, Method::Interval | Method::IntervalNoGraze) {
-        let cleared = solver::cleared_at_once(&c, &e, &nz, degree, tmax, sc);
+        cleared = solver::cleared_at_once(&c, &e, &nz, degree, tmax, sc);
         if cleared == Some(true) {
             return Status::NoRoot;
         }
         failed_w = if cleared == Some(false) && method == Method::Interval { tmax } else { 0.0 };
     }
-    let n = solver::reduce(&mut c, &mut e, &mut nz, degree, tmax);
+    // (a test step 0b ran -- only where c_n, c_0 != 0 and leading_far shows the leading term
+    // far from negligible over [0, tmax] -- means reduce would drop nothing: not repeated)
+    let n = if cleared == Some(false) { degree as i32 } else { solver::reduce(&mut c, &mut e, &mut nz, degree, tmax) };
     if n <= 0 {
         return Status::NoRoot;
     }
