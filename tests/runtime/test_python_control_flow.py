@@ -228,7 +228,7 @@ def test_pure_python_takes_c_path(counts_driver: Path, monkeypatch: pytest.Monke
 def test_failed_first_test_not_repeated(monkeypatch: pytest.MonkeyPatch) -> None:
     """Where step 0b's exclusion test (cleared_at_once) has failed on [0, tmax] and the window
     is still tmax (T = failed_w), _isolate_first_root's first test would be the same one on
-    the same bits: C skips it and goes on to the Bernstein test (max2code_roots.h, step 0).  C
+    the same bits: C skips it and goes on to the guess (max2code_roots.h, step 0).  C
     does not count these tests, and a repeat fails again, so answers and the events compared
     above are the same either way (a port without the skip passed that test): here no
     _bounds_positive call between step 0b and the solve's first Bernstein test may have step
