@@ -100,10 +100,15 @@ def build(base: str, work: Path) -> Path:
     return exe
 
 
+def input_lines(polys: list[tuple[str, tuple[float, ...], float]]) -> list[str]:
+    """The harness's input: FAMILY TMAX DEGREE C0 .. CN, a line per polynomial (hex floats)."""
+    return [" ".join([f, t.hex(), str(len(c) - 1), *(x.hex() for x in c)]) for f, c, t in polys]
+
+
 def run(exe: Path, polys: list[tuple[str, tuple[float, ...], float]], sweeps: int
         ) -> tuple[float, list[str], list[tuple[str, float, float]]]:
     """(Horner unit in ns, the differing-answer lines, per polynomial (family, ns A, ns B))."""
-    lines = [" ".join([f, t.hex(), str(len(c) - 1), *(x.hex() for x in c)]) for f, c, t in polys]
+    lines = input_lines(polys)
     r = subprocess.run([str(exe), str(sweeps)], input="\n".join(lines) + "\n",
                        capture_output=True, text=True)
     if r.returncode != 0:
@@ -120,11 +125,9 @@ def run(exe: Path, polys: list[tuple[str, tuple[float, ...], float]], sweeps: in
     return unit, differ, rows
 
 
-def valgrind_counts(exe: Path, lines: list[str], which: str, reps: int) -> tuple[int, int]:
+def valgrind_counts(valgrind: str, exe: Path, lines: list[str], which: str, reps: int
+                    ) -> tuple[int, int]:
     """(instructions, simulated branch mispredicts) of one run of the harness's work mode."""
-    valgrind = shutil.which("valgrind")
-    if valgrind is None:
-        sys.exit("roots_ab: --instructions needs valgrind (run 'make setup')")
     r = subprocess.run([valgrind, "--tool=cachegrind", "--cache-sim=no", "--branch-sim=yes",
                         "--cachegrind-out-file=/dev/null", str(exe), "work", which, str(reps)],
                        input="\n".join(lines) + "\n", capture_output=True, text=True)
@@ -142,23 +145,24 @@ def valgrind_counts(exe: Path, lines: list[str], which: str, reps: int) -> tuple
     return found["I"], found["M"]
 
 
-def instructions(exe: Path, polys: list[tuple[str, tuple[float, ...], float]], reps: int
-                 ) -> tuple[float, dict[str, dict[str, tuple[float, float]]]]:
+def instructions(valgrind: str, exe: Path, polys: list[tuple[str, tuple[float, ...], float]],
+                 reps: int) -> tuple[float, dict[str, dict[str, tuple[float, float]]]]:
     """(instructions of one degree-8 Horner evaluation, {family: {"A"/"B": (instructions,
     mispredicts) per solve}}): each count is a run solving every polynomial `reps` times less
-    one solving it 0 times, over reps times the polynomials."""
-    def per_solve(lines: list[str], which: str) -> tuple[float, float]:
-        i1, m1 = valgrind_counts(exe, lines, which, reps)
-        i0, m0 = valgrind_counts(exe, lines, which, 0)
-        return (i1 - i0) / (reps * len(lines)), (m1 - m0) / (reps * len(lines))
+    one solving it 0 times (reading the input only: the same run whichever build, so made once
+    per family), over reps times the polynomials."""
     out: dict[str, dict[str, tuple[float, float]]] = {}
     unit = math.nan
     for fam in dict.fromkeys(f for f, _, _ in polys):
-        lines = [" ".join([f, t.hex(), str(len(c) - 1), *(x.hex() for x in c)])
-                 for f, c, t in polys if f == fam]
-        out[fam] = {which: per_solve(lines, which) for which in "AB"}
+        lines = input_lines([p for p in polys if p[0] == fam])
+        i0, m0 = valgrind_counts(valgrind, exe, lines, "A", 0)
+
+        def per_solve(which: str) -> tuple[float, float]:
+            i1, m1 = valgrind_counts(valgrind, exe, lines, which, reps)
+            return (i1 - i0) / (reps * len(lines)), (m1 - m0) / (reps * len(lines))
+        out[fam] = {which: per_solve(which) for which in "AB"}
         if math.isnan(unit):
-            unit = per_solve(lines, "H")[0]
+            unit = per_solve("H")[0]
     return unit, out
 
 
@@ -213,13 +217,15 @@ def main(argv: list[str] | None = None) -> int:
     if not 1 <= args.sweeps <= 101 or args.count < 1 or args.reps < 1:
         ap.error("--sweeps must be 1..101, --count and --reps positive")
     polys = [p for p in roots.polynomials(args.count) if p[0] in fams]
-    if args.instructions and shutil.which("valgrind") is None:
+    valgrind = shutil.which("valgrind")
+    if args.instructions and valgrind is None:
         sys.exit("roots_ab: --instructions needs valgrind (run 'make setup')")
     command = "python bench/roots_ab.py " + " ".join(argv if argv is not None else sys.argv[1:])
     with tempfile.TemporaryDirectory(prefix="roots_ab-") as tmp:
         exe = build(args.base, Path(tmp))
         if args.instructions:
-            iunit, counts = instructions(exe, polys, args.reps)
+            assert valgrind is not None  # (checked above)
+            iunit, counts = instructions(valgrind, exe, polys, args.reps)
             print(instructions_report(args.base, command, iunit, counts))
             return 0
         unit, differ, rows = run(exe, polys, args.sweeps)

@@ -1139,15 +1139,9 @@ static int bernstein_test(const Point *pt, int n, double w, double *pend,
     binomial_sums(ap, n);
     b = ap;
     *pend = b[n];
-    int vp = 0;
-    last = 0;
-    for (int j = 0; j <= n; j++) {
-        int s = (b[j] > 0) - (b[j] < 0);
+    for (int j = 0; j <= n; j++)
         certain &= fabs(b[j]) > tol;
-        vp += s * last < 0;
-        last = s != 0 ? s : last;
-    }
-    return certain && vp == 1 ? BERN_ONE : BERN_UNKNOWN;
+    return certain && sign_changes(b, n) == 1 ? BERN_ONE : BERN_UNKNOWN;
 }
 
 /* A point of (a, b) to split at: the midpoint, geometric when the interval

@@ -600,13 +600,9 @@ def _bernstein_test(pt: _Point, n: int, w: float, keep: bool) -> _Bernstein:
     if not (certain and vq == 1):
         return _Bernstein(BERN_UNKNOWN, math.nan, q)
     _binomial_sums(ap, n)
-    vp, last = 0, 0  # p's sign changes, zeros skipped (unlike q's)
-    for v in ap:
-        s = (v > 0) - (v < 0)
-        certain = certain and abs(v) > tol
-        vp += s * last < 0
-        last = s if s != 0 else last
-    return _Bernstein(BERN_ONE if certain and vp == 1 else BERN_UNKNOWN, ap[n], q)
+    certain = certain and all(abs(v) > tol for v in ap)
+    one = certain and _sign_changes(ap, n) == 1
+    return _Bernstein(BERN_ONE if one else BERN_UNKNOWN, ap[n], q)
 
 
 def _bernstein_signs(b: Sequence[float], tol: float) -> tuple[bool, int, bool]:

@@ -1061,14 +1061,10 @@ fn bernstein_test(pt: &Point, n: usize, w: f64, start: Option<&mut Start>) -> Be
     count::madds(n * (n + 1) / 2);
     binomial_sums(&mut ap, n);
     let pend = ap[n];
-    let (mut vp, mut last) = (0, 0);
     for &bj in &ap[..=n] {
-        let s = i32::from(bj > 0.0) - i32::from(bj < 0.0);
         certain &= bj.abs() > tol;
-        vp += i32::from(s * last < 0);
-        last = if s != 0 { s } else { last };
     }
-    if certain && vp == 1 {
+    if certain && sign_changes(&ap, n) == 1 {
         Bernstein::One(pend)
     } else {
         Bernstein::Unknown
