@@ -60,7 +60,10 @@
  *
  * Methods
  *   M2C_METHOD_INTERVAL (default)  interval solver with a graze check.
- *     Window: (0, T], T = min(tmax, B) with B the Fujiwara bound above.
+ *     Window: (0, T], T = min(tmax, B) with B Kioustelidis' bound on the
+ *     positive roots, 2 max |c_i / c_n|^(1/(n-i)) over the c_i of the sign
+ *     opposite to c_n's (rounded up to a power of two as above); with a
+ *     contact skin eps > 0, the Fujiwara bound over every c_i.
  *     The first event is the first root, or an earlier touch: a critical
  *     point x where |p(x)| <= 2 gamma_{2n} sum |c_i||x|^i (the standard
  *     Horner rounding bound, gamma_k = k u / (1 - k u), u = 2^-53, times a

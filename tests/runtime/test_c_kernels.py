@@ -140,16 +140,21 @@ int main(void)
             CHECK(memcmp(&cp[i], &p[i], sizeof(double)) == 0 && nz[i] == (p[i] != 0) &&
                       e[i] == (p[i] != 0 ? ilogb(p[i]) : 0),
                   "load_coefficients n=%d i=%d: e %d nz %d\n", n, i, e[i], nz[i]);
-        int want = INT_MIN;
-        for (int i = 0; i < n; i++) {
-            if (p[i] == 0)
-                continue;
-            int num = ilogb(p[i]) + 1 - ilogb(p[n]), den = n - i;
-            int q = num >= 0 ? (num + den - 1) / den : -((-num) / den);
-            want = q > want ? q : want;
+        /* ... and with the coefficients, over the c_i of the sign opposite to
+         * c_n's only (Kioustelidis: the positive roots) */
+        for (int only = 0; only <= 1; only++) {
+            int want = INT_MIN;
+            for (int i = 0; i < n; i++) {
+                if (p[i] == 0 || (only && (p[i] < 0) == (p[n] < 0)))
+                    continue;
+                int num = ilogb(p[i]) + 1 - ilogb(p[n]), den = n - i;
+                int q = num >= 0 ? (num + den - 1) / den : -((-num) / den);
+                want = q > want ? q : want;
+            }
+            want = want == INT_MIN ? INT_MIN : want + 1;
+            CHECK(root_bound_exponent(e, nz, only ? cp : NULL, n) == want,
+                  "root_bound_exponent n=%d only=%d\n", n, only);
         }
-        want = want == INT_MIN ? INT_MIN : want + 1;
-        CHECK(root_bound_exponent(e, nz, n) == want, "root_bound_exponent n=%d\n", n);
     }
     /* load_coefficients: an infinity or a NaN anywhere is refused */
     double c[3] = {1, 2, 3}, out[3];

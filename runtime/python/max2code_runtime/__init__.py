@@ -102,7 +102,9 @@ def _solve_normalised(c: list[float], n: int, emax: int, tu: float, method: str,
         return solver.first_root_quadratic(c, tu, skin)
     if closed:
         return _first_root_closed(c, n, tu)
-    B = solver.root_bound(c, n)
+    # every positive root below it (with a skin, Fujiwara's on every root, as the skin's
+    # contact need not be near a positive root)
+    B = solver.root_bound(c, n, positive=not skin > 0)
     T = tu if tu < B else B
     return solver.first_root_interval(c, n, T, skin, failed_w) if T > 0 else None
 

@@ -87,19 +87,23 @@ def _ceil_div(num: int, den: int) -> int:
 # ---------------------------------------------------------------------------
 
 
-def _root_bound_exponent(c: Sequence[float], n: int) -> int | None:
-    """Every root is below 2^(the result) (C root_bound_exponent); None when c_0..c_{n-1} = 0."""
+def _root_bound_exponent(c: Sequence[float], n: int, positive: bool = False) -> int | None:
+    """Every root is below 2^(the result) (C root_bound_exponent); None when c_0..c_{n-1} = 0.
+    With `positive`, over the c_i of the sign opposite to c_n's only: Kioustelidis' bound on
+    the positive roots (None where no sign differs: no positive root)."""
     en = ilogb(c[n])
     best = None
     for i in range(n):
-        if c[i] != 0:
+        if c[i] != 0 and (not positive or (c[i] < 0) != (c[n] < 0)):
             e = _ceil_div(ilogb(c[i]) + 1 - en, n - i)
             best = e if best is None or e > best else best
     return None if best is None else best + 1
 
 
-def root_bound(c: Sequence[float], n: int) -> float:
-    e = _root_bound_exponent(c, n)
+def root_bound(c: Sequence[float], n: int, positive: bool = False) -> float:
+    """Fujiwara's bound on every root, or with `positive` Kioustelidis' on the positive ones
+    (C root_bound); 0 when no term counts."""
+    e = _root_bound_exponent(c, n, positive)
     if e is None:
         return 0.0
     if e >= 1024:

@@ -260,9 +260,12 @@ fn solve_normalised(c: &mut Coeffs, e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], 
     }
 }
 
-/// The interval method on c (normalised, c[0] > 0) over (0, min(tu, the root bound)].
+/// The interval method on c (normalised, c[0] > 0) over (0, min(tu, the bound on the positive
+/// roots)].
 fn interval(c: &Coeffs, e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n: usize, tu: f64, skin: f64, failed_w: f64) -> Option<(f64, bool)> {
-    let b = solver::root_bound(e, nz, n);
+    // every positive root below it (with a skin, Fujiwara's on every root, as the skin's
+    // contact need not be near a positive root)
+    let b = solver::root_bound(e, nz, if skin > 0.0 { None } else { Some(c) }, n);
     let t_end = if tu < b { tu } else { b };
     if t_end > 0.0 {
         solver::first_root_interval(c, n, t_end, skin, failed_w)

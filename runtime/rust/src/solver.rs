@@ -158,22 +158,30 @@ fn load_any(src: &[f64], c: &mut Coeffs, e: &mut [i32; MAXN + 1], nz: &mut [bool
 
 /// C `root_bound_exponent`: every root is below 2^(the result); `None` when all c_i (i < n)
 /// are 0.  e, nz: the exponents of c[0..=n] (`load_coefficients`; only their differences
-/// matter).  Branch-free, as in C: which term gives the maximum is data.
+/// matter).  With the coefficients `c` (`Some`), over the c_i of the sign opposite to c_n's
+/// only: Kioustelidis' bound on the positive roots (`None` where no sign differs: no
+/// positive root).  Branch-free, as in C: which term gives the maximum, and the signs, are
+/// data.
 #[inline]
-fn root_bound_exponent(e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n: usize) -> Option<i32> {
+fn root_bound_exponent(e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], c: Option<&Coeffs>, n: usize) -> Option<i32> {
     let en = e[n];
+    let sn = c.map_or(0, |c| c[n].to_bits());
+    let only = c.is_some();
     let mut best = i32::MIN;
     for i in 0..n {
         let q = ceil_div(e[i] + 1 - en, (n - i) as i32);
-        let q = if nz[i] { q } else { i32::MIN };
+        let si = c.map_or(sn, |c| c[i].to_bits());
+        let opposite = ((si ^ sn) >> 63) != 0;
+        let q = if nz[i] & (opposite | !only) { q } else { i32::MIN };
         best = if q > best { q } else { best };
     }
     (best != i32::MIN).then_some(best + 1)
 }
 
-/// Fujiwara bound (C `root_bound`): 0 when all c_i (i < n) are 0, f64::MAX beyond the range.
-pub(crate) fn root_bound(e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n: usize) -> f64 {
-    match root_bound_exponent(e, nz, n) {
+/// C `root_bound`: Fujiwara's bound (`c` None) or Kioustelidis' on the positive roots (`c`
+/// Some); 0 when no c_i (i < n) counts, f64::MAX beyond the range.
+pub(crate) fn root_bound(e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], c: Option<&Coeffs>, n: usize) -> f64 {
+    match root_bound_exponent(e, nz, c, n) {
         None => 0.0,
         Some(b) if b >= 1024 => f64::MAX,
         Some(b) if b >= -1022 => pow2(b),
@@ -247,7 +255,7 @@ fn leading_negligible(c: &Coeffs, e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n:
             return false;
         }
         // (never None: reduce calls this with c[0] != 0)
-        let b = root_bound_exponent(e, nz, m).unwrap_or(0);
+        let b = root_bound_exponent(e, nz, None, m).unwrap_or(0);
         et = Some(b);
         t = if b >= 1024 {
             f64::INFINITY
@@ -1941,11 +1949,24 @@ mod preparation {
         let src = [3.75, -15.5, 1.75, 1.0];
         let (mut c, mut e, mut nz): (Coeffs, _, _) = ([0.0; MAXN + 1], [0; MAXN + 1], [false; MAXN + 1]);
         assert!(load_coefficients(&src, &mut c, &mut e, &mut nz).finite);
-        assert_eq!(root_bound(&e, &nz, 3), 8.0);
+        assert_eq!(root_bound(&e, &nz, None, 3), 8.0);
+        // on the positive roots (3, 0.25) only c_1 counts, the one term of the sign opposite
+        // to c_3's: the same 8 here; with c_1 > 0, (t + 3)(t + 5)(t + 0.25) has no sign
+        // change and no bound
+        assert_eq!(root_bound(&e, &nz, Some(&c), 3), 8.0);
+        let pos = [3.75, 23.0, 8.25, 1.0];
+        assert!(load_coefficients(&pos, &mut c, &mut e, &mut nz).finite);
+        assert_eq!(root_bound(&e, &nz, None, 3), 32.0);
+        assert_eq!(root_bound(&e, &nz, Some(&c), 3), 0.0);
+        // (t - 0.5)(t + 100) = t^2 + 99.5 t - 50: Fujiwara 2^8, Kioustelidis only from -50
+        let mixed = [-50.0, 99.5, 1.0];
+        assert!(load_coefficients(&mixed, &mut c, &mut e, &mut nz).finite);
+        assert_eq!(root_bound(&e, &nz, None, 2), 256.0);
+        assert_eq!(root_bound(&e, &nz, Some(&c), 2), 16.0);
         // only the leading term: no bound
         let (mut e2, mut nz2) = ([0; MAXN + 1], [false; MAXN + 1]);
         assert!(load_coefficients(&[0.0, 0.0, 2.0], &mut c, &mut e2, &mut nz2).finite);
-        assert_eq!(root_bound(&e2, &nz2, 2), 0.0);
+        assert_eq!(root_bound(&e2, &nz2, None, 2), 0.0);
     }
 }
 
