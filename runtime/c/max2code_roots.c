@@ -610,35 +610,64 @@ static double split_point(double lo, double hi)
  * fma Horner leave m u kappa: 1e-13 at kappa 1e3).  The error-free product
  * is fma(s, x, -s x) where fma is an instruction, else Dekker's splitting
  * (without -mfma, fma() is a library call per step).  Needs |x| and the
- * partial sums far below 2^996 (the splitting): true for |x| <= FAST_LIMIT. */
-static double horner_compensated(const double P[], int m, double x)
+ * partial sums far below 2^996 (the splitting): true for |x| <= FAST_LIMIT.
+ * With D (else NULL), *slope gets D(x) (degree m - 1) by plain Horner in the
+ * same loop: a Newton step's two chains side by side, where one after the
+ * other they waited on each other (measured below, refine_root). */
+static inline void compensated_step(double *s, double *c, double x, double xh,
+                                    double xl, double Pi)
+{
+    double p = *s * x;
+#ifdef FP_FAST_FMA
+    (void)xh, (void)xl;
+    double pe = fma(*s, x, -p); /* s x = p + pe exactly */
+#else
+    const double split = 134217729.0; /* 2^27 + 1 */
+    double ts = split * *s, sh = ts - (ts - *s), sl = *s - sh;
+    double pe = ((sh * xh - p) + sh * xl + sl * xh) + sl * xl;
+#endif
+    double sn = p + Pi, bb = sn - p;
+    double se = (p - (sn - bb)) + (Pi - bb); /* p + P_i = sn + se */
+    *c = *c * x + (pe + se);
+    *s = sn;
+}
+
+static double horner_compensated(const double P[], int m, double x,
+                                 const double D[], double *slope)
 {
     COUNT_MADDS(10 * m); /* about 21 flops a step */
+    double xh = 0, xl = 0;
 #ifndef FP_FAST_FMA
     const double split = 134217729.0; /* 2^27 + 1 */
-    double tx = split * x, xh = tx - (tx - x), xl = x - xh;
+    double tx = split * x;
+    xh = tx - (tx - x);
+    xl = x - xh;
 #endif
     double s = P[m], c = 0;
-    for (int i = m - 1; i >= 0; i--) {
-        double p = s * x;
-#ifdef FP_FAST_FMA
-        double pe = fma(s, x, -p); /* s x = p + pe exactly */
-#else
-        double ts = split * s, sh = ts - (ts - s), sl = s - sh;
-        double pe = ((sh * xh - p) + sh * xl + sl * xh) + sl * xl;
-#endif
-        double sn = p + P[i], bb = sn - p;
-        double se = (p - (sn - bb)) + (P[i] - bb); /* p + P_i = sn + se */
-        c = c * x + (pe + se);
-        s = sn;
+    int i = m - 1;
+    if (D != NULL) {
+        double df = D[m - 1];
+        for (; i >= 1; i--) {
+            compensated_step(&s, &c, x, xh, xl, P[i]);
+            df = df * x + D[i - 1];
+        }
+        *slope = df;
     }
+    for (; i >= 0; i--)
+        compensated_step(&s, &c, x, xh, xl, P[i]);
     return s + c;
 }
 
 /* P(x) / 2^(k m) (precise: compensated for k = 0, with fma otherwise) and
  * P'(x) / 2^(k (m-1)) = D(x) / ..., as horner() scales them (so the Newton
  * step is 2^k times their ratio); *size gets sum |P_i| |x|^i / 2^(k m), the
- * scale of the rounding error.  For k = 0 in one loop: independent chains. */
+ * scale of the rounding error -- but not when precise with k = 0, where
+ * refine_root does not look at it (0 then).  For k = 0 in one loop:
+ * independent chains (precisely: horner_compensated's, without the plain
+ * value and size it used to compute first and drop -- measured with
+ * bench/roots_ab.py: generic octics 0.989 of the instructions, 0.96 of
+ * the time at the median and 0.99 in the mean; collision polynomials
+ * 0.986; the same answers, bit for bit). */
 static double value_and_slope(const double P[], const double D[], int m,
                               double x, int k, int precise, double *slope,
                               double *size)
@@ -648,7 +677,11 @@ static double value_and_slope(const double P[], const double D[], int m,
         *size = horner_abs(P, m, x, k);
         return horner(P, m, x, k, precise);
     }
-    COUNT_MADDS(3 * m - 1);
+    COUNT_MADDS(3 * m - 1); /* (the cost model's count, either way) */
+    if (precise) {
+        *size = 0;
+        return horner_compensated(P, m, x, D, slope);
+    }
     double f = P[m], df = D[m - 1], ax = fabs(x), sz = fabs(P[m]);
     f = f * x + P[m - 1];
     sz = sz * ax + fabs(P[m - 1]);
@@ -659,7 +692,7 @@ static double value_and_slope(const double P[], const double D[], int m,
     }
     *slope = df;
     *size = sz;
-    return precise ? horner_compensated(P, m, x) : f;
+    return f;
 }
 
 /* The root of P (degree m, derivative D) in (lo, hi), where P changes sign
@@ -1732,7 +1765,7 @@ static int derivative_method(const double c[], int n, double lo, double T,
          * and the sign of its fma Horner value is noise: a crossing there
          * is decided by the precise value (where b needs no scaling). */
         int precise = sb != sa && j < nc && scale_exponent(b, n) == 0;
-        double pb = precise ? horner_compensated(c, n, b) : 0;
+        double pb = precise ? horner_compensated(c, n, b, NULL, NULL) : 0;
         if (precise && pb != 0 && (pb > 0) == (sa > 0))
             sb = sa; /* no crossing in (a, b]: maybe a touch at b (below) */
         if (sb != sa) {

@@ -517,6 +517,28 @@ fn split_point(lo: f64, hi: f64) -> f64 {
 }
 
 fn horner_compensated(p: &[f64], m: usize, x: f64) -> f64 {
+    horner_compensated_slope(p, m, x, None).0
+}
+
+/// C `compensated_step`: one step of compensated Horner (s, c) <- (s x + P_i, its error).
+#[inline(always)]
+fn compensated_step(s: f64, c: f64, x: f64, xh: f64, xl: f64, pi: f64) -> (f64, f64) {
+    const SPLIT: f64 = 134_217_729.0;
+    let pr = s * x;
+    let ts = SPLIT * s;
+    let sh = ts - (ts - s);
+    let sl = s - sh;
+    let pe = ((sh * xh - pr) + sh * xl + sl * xh) + sl * xl;
+    let sn = pr + pi;
+    let bb = sn - pr;
+    let se = (pr - (sn - bb)) + (pi - bb);
+    (sn, c * x + (pe + se))
+}
+
+/// C `horner_compensated` with D: (P(x) compensated, D(x) by plain Horner in the same loop;
+/// 0 without D).
+#[inline(always)]
+fn horner_compensated_slope(p: &[f64], m: usize, x: f64, d: Option<&[f64]>) -> (f64, f64) {
     count::madds(10 * m);
     const SPLIT: f64 = 134_217_729.0;
     let p = &p[..=m];
@@ -525,19 +547,21 @@ fn horner_compensated(p: &[f64], m: usize, x: f64) -> f64 {
     let xl = x - xh;
     let mut s = p[m];
     let mut c = 0.0;
-    for &pi in p[..m].iter().rev() {
-        let pr = s * x;
-        let ts = SPLIT * s;
-        let sh = ts - (ts - s);
-        let sl = s - sh;
-        let pe = ((sh * xh - pr) + sh * xl + sl * xh) + sl * xl;
-        let sn = pr + pi;
-        let bb = sn - pr;
-        let se = (pr - (sn - bb)) + (pi - bb);
-        c = c * x + (pe + se);
-        s = sn;
+    let mut df = 0.0;
+    let mut i = m; // the steps left: P_{i-1} .. P_0
+    if let Some(d) = d {
+        let d = &d[..m];
+        df = d[m - 1];
+        while i > 1 {
+            (s, c) = compensated_step(s, c, x, xh, xl, p[i - 1]);
+            df = df * x + d[i - 2];
+            i -= 1;
+        }
     }
-    s + c
+    for &pi in p[..i].iter().rev() {
+        (s, c) = compensated_step(s, c, x, xh, xl, pi);
+    }
+    (s + c, df)
 }
 
 #[inline(always)]
@@ -547,7 +571,12 @@ fn value_and_slope(p: &[f64], d: &[f64], m: usize, x: f64, k: i32, precise: bool
         let size = horner_abs(p, m, x, k);
         return (horner(p, m, x, k, precise), slope, size);
     }
-    count::madds(3 * m - 1);
+    count::madds(3 * m - 1); // (the cost model's count, either way)
+    if precise {
+        // (C: the slope in the compensated loop; the size is not looked at)
+        let (f, df) = horner_compensated_slope(p, m, x, Some(d));
+        return (f, df, 0.0);
+    }
     let (p, d) = (&p[..=m], &d[..m]);
     let mut f = p[m];
     let mut df = d[m - 1];
@@ -560,7 +589,7 @@ fn value_and_slope(p: &[f64], d: &[f64], m: usize, x: f64, k: i32, precise: bool
         sz = sz * ax + pi.abs();
         f = f * x + pi;
     }
-    (if precise { horner_compensated(p, m, x) } else { f }, df, sz)
+    (f, df, sz)
 }
 
 /// C `PRECISE_NOW`: `refine_root`'s tol for an x0 already converged (the guess's Laguerre
@@ -1975,7 +2004,7 @@ mod preparation {
 /// checks C's written-out forms).
 #[cfg(test)]
 mod kernels {
-    use super::{binomial_sums, halves, load_any, load_coefficients, taylor_shift, taylor_shift_8, taylor_table, Taylor, MAXN};
+    use super::{binomial_sums, halves, horner_compensated, horner_compensated_slope, load_any, load_coefficients, taylor_shift, taylor_shift_8, taylor_table, Taylor, MAXN};
     use std::mem::MaybeUninit;
 
     /// xorshift; values of both signs over 2^-30..2^30, one in 16 an exact zero.
@@ -2021,6 +2050,24 @@ mod kernels {
             assert_eq!((s1.finite, s1.emax, s1.emin, s1.changes), (s2.finite, s2.emax, s2.emin, s2.changes), "{src:?}");
             assert_eq!(bits(&c1[..=n]), bits(&c2[..=n]));
             assert_eq!((&e1[..=n], &nz1[..=n]), (&e2[..=n], &nz2[..=n]), "{src:?}");
+        }
+    }
+
+    #[test]
+    fn compensated_value_with_its_slope_is_the_value_alone() {
+        // C horner_compensated with D: the same value bits, and D's plain Horner in the loop
+        let mut r = Rnd(0x853C_49E6_748F_EA9B);
+        for trial in 0..20000 {
+            let m = 1 + trial % MAXN;
+            let (p, d) = (r.array(), r.array());
+            let x = (1.0 + r.next().abs()) * 2f64.powi((trial % 7) as i32 - 3);
+            let (v, slope) = horner_compensated_slope(&p, m, x, Some(&d));
+            let mut want = d[m - 1];
+            for j in (0..m - 1).rev() {
+                want = want * x + d[j];
+            }
+            assert_eq!(v.to_bits(), horner_compensated(&p, m, x).to_bits(), "m={m}");
+            assert_eq!(slope.to_bits(), want.to_bits(), "m={m}");
         }
     }
 
