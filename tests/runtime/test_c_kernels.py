@@ -102,6 +102,18 @@ int main(void)
             CHECK(memcmp(&v0, &v1, sizeof v0) == 0 && memcmp(&slope, &d, sizeof d) == 0,
                   "horner_compensated with slope n=%d\n", n);
         }
+        /* speculate_first_root's first step reads p, p' and p''/2 at 0 off the
+         * coefficients: what its three Horner chains give there (values; a zero's
+         * sign aside) */
+        if (n >= 2) {
+            double f = a[n], d1 = 0, d2 = 0, x0 = 0;
+            for (int i = n - 1; i >= 0; i--) {
+                d2 = d2 * x0 + d1;
+                d1 = d1 * x0 + f;
+                f = f * x0 + a[i];
+            }
+            CHECK(f == a[0] && d1 == a[1] && d2 == a[2], "Laguerre at 0 n=%d\n", n);
+        }
         /* point_at: the Taylor shift of p and |p| at x > 0 */
         double p[MAXN + 1];
         for (int j = 0; j <= n; j++)

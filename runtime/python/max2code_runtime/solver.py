@@ -691,7 +691,10 @@ TOUCH_WIDTH = 2.0**-10
 def _laguerre_terms(p: Sequence[float], n: int, x: float) -> tuple[float, float, float]:
     """p, p' and p''/2 at x by three Horner chains in C's statement order: one step of C
     speculate_first_root, Laguerre's or Newton's on p', which C counts as 3 n multiply-adds in
-    phase 2 (its own function so the control-flow test can count the steps)."""
+    phase 2 (its own function so the control-flow test can count the steps).  At x = 0 (the
+    first step, only there) the coefficients, the values the chains give, as C reads them."""
+    if x == 0:
+        return p[0], p[1], p[2]
     f, d1, d2 = p[n], 0.0, 0.0
     for i in range(n - 1, -1, -1):
         d2 = d2 * x + d1

@@ -1275,12 +1275,16 @@ fn speculate_first_root(p: &[f64], n: usize, t_end: f64) -> Guess {
             return Guess::Nothing;
         }
         count::madds(3 * n);
-        // p, p' and p''/2 at x
-        let (mut f, mut d1, mut d2) = (p[n], 0.0f64, 0.0f64);
-        for &pi in p[..n].iter().rev() {
-            d2 = d2 * x + d1;
-            d1 = d1 * x + f;
-            f = f * x + pi;
+        // p, p' and p''/2 at x (at 0, the first step: the coefficients, the values Horner's
+        // chains give there, as in C)
+        let (mut f, mut d1, mut d2) = (p[0], p[1], p[2]);
+        if it > 0 {
+            (f, d1, d2) = (p[n], 0.0f64, 0.0f64);
+            for &pi in p[..n].iter().rev() {
+                d2 = d2 * x + d1;
+                d1 = d1 * x + f;
+                f = f * x + pi;
+            }
         }
         if critical > 0 {
             // Newton on p' towards the critical point: a simple root of p' where p'' > 0 (a
