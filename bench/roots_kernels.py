@@ -1,0 +1,98 @@
+"""Where a certified solve's time goes, kernel by kernel, in degree-8 Horner evaluations.
+
+    python bench/roots_kernels.py [--family generic8] [--count N] [--regions R] [-o DIR]
+
+Builds bench/roots_kernels.c with gcc -O2 around the C runtime's source (its kernels are
+static), feeds it one of bench/roots.py's families, checks that its replica of the solver's
+path gives the public solve's roots bit for bit, and times the solves that the certified
+guess settles: the whole solve, the guess (Laguerre from 0), its certificate (one Bernstein
+test), the polish (one compensated Newton step, usually), and by difference the rest --
+validation, the preparation, the bounds and tests at 0.  Writes
+bench/results/roots_kernels_<family>.md (and stdout).
+
+Why: issue 10's target for a generic octic is 15 evaluations, about half of today's median.
+This shows what each part costs, so that a proposal can be judged by the part it shrinks
+(bench/roots_ab.py then measures the change itself).
+"""
+
+from __future__ import annotations
+
+import argparse
+import datetime
+import os
+import platform
+import shutil
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent  # (roots_kernels.c and timing.h beside it)
+ROOT = HERE.parent
+RESULTS = ROOT / "bench" / "results"
+sys.path.insert(0, str(ROOT / "bench"))
+
+import roots  # noqa: E402  (the benchmark's polynomial families)
+from roots_ab import input_lines  # noqa: E402  (the harnesses' input format)
+
+
+def build(into: Path) -> Path:
+    gcc = shutil.which("gcc")
+    if gcc is None:
+        sys.exit("roots_kernels: gcc not found (run 'make setup')")
+    exe = into / "roots_kernels"
+    cmd = [gcc, "-O2", "-std=c11", "-Wall", "-Wextra", "-DM2C_NO_GSL", "-I",
+           str(ROOT / "runtime" / "c"), str(HERE / "roots_kernels.c"), "-lm", "-o", str(exe)]
+    r = subprocess.run(cmd, capture_output=True, text=True)
+    if r.returncode != 0:
+        sys.exit(f"roots_kernels: compiling failed:\n{' '.join(cmd)}\n{r.stderr}")
+    return exe
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--family", default="generic8", choices=roots.FAMILIES,
+                    help="bench/roots.py's family (default generic8)")
+    ap.add_argument("--count", type=int, default=250, help="polynomials per family (default 250)")
+    ap.add_argument("--regions", type=int, default=201, help="timed regions per kernel (default 201)")
+    ap.add_argument("-o", "--out", type=Path, default=RESULTS, help="directory for the table")
+    args = ap.parse_args(argv)
+    if not 1 <= args.regions <= 100001 or args.count < 1:
+        sys.exit("roots_kernels: --regions must be 1..100001 and --count positive")
+    polys = [p for p in roots.polynomials(args.count) if p[0] == args.family]
+    stdin = "\n".join(input_lines(polys)) + "\n"
+    with tempfile.TemporaryDirectory() as tmp:
+        exe = build(Path(tmp))
+        check = subprocess.run([str(exe), "check"], input=stdin, capture_output=True, text=True,
+                               timeout=120)
+        if check.returncode != 0 or not check.stdout.startswith("ok"):
+            sys.exit(f"roots_kernels: the replica of the solver's path is off: "
+                     f"{(check.stdout + check.stderr).strip()}")
+        r = subprocess.run([str(exe), str(args.regions)], input=stdin, capture_output=True,
+                           text=True, timeout=1200)
+        if r.returncode != 0:
+            sys.exit(f"roots_kernels: the harness failed: {r.stderr.strip()}")
+    defaults = {"family": "generic8", "count": 250, "regions": 201}
+    extra = "".join(f" --{k} {getattr(args, k)}" for k, v in defaults.items() if getattr(args, k) != v)
+    command = "python bench/roots_kernels.py" + extra
+    text = "\n".join([
+        f"# Where a certified solve's time goes: {args.family} ({datetime.date.today().isoformat()})",
+        "",
+        f"Machine: {platform.machine()}, {os.cpu_count()} cores (shared: absolute times are noisy; "
+        f"the kernels ran interleaved, region by region). Command: `{command}`. gcc -O2; every "
+        "call waits for the last call's result, as a solve's kernels wait for each other; the "
+        "unit is bench/timing.h's degree-8 Horner evaluation. Only the polynomials whose default "
+        "solve the certified guess settles (the others go on to Taylor points and bisection).",
+        "", r.stdout.strip(), ""])
+    args.out.mkdir(parents=True, exist_ok=True)
+    path = args.out / f"roots_kernels_{args.family}.md"
+    tmp_path = path.with_suffix(".tmp")
+    tmp_path.write_text(text)
+    os.replace(tmp_path, path)
+    print(text)
+    print(f"wrote {path}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
