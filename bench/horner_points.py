@@ -15,7 +15,6 @@ import argparse
 import datetime
 import os
 import platform
-import shutil
 import subprocess
 import sys
 import tempfile
@@ -23,18 +22,16 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 RESULTS = ROOT / "bench" / "results"
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from benchtools import compile_c, publish  # noqa: E402  (bench/benchtools.py, beside this script)
 
 
 def build(into: Path) -> Path:
-    gcc = shutil.which("gcc")
-    if gcc is None:
-        sys.exit("horner_points: gcc not found (run 'make setup')")
     exe = into / "horner_points"
-    cmd = [gcc, "-O2", "-std=c11", "-Wall", "-Wextra", str(ROOT / "bench" / "horner_points.c"),
-           "-o", str(exe)]
-    r = subprocess.run(cmd, capture_output=True, text=True)
-    if r.returncode != 0:
-        sys.exit(f"horner_points: compiling failed:\n{' '.join(cmd)}\n{r.stderr}")
+    compile_c("horner_points", "compiling", [
+        "-O2", "-std=c11", "-Wall", "-Wextra", str(ROOT / "bench" / "horner_points.c"), "-o",
+        str(exe)])
     return exe
 
 
@@ -58,13 +55,7 @@ def main(argv: list[str] | None = None) -> int:
         "degree-8 polynomial, each call waiting for the last call's values (as a solve's "
         "evaluations do); the unit is bench/timing.h's one-point Horner evaluation.", "",
         r.stdout.strip(), ""])
-    args.out.mkdir(parents=True, exist_ok=True)
-    path = args.out / "horner_points.md"
-    tmp_path = path.with_suffix(".tmp")
-    tmp_path.write_text(text)
-    os.replace(tmp_path, path)
-    print(text)
-    print(f"wrote {path}")
+    publish(args.out, "horner_points.md", text)
     return 0
 
 

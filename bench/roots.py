@@ -70,7 +70,9 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "tests"))
+sys.path.insert(0, str(ROOT / "bench"))
 
+from benchtools import compile_c  # noqa: E402  (bench/benchtools.py, beside this script)
 from runtime import cases  # noqa: E402  (tests/runtime/cases.py: builders and the oracle)
 
 RESULTS = ROOT / "bench" / "results"
@@ -298,16 +300,11 @@ def oracles(polys: list[tuple[str, tuple[float, ...], float]], jobs: int) -> lis
 # ---------------------------------------------------------------------------
 
 def build_harness(workdir: Path) -> Path:
-    gcc = shutil.which("gcc")
-    if gcc is None:
-        sys.exit("bench: gcc not found (run 'make setup')")
     exe = workdir / "roots_harness"
-    cmd = [gcc, "-O2", "-std=c11", "-Wall", "-Wextra", "-I", str(C_DIR),
-           str(ROOT / "bench" / "roots_harness.c"), str(C_DIR / "max2code_roots.c"),
-           "-o", str(exe), "-lgsl", "-lgslcblas", "-lm"]
-    r = subprocess.run(cmd, capture_output=True, text=True)
-    if r.returncode != 0:
-        sys.exit(f"bench: compiling the harness failed:\n{' '.join(cmd)}\n{r.stderr}")
+    compile_c("bench", "compiling the harness", [
+        "-O2", "-std=c11", "-Wall", "-Wextra", "-I", str(C_DIR),
+        str(ROOT / "bench" / "roots_harness.c"), str(C_DIR / "max2code_roots.c"),
+        "-o", str(exe), "-lgsl", "-lgslcblas", "-lm"])
     return exe
 
 

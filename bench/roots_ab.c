@@ -68,24 +68,12 @@ int main(int argc, char **argv)
             ps = q;
         }
         Poly *p = &ps[n];
-        char *s = line, *e;
-        int k = 0;
-        if (sscanf(s, "%31s%n", p->family, &k) != 1)
-            continue;
-        s += k;
-        p->tmax = strtod(s, &e);
-        s = e;
-        p->degree = (int)strtol(s, &e, 10);
-        if (e == s || p->degree < 0 || p->degree > MAXN) {
+        int got = read_poly_line(line, p->family, &p->tmax, &p->degree, p->c, MAXN);
+        if (got < 0) {
             fprintf(stderr, "roots_ab: bad line %zu\n", n + 1);
             return 2;
         }
-        s = e;
-        for (int i = 0; i <= p->degree; i++) {
-            p->c[i] = strtod(s, &e);
-            s = e;
-        }
-        n++;
+        n += (size_t)got;
     }
     if (ps == NULL || n == 0) {
         fprintf(stderr, "roots_ab: no polynomials\n");

@@ -43,6 +43,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "bench"))
 
 import roots  # noqa: E402  (the benchmark's polynomial families)
+from benchtools import compile_c  # noqa: E402
 
 C_DIR = ROOT / "runtime" / "c"
 PUBLIC = ("m2c_first_root", "m2c_first_root_ex", "m2c_first_root_skin", "m2c_first_root_method",
@@ -77,26 +78,19 @@ def base_sources(base: str, into: Path) -> Path:
 
 
 def build(base: str, work: Path) -> Path:
-    gcc = shutil.which("gcc")
-    if gcc is None:
-        sys.exit("roots_ab: gcc not found (run 'make setup')")
     a_dir = work / "a"
     a_dir.mkdir()
     a_src = base_sources(base, a_dir)
     objects = []
     for tag, src, inc in (("A", a_src, a_dir), ("B", C_DIR / "max2code_roots.c", C_DIR)):
         obj = work / f"{tag}.o"
-        cmd = [gcc, "-O2", "-std=c11", "-I", str(inc), *_defines(tag), "-c", str(src), "-o", str(obj)]
-        r = subprocess.run(cmd, capture_output=True, text=True)
-        if r.returncode != 0:
-            sys.exit(f"roots_ab: compiling {tag} failed:\n{' '.join(cmd)}\n{r.stderr}")
+        compile_c("roots_ab", f"compiling {tag}", [
+            "-O2", "-std=c11", "-I", str(inc), *_defines(tag), "-c", str(src), "-o", str(obj)])
         objects.append(str(obj))
     exe = work / "roots_ab"
-    cmd = [gcc, "-O2", "-std=c11", "-Wall", "-Wextra", str(ROOT / "bench" / "roots_ab.c"), *objects,
-           "-o", str(exe), "-lgsl", "-lgslcblas", "-lm"]
-    r = subprocess.run(cmd, capture_output=True, text=True)
-    if r.returncode != 0:
-        sys.exit(f"roots_ab: linking the harness failed:\n{' '.join(cmd)}\n{r.stderr}")
+    compile_c("roots_ab", "linking the harness", [
+        "-O2", "-std=c11", "-Wall", "-Wextra", str(ROOT / "bench" / "roots_ab.c"), *objects,
+        "-o", str(exe), "-lgsl", "-lgslcblas", "-lm"])
     return exe
 
 

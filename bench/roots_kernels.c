@@ -191,23 +191,14 @@ int main(int argc, char **argv)
     int total = 0, m = 0;
     while (fgets(line, sizeof line, stdin) && m < MAXPOLY) {
         Kept *k = &kept[m];
-        char fam[32], *s = line, *end;
-        int used = 0;
-        if (sscanf(s, "%31s%n", fam, &used) != 1)
-            continue;
-        s += used;
-        k->tmax = strtod(s, &end);
-        s = end;
-        k->degree = (int)strtol(s, &end, 10);
-        if (end == s || k->degree < 0 || k->degree > MAXN) {
+        char fam[32];
+        int got = read_poly_line(line, fam, &k->tmax, &k->degree, k->c, MAXN);
+        if (got < 0) {
             fprintf(stderr, "roots_kernels: bad line %d\n", total + 1);
             return 2;
         }
-        s = end;
-        for (int i = 0; i <= k->degree; i++) {
-            k->c[i] = strtod(s, &end);
-            s = end;
-        }
+        if (got == 0)
+            continue;
         total++;
         m += prepare(k);
     }

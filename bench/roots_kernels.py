@@ -21,7 +21,6 @@ import argparse
 import datetime
 import os
 import platform
-import shutil
 import subprocess
 import sys
 import tempfile
@@ -31,21 +30,18 @@ HERE = Path(__file__).resolve().parent  # (roots_kernels.c and timing.h beside i
 ROOT = HERE.parent
 RESULTS = ROOT / "bench" / "results"
 sys.path.insert(0, str(ROOT / "bench"))
+sys.path.insert(0, str(HERE))
 
 import roots  # noqa: E402  (the benchmark's polynomial families)
+from benchtools import compile_c, publish  # noqa: E402
 from roots_ab import input_lines  # noqa: E402  (the harnesses' input format)
 
 
 def build(into: Path) -> Path:
-    gcc = shutil.which("gcc")
-    if gcc is None:
-        sys.exit("roots_kernels: gcc not found (run 'make setup')")
     exe = into / "roots_kernels"
-    cmd = [gcc, "-O2", "-std=c11", "-Wall", "-Wextra", "-DM2C_NO_GSL", "-I",
-           str(ROOT / "runtime" / "c"), str(HERE / "roots_kernels.c"), "-lm", "-o", str(exe)]
-    r = subprocess.run(cmd, capture_output=True, text=True)
-    if r.returncode != 0:
-        sys.exit(f"roots_kernels: compiling failed:\n{' '.join(cmd)}\n{r.stderr}")
+    compile_c("roots_kernels", "compiling", [
+        "-O2", "-std=c11", "-Wall", "-Wextra", "-DM2C_NO_GSL", "-I", str(ROOT / "runtime" / "c"),
+        str(HERE / "roots_kernels.c"), "-lm", "-o", str(exe)])
     return exe
 
 
@@ -84,13 +80,7 @@ def main(argv: list[str] | None = None) -> int:
         "unit is bench/timing.h's degree-8 Horner evaluation. Only the polynomials whose default "
         "solve the certified guess settles (the others go on to Taylor points and bisection).",
         "", r.stdout.strip(), ""])
-    args.out.mkdir(parents=True, exist_ok=True)
-    path = args.out / f"roots_kernels_{args.family}.md"
-    tmp_path = path.with_suffix(".tmp")
-    tmp_path.write_text(text)
-    os.replace(tmp_path, path)
-    print(text)
-    print(f"wrote {path}")
+    publish(args.out, f"roots_kernels_{args.family}.md", text)
     return 0
 
 

@@ -3,6 +3,7 @@
 #ifndef BENCH_TIMING_H
 #define BENCH_TIMING_H
 
+#include <stdio.h>
 #include <stdlib.h>
 #include <time.h>
 
@@ -49,6 +50,31 @@ static unsigned long long xorshift(void)
 
 /* Results go here, so that the compiler cannot drop the timed calls. */
 static volatile double sink;
+
+/* One line of roots_ab.c's and roots_kernels.c's input, FAMILY TMAX DEGREE C0 .. CN (hex
+ * floats; family cut to 31 characters): 1 when read, 0 for a line without a word (skipped), -1
+ * for a degree outside 0..maxn. */
+static inline int read_poly_line(const char *line, char family[32], double *tmax, int *degree,
+                                 double c[], int maxn)
+{
+    const char *s = line;
+    char *e;
+    int k = 0;
+    if (sscanf(s, "%31s%n", family, &k) != 1)
+        return 0;
+    s += k;
+    *tmax = strtod(s, &e);
+    s = e;
+    *degree = (int)strtol(s, &e, 10);
+    if (e == s || *degree < 0 || *degree > maxn)
+        return -1;
+    s = e;
+    for (int i = 0; i <= *degree; i++) {
+        c[i] = strtod(s, &e);
+        s = e;
+    }
+    return 1;
+}
 
 /* One degree-8 Horner evaluation: the unit of cost. */
 __attribute__((noinline)) static double horner8(const double c[9], double x)
