@@ -210,13 +210,14 @@ static inline int bound_exponent(const int e[], const int nz[], const double c[]
                                  int n, const int only)
 {
     int en = e[n];
-    uint64_t sn = 0; /* with only: the signs opposite to c_n's */
+    uint64_t sn = 0; /* c_n's bits (with only) */
     if (only)
         memcpy(&sn, &c[n], sizeof sn);
     int best = INT_MIN;
     for (int i = 0; i < n; i++) {
         /* |c_i / c_n| < 2^(e_i + 1 - e_n) */
         int q = ceil_div(e[i] + 1 - en, n - i);
+        /* c_i's bits; without only, a sign opposite to sn's: every c_i counts */
         uint64_t si = sn ^ 0x8000000000000000ULL;
         if (only)
             memcpy(&si, &c[i], sizeof si);
