@@ -611,10 +611,18 @@ static double split_point(double lo, double hi)
  * fma Horner leave m u kappa: 1e-13 at kappa 1e3).  The error-free product
  * is fma(s, x, -s x) where fma is an instruction, else Dekker's splitting
  * (without -mfma, fma() is a library call per step).  Needs |x| and the
- * partial sums far below 2^996 (the splitting): true for |x| <= FAST_LIMIT.
- * With D (else NULL), *slope gets D(x) (degree m - 1) by plain Horner in the
- * same loop: a Newton step's two chains side by side, where one after the
- * other they waited on each other (measured below, refine_root). */
+ * partial sums far below 2^996 (the splitting): true for |x| <= FAST_LIMIT. */
+#ifndef FP_FAST_FMA
+/* Dekker's splitting: v = *hi + *lo exactly, each with at most 26 bits. */
+static inline void dekker_split(double v, double *hi, double *lo)
+{
+    const double split = 134217729.0; /* 2^27 + 1 */
+    double t = split * v;
+    *hi = t - (t - v);
+    *lo = v - *hi;
+}
+#endif
+
 static inline void compensated_step(double *s, double *c, double x, double xh,
                                     double xl, double Pi)
 {
@@ -623,8 +631,8 @@ static inline void compensated_step(double *s, double *c, double x, double xh,
     (void)xh, (void)xl;
     double pe = fma(*s, x, -p); /* s x = p + pe exactly */
 #else
-    const double split = 134217729.0; /* 2^27 + 1 */
-    double ts = split * *s, sh = ts - (ts - *s), sl = *s - sh;
+    double sh, sl;
+    dekker_split(*s, &sh, &sl);
     double pe = ((sh * xh - p) + sh * xl + sl * xh) + sl * xl;
 #endif
     double sn = p + Pi, bb = sn - p;
@@ -633,29 +641,38 @@ static inline void compensated_step(double *s, double *c, double x, double xh,
     *s = sn;
 }
 
-static double horner_compensated(const double P[], int m, double x,
-                                 const double D[], double *slope)
+static double horner_compensated(const double P[], int m, double x)
 {
     COUNT_MADDS(10 * m); /* about 21 flops a step */
     double xh = 0, xl = 0;
 #ifndef FP_FAST_FMA
-    const double split = 134217729.0; /* 2^27 + 1 */
-    double tx = split * x;
-    xh = tx - (tx - x);
-    xl = x - xh;
+    dekker_split(x, &xh, &xl);
 #endif
     double s = P[m], c = 0;
-    int i = m - 1;
-    if (D != NULL) {
-        double df = D[m - 1];
-        for (; i >= 1; i--) {
-            compensated_step(&s, &c, x, xh, xl, P[i]);
-            df = df * x + D[i - 1];
-        }
-        *slope = df;
-    }
-    for (; i >= 0; i--)
+    for (int i = m - 1; i >= 0; i--)
         compensated_step(&s, &c, x, xh, xl, P[i]);
+    return s + c;
+}
+
+/* horner_compensated(P, m, x), and *slope = D(x) (D of degree m - 1, m >= 1)
+ * by plain Horner in the same loop: a Newton step's two chains side by side,
+ * where one after the other they waited on each other (measured below,
+ * value_and_slope). */
+static double compensated_with_slope(const double P[], const double D[], int m,
+                                     double x, double *slope)
+{
+    COUNT_MADDS(10 * m);
+    double xh = 0, xl = 0;
+#ifndef FP_FAST_FMA
+    dekker_split(x, &xh, &xl);
+#endif
+    double s = P[m], c = 0, df = D[m - 1];
+    for (int i = m - 1; i >= 1; i--) {
+        compensated_step(&s, &c, x, xh, xl, P[i]);
+        df = df * x + D[i - 1];
+    }
+    compensated_step(&s, &c, x, xh, xl, P[0]);
+    *slope = df;
     return s + c;
 }
 
@@ -664,7 +681,7 @@ static double horner_compensated(const double P[], int m, double x,
  * step is 2^k times their ratio); *size gets sum |P_i| |x|^i / 2^(k m), the
  * scale of the rounding error -- but not when precise with k = 0, where
  * refine_root does not look at it (0 then).  For k = 0 in one loop:
- * independent chains (precisely: horner_compensated's, without the plain
+ * independent chains (precisely: compensated_with_slope's, without the plain
  * value and size it used to compute first and drop -- measured with
  * bench/roots_ab.py: generic octics 0.989 of the instructions, 0.96 of
  * the time at the median and 0.99 in the mean; collision polynomials
@@ -681,7 +698,7 @@ static double value_and_slope(const double P[], const double D[], int m,
     COUNT_MADDS(3 * m - 1); /* (the cost model's count, either way) */
     if (precise) {
         *size = 0;
-        return horner_compensated(P, m, x, D, slope);
+        return compensated_with_slope(P, D, m, x, slope);
     }
     double f = P[m], df = D[m - 1], ax = fabs(x), sz = fabs(P[m]);
     f = f * x + P[m - 1];
@@ -1776,7 +1793,7 @@ static int derivative_method(const double c[], int n, double lo, double T,
          * and the sign of its fma Horner value is noise: a crossing there
          * is decided by the precise value (where b needs no scaling). */
         int precise = sb != sa && j < nc && scale_exponent(b, n) == 0;
-        double pb = precise ? horner_compensated(c, n, b, NULL, NULL) : 0;
+        double pb = precise ? horner_compensated(c, n, b) : 0;
         if (precise && pb != 0 && (pb > 0) == (sa > 0))
             sb = sa; /* no crossing in (a, b]: maybe a touch at b (below) */
         if (sb != sa) {

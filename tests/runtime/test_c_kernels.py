@@ -90,17 +90,17 @@ int main(void)
             CHECK(memcmp(&r2[j], &right[j], sizeof(double)) == 0, "halves right n=%d j=%d\n", n, j);
             CHECK(memcmp(&mirror[j], &right[j], sizeof(double)) == 0, "mirror n=%d j=%d\n", n, j);
         }
-        /* horner_compensated with a derivative: the same value, bit for bit, and
+        /* compensated_with_slope: horner_compensated's value, bit for bit, and
          * the slope of plain Horner on D (the two chains share one loop) */
         {
             double xs = ldexp(1 + fabs(rnd()), (int)(trial % 7) - 3), slope = 0;
-            double v0 = horner_compensated(a, n, xs, NULL, NULL);
-            double v1 = horner_compensated(a, n, xs, b, &slope);
+            double v0 = horner_compensated(a, n, xs);
+            double v1 = compensated_with_slope(a, b, n, xs, &slope);
             double d = b[n - 1];
             for (int j = n - 2; j >= 0; j--)
                 d = d * xs + b[j];
             CHECK(memcmp(&v0, &v1, sizeof v0) == 0 && memcmp(&slope, &d, sizeof d) == 0,
-                  "horner_compensated with slope n=%d\n", n);
+                  "compensated_with_slope n=%d\n", n);
         }
         /* speculate_first_root's first step reads p, p' and p''/2 at 0 off the
          * coefficients: what its three Horner chains give there (values; a zero's

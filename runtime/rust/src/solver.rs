@@ -516,18 +516,20 @@ fn split_point(lo: f64, hi: f64) -> f64 {
     lo + 0.5 * (hi - lo)
 }
 
-fn horner_compensated(p: &[f64], m: usize, x: f64) -> f64 {
-    horner_compensated_slope(p, m, x, None).0
+/// C `dekker_split`: v = hi + lo exactly, each with at most 26 bits.
+#[inline(always)]
+fn dekker_split(v: f64) -> (f64, f64) {
+    const SPLIT: f64 = 134_217_729.0; // 2^27 + 1
+    let t = SPLIT * v;
+    let hi = t - (t - v);
+    (hi, v - hi)
 }
 
 /// C `compensated_step`: one step of compensated Horner (s, c) <- (s x + P_i, its error).
 #[inline(always)]
 fn compensated_step(s: f64, c: f64, x: f64, xh: f64, xl: f64, pi: f64) -> (f64, f64) {
-    const SPLIT: f64 = 134_217_729.0;
     let pr = s * x;
-    let ts = SPLIT * s;
-    let sh = ts - (ts - s);
-    let sl = s - sh;
+    let (sh, sl) = dekker_split(s);
     let pe = ((sh * xh - pr) + sh * xl + sl * xh) + sl * xl;
     let sn = pr + pi;
     let bb = sn - pr;
@@ -535,32 +537,29 @@ fn compensated_step(s: f64, c: f64, x: f64, xh: f64, xl: f64, pi: f64) -> (f64, 
     (sn, c * x + (pe + se))
 }
 
-/// C `horner_compensated` with D: (P(x) compensated, D(x) by plain Horner in the same loop;
-/// 0 without D).
-#[inline(always)]
-fn horner_compensated_slope(p: &[f64], m: usize, x: f64, d: Option<&[f64]>) -> (f64, f64) {
+/// C `horner_compensated`.
+fn horner_compensated(p: &[f64], m: usize, x: f64) -> f64 {
     count::madds(10 * m);
-    const SPLIT: f64 = 134_217_729.0;
-    let p = &p[..=m];
-    let tx = SPLIT * x;
-    let xh = tx - (tx - x);
-    let xl = x - xh;
-    let mut s = p[m];
-    let mut c = 0.0;
-    let mut df = 0.0;
-    let mut i = m; // the steps left: P_{i-1} .. P_0
-    if let Some(d) = d {
-        let d = &d[..m];
-        df = d[m - 1];
-        while i > 1 {
-            (s, c) = compensated_step(s, c, x, xh, xl, p[i - 1]);
-            df = df * x + d[i - 2];
-            i -= 1;
-        }
-    }
-    for &pi in p[..i].iter().rev() {
+    let (xh, xl) = dekker_split(x);
+    let (mut s, mut c) = (p[m], 0.0);
+    for &pi in p[..m].iter().rev() {
         (s, c) = compensated_step(s, c, x, xh, xl, pi);
     }
+    s + c
+}
+
+/// C `compensated_with_slope`: (`horner_compensated(p, m, x)`, d(x) by plain Horner in the same
+/// loop; d of degree m - 1, m >= 1).
+#[inline(always)]
+fn compensated_with_slope(p: &[f64], d: &[f64], m: usize, x: f64) -> (f64, f64) {
+    count::madds(10 * m);
+    let (xh, xl) = dekker_split(x);
+    let (mut s, mut c, mut df) = (p[m], 0.0, d[m - 1]);
+    for i in (1..m).rev() {
+        (s, c) = compensated_step(s, c, x, xh, xl, p[i]);
+        df = df * x + d[i - 1];
+    }
+    (s, c) = compensated_step(s, c, x, xh, xl, p[0]);
     (s + c, df)
 }
 
@@ -574,7 +573,7 @@ fn value_and_slope(p: &[f64], d: &[f64], m: usize, x: f64, k: i32, precise: bool
     count::madds(3 * m - 1); // (the cost model's count, either way)
     if precise {
         // (C: the slope in the compensated loop; the size is not looked at)
-        let (f, df) = horner_compensated_slope(p, m, x, Some(d));
+        let (f, df) = compensated_with_slope(p, d, m, x);
         return (f, df, 0.0);
     }
     let (p, d) = (&p[..=m], &d[..m]);
@@ -2008,7 +2007,7 @@ mod preparation {
 /// checks C's written-out forms).
 #[cfg(test)]
 mod kernels {
-    use super::{binomial_sums, halves, horner_compensated, horner_compensated_slope, load_any, load_coefficients, taylor_shift, taylor_shift_8, taylor_table, Taylor, MAXN};
+    use super::{binomial_sums, compensated_with_slope, halves, horner_compensated, load_any, load_coefficients, taylor_shift, taylor_shift_8, taylor_table, Taylor, MAXN};
     use std::mem::MaybeUninit;
 
     /// xorshift; values of both signs over 2^-30..2^30, one in 16 an exact zero.
@@ -2059,13 +2058,14 @@ mod kernels {
 
     #[test]
     fn compensated_value_with_its_slope_is_the_value_alone() {
-        // C horner_compensated with D: the same value bits, and D's plain Horner in the loop
+        // C compensated_with_slope: horner_compensated's value bits, and D's plain Horner in the
+        // same loop
         let mut r = Rnd(0x853C_49E6_748F_EA9B);
         for trial in 0..20000 {
             let m = 1 + trial % MAXN;
             let (p, d) = (r.array(), r.array());
             let x = (1.0 + r.next().abs()) * 2f64.powi((trial % 7) as i32 - 3);
-            let (v, slope) = horner_compensated_slope(&p, m, x, Some(&d));
+            let (v, slope) = compensated_with_slope(&p, &d, m, x);
             let mut want = d[m - 1];
             for j in (0..m - 1).rev() {
                 want = want * x + d[j];
