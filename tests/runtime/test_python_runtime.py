@@ -71,6 +71,27 @@ def test_first_root_contract(backend: str) -> None:
     assert rt.first_root_status([-1.0, 1.0], 1.0, method="gsl")[0] == -1  # no GSL in Python
 
 
+def test_sequence_kinds(backend: str) -> None:
+    """Any sized sequence of numbers is coefficients (the C backend hands lists and tuples to
+    cffi as they are and makes a list of anything else); something without a length is
+    invalid input, on both backends."""
+    import array
+
+    c = cases.poly_from_roots(["0.5", "2", "-3"], [("1", "1")])
+    want = rt.first_root_status(list(c), 10.0)
+    assert want[0] == 1 and want[1] == pytest.approx(0.5, rel=1e-15)
+    kinds: list = [tuple(c), array.array("d", c), range(0)]
+    try:
+        import numpy as np
+        kinds += [np.array(c), np.array([c])[0]]
+    except ImportError:
+        pass
+    for seq in kinds[:2] + kinds[3:]:
+        assert rt.first_root_status(seq, 10.0) == want, type(seq)
+    assert rt.first_root_status(kinds[2], 10.0)[0] == -1  # no coefficients
+    assert rt.first_root_status((x for x in c), 10.0)[0] == -1  # no length
+
+
 def test_graze_flag_and_nograze(backend: str) -> None:
     """A touch is reported flagged; without the check it is skipped."""
     c = cases.poly_from_roots(["1", "1", "5"], [("0", "1")])

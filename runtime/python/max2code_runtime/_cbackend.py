@@ -1,13 +1,12 @@
 """The C runtime through cffi: thin wrappers around the compiled ``_roots_c`` module.
 
 Kept apart from ``__init__`` so that a missing or stale extension is one ImportError, and the
-pure-Python fallback takes over.  Buffers are per thread: cffi releases the GIL during the
-call, so two threads must not share them.
+pure-Python fallback takes over.  No state is kept between calls (the coefficients go to cffi
+as a list, the results come back in one double), so threads need nothing of their own.
 """
 from __future__ import annotations
 
 import math
-import threading
 from typing import Any, Sequence
 
 from ._roots_c import ffi, lib  # type: ignore[import-not-found]
@@ -30,48 +29,42 @@ def _check_fresh() -> None:
 _check_fresh()
 
 MAX_COEFFS = 17
-_local = threading.local()
+INVALID = (-1, math.nan, False)
+_packed = lib.m2c_first_root_packed
 
 
-def _buffers() -> tuple[Any, Any, Any]:
-    try:
-        return _local.bufs
-    except AttributeError:
-        _local.bufs = (ffi.new("double[17]"), ffi.new("double *"), ffi.new("int *"))
-        return _local.bufs
+def unpack(v: float) -> tuple[int, float, bool]:
+    """(status, t, graze) from m2c_first_root_packed's one double (see _source.BINDING_C)."""
+    if v > 0:
+        return 1, v, False
+    if v < 0:
+        return 1, -v, True
+    if v == 0:
+        return 0, math.nan, False
+    return INVALID
 
 
 def solve(cc: list[float], tmax: float, method: int, eps: float) -> tuple[int, float, bool]:
     """One polynomial (validated by the caller): (status, t, graze) as the C runtime says."""
-    c, t, g = _buffers()
-    n = len(cc)
-    c[0:n] = cc
-    if eps == 0:
-        st = lib.m2c_first_root_ex(c, n - 1, tmax, t, method, g)
-    else:
-        st = lib.m2c_first_root_skin(c, n - 1, tmax, eps, t, g)
-    if st == 1:
-        return 1, t[0], bool(g[0])
-    return st, math.nan, False
+    return unpack(_packed(cc, len(cc) - 1, tmax, method, eps))
 
 
 def solve_default(c: Any, tmax: float) -> tuple[int, float, bool]:
     """The default method on unvalidated input, the common call: the C runtime validates
     (NaN/Inf, tmax, degree); only what cffi cannot pass is checked here.  -1 for input that
-    is not a sequence of 1 to 17 numbers."""
-    bufs = _buffers()
-    cb, t, g = bufs
+    is not a sequence of 1 to 17 numbers.  A list or tuple goes to cffi as it is (cffi fills
+    a temporary array from it, as it would a kept buffer); any other sized sequence (a numpy
+    row) is made a list first.  Something without a length (a generator) is -1."""
     try:
         n = len(c)
         if not 0 < n <= MAX_COEFFS:
-            return -1, math.nan, False
-        cb[0:n] = c
-        st = lib.m2c_first_root_ex(cb, n - 1, tmax, t, 0, g)
+            return INVALID
+        if type(c) is not list and type(c) is not tuple:
+            c = list(c)
+        v = _packed(c, n - 1, tmax, 0, 0.0)
     except (TypeError, ValueError, OverflowError):
-        return -1, math.nan, False
-    if st == 1:
-        return 1, t[0], bool(g[0])
-    return st, math.nan, False
+        return INVALID
+    return unpack(v)
 
 
 def solve_batch(rows: list[list[float]], tmax: float, eps: float) -> list[float]:

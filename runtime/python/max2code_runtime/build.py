@@ -16,15 +16,9 @@ import sys
 import tempfile
 from pathlib import Path
 
-from ._source import STAMP, source_digest
+from ._source import BINDING_C, CDEF, STAMP, source_digest
 
 HERE = Path(__file__).resolve().parent
-
-CDEF = """
-int m2c_first_root_ex(const double c[], int degree, double tmax, double *t, int method, int *graze);
-int m2c_first_root_skin(const double c[], int degree, double tmax, double eps, double *t, int *graze);
-int m2c_first_roots(const double c[], int m, int degree, double tmax, double eps, double t[], int status[]);
-"""
 
 
 def c_dir() -> Path:
@@ -48,7 +42,7 @@ def main() -> int:
     gsl = Path("/usr/include/gsl/gsl_poly.h").exists()
     ffi = cffi.FFI()
     ffi.cdef(CDEF)
-    ffi.set_source("max2code_runtime._roots_c", '#include "max2code_roots.h"\n',
+    ffi.set_source("max2code_runtime._roots_c", BINDING_C,
                    sources=[str(src / "max2code_roots.c")], include_dirs=[str(src)],
                    libraries=(["gsl", "gslcblas"] if gsl else []) + ["m"],
                    define_macros=[] if gsl else [("M2C_NO_GSL", "1")],
