@@ -12,8 +12,10 @@ nearer 0 than d: then Laguerre from 0 heads for d at once):
 * the C runtime's answer is right by the exact oracle (integer arithmetic on the doubles):
   the touch at d with the graze flag, or -- where rounding split the double root into two
   real roots -- the first of them;
-* its cost accounting shows no Taylor point and one derivative-method call (on the small
-  interval): the touch path settled every one (the bisection needed 3-9 Taylor points here);
+* its cost accounting shows no Taylor point, one derivative-method call (on the small
+  interval) and one Bernstein test (on the interval before it; the whole window's test, which
+  a touch ahead leaves undecided, does not run): the touch path settled every one (the
+  bisection needed 3-9 Taylor points here);
 * the Rust crate and the pure-Python solver take C's path and give its answers, bit for bit.
 """
 from __future__ import annotations
@@ -54,11 +56,12 @@ def test_c_takes_the_touch_path(counts_driver: Path) -> None:  # noqa: F811 (the
     for (c, tmax), row in zip(TOUCHES, rows):
         st, t, graze = int(row[0]), float.fromhex(row[1]), row[2] == "1"
         verdict = ex.judge(c, tmax, st, t, graze)
-        points, derivative = int(row[5]), int(row[6])
+        points, derivative, bernstein = int(row[5]), int(row[6]), int(row[7])
         if st != 1 or not verdict.startswith("ok"):
             bad.append(f"{verdict}: {(st, t, graze)} for c={c!r}, tmax={tmax!r}")
-        elif points or derivative != 1:
-            bad.append(f"{points} Taylor points, {derivative} derivative-method calls: c={c!r}, tmax={tmax!r}")
+        elif points or derivative != 1 or bernstein != 1:
+            bad.append(f"{points} Taylor points, {derivative} derivative-method calls, {bernstein} "
+                       f"Bernstein tests: c={c!r}, tmax={tmax!r}")
         grazes += graze
     assert not bad, "\n".join(bad)
     assert grazes >= len(TOUCHES) // 3, grazes  # (the rest split into two roots when rounded)

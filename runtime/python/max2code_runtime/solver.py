@@ -830,20 +830,14 @@ def _isolate_first_root(p: Sequence[float], n: int, skin: float, T: float, faile
         w = w if w < T else T
         if _bernstein_test(a, n, w, False).answer == BERN_ONE:
             return _refine_root(p, _derivative(p, n), n, 0.0, w, 1, PRECISE_NOW, r), False
-    start = _bernstein_test(a, n, T, True)
-    if start.answer == BERN_CLEAR:
-        return _CLEARED
-    if start.answer == BERN_ONE:
-        return _polish_isolated(p, n, 0.0, T, a.px, start.pend), False
-    q = start.q
-    assert q is not None  # (asked for, and not cleared)
     frm = 0.0  # > 0: (0, frm] is settled, the counts go on from it (C's `from`)
     # A touch ahead, with the graze check only: (0, lo] certified clear by the Bernstein test,
     # then the derivative method on (lo, hi] -- small, so few roots of the derivatives in it
     # -- instead of Taylor points bisecting down to the touch; the counts go on from hi if it
     # finds nothing.  hi is 3 widths to the right: from the middle of a symmetric interval the
     # fma noise of p' at the critical point sent the derivative method's Newton into
-    # bisection (see the C source).
+    # bisection (see the C source).  Before the test on the whole window, which a touch ahead
+    # leaves undecided (q dips to 0 there; see the C source).
     touch = guess.touch
     if touch > 0 and skin >= 0:
         lo = touch - touch * TOUCH_WIDTH
@@ -856,8 +850,16 @@ def _isolate_first_root(p: Sequence[float], n: int, skin: float, T: float, faile
             if hi == T:
                 return _CLEARED
             frm = hi
-    if frm == 0 and q.even and _bernstein_clear(q, n):  # (after a guess that failed)
-        return _CLEARED
+    if frm == 0:  # the whole window, unless a touch's interval settled (0, frm]
+        start = _bernstein_test(a, n, T, True)
+        if start.answer == BERN_CLEAR:
+            return _CLEARED
+        if start.answer == BERN_ONE:
+            return _polish_isolated(p, n, 0.0, T, a.px, start.pend), False
+        q = start.q
+        assert q is not None  # (asked for, and not cleared)
+        if q.even and _bernstein_clear(q, n):  # (after a guess that failed)
+            return _CLEARED
     tk = [[BINOM[k][j] * p[j + k] if j + k <= n else 0.0 for j in range(n + 1)] for k in range(n + 1)]
     ta = [[abs(v) for v in row] for row in tk]
     first = _point_at(tk, ta, e, sk, n, T)

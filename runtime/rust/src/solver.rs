@@ -1418,12 +1418,6 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64, failed_w: f64)
         Guess::Nothing => {}
     }
     count::phase(1);
-    let mut start = Start { q: [0.0; MAXN + 1], err: 0.0, even: false };
-    match bernstein_test(a, n, t_end, Some(&mut start)) {
-        Bernstein::Clear => return Isolation::Cleared,
-        Bernstein::One(p_end) => return Isolation::Isolated(polish_isolated(p, n, 0.0, t_end, a.px, p_end), false),
-        Bernstein::Unknown => {}
-    }
     let mut from = 0.0; // > 0: (0, from] is settled, the counts go on from it
     // A touch ahead: (0, lo] certified clear by the Bernstein test (q's coefficients all
     // positive), then the derivative method settles (lo, hi] -- small, so with few roots of
@@ -1433,7 +1427,8 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64, failed_w: f64)
     // the middle of a symmetric interval (the critical point to within rounding) the fma
     // noise of p' there sent the derivative method's Newton into bisection, to a neighbour of
     // an exact double root (see the C source).  Not for the no-graze baseline (skin < 0),
-    // whose answers stay as they were.
+    // whose answers stay as they were.  Before the test on the whole window, which a touch
+    // ahead leaves undecided (q dips to 0 there; see the C source).
     if touch > 0.0 && skin >= 0.0 {
         let lo = touch - touch * TOUCH_WIDTH;
         let hi = touch + 3.0 * touch * TOUCH_WIDTH;
@@ -1450,9 +1445,20 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64, failed_w: f64)
             from = hi;
         }
     }
-    if from == 0.0 && start.even && bernstein_clear(&start.q, start.err, n) {
-        // (after a guess that failed)
-        return Isolation::Cleared;
+    if from == 0.0 {
+        // the whole window, unless a touch's interval settled (0, from]
+        let mut start = Start { q: [0.0; MAXN + 1], err: 0.0, even: false };
+        match bernstein_test(a, n, t_end, Some(&mut start)) {
+            Bernstein::Clear => return Isolation::Cleared,
+            Bernstein::One(p_end) => {
+                return Isolation::Isolated(polish_isolated(p, n, 0.0, t_end, a.px, p_end), false)
+            }
+            Bernstein::Unknown => {}
+        }
+        if start.even && bernstein_clear(&start.q, start.err, n) {
+            // (after a guess that failed)
+            return Isolation::Cleared;
+        }
     }
     let mut slot = MaybeUninit::<Taylor>::uninit();
     let tb = taylor_table(p, n, e, sk, &mut slot);
