@@ -948,7 +948,24 @@ def _roots_in_pieces(P, D, m: int, lo: float, crit: list[float], T: float, tol: 
     return out
 
 
+def _convex_on(d: list[list[float]], n: int, lo: float, T: float) -> bool:
+    """C convex_on: p'' certainly positive on [lo, T], beyond the rounding of its plain Horner
+    value anywhere there (the C source has the bound); then the level for the roots of p'' is
+    empty whatever the levels below find, and the roots of p' come from an empty level."""
+    if n < 4 or not lo >= 0 or _scale_exponent(T, n) != 0:
+        return False
+    m = lo + 0.5 * (T - lo)
+    h = m - lo if m - lo > T - m else T - m
+    v = horner(d[n - 2], n - 2, m, 0, False)
+    slope = _horner_abs(d[n - 3], n - 3, T, 0)
+    size = _horner_abs(d[n - 2], n - 2, T, 0)
+    rel = 4.0 * (n + 1) * U
+    return v - h * slope * (1 + rel) > 2 * noise_factor(n) * size * (1 + rel)
+
+
 def _critical_points(d: list[list[float]], n: int, lo: float, T: float) -> list[float]:
+    if _convex_on(d, n, lo, T):  # the roots of p' alone
+        return _roots_in_pieces(d[n - 1], d[n - 2], n - 1, lo, [], T, TOL_CRITICAL)
     level: list[float] = []
     roots, _ = quad_roots(d[2][2], d[2][1], d[2][0])
     if roots is not None:

@@ -1618,11 +1618,32 @@ fn roots_in_pieces(p: &[f64], d: &[f64], m: usize, lo: f64, crit: &[f64], t_end:
     count
 }
 
+/// C `convex_on`: is p'' certainly positive on [lo, t_end], beyond the rounding of its plain
+/// Horner value anywhere there (see the C source for the bound)?  Then the derivative
+/// method's level for the roots of p'' is empty whatever the levels below it find, and the
+/// roots of p' come from an empty level: the same steps and bits as the full recursion.
+fn convex_on(d: &Chain, n: usize, lo: f64, t_end: f64) -> bool {
+    if n < 4 || !(lo >= 0.0) || scale_exponent(t_end, n) != 0 {
+        return false;
+    }
+    let m = lo + 0.5 * (t_end - lo);
+    let h = if m - lo > t_end - m { m - lo } else { t_end - m };
+    let v = horner(d.row(n - 2), n - 2, m, 0, false);
+    let slope = horner_abs(d.row(n - 3), n - 3, t_end, 0);
+    let size = horner_abs(d.row(n - 2), n - 2, t_end, 0);
+    let rel = 4.0 * (n + 1) as f64 * U;
+    v - h * slope * (1.0 + rel) > 2.0 * noise_factor(n) * size * (1.0 + rel)
+}
+
 fn critical_points(d: &Chain, n: usize, lo: f64, t_end: f64, crit: &mut [f64; MAXN]) -> usize {
     let mut level = [0.0f64; MAXN];
     let mut nl = 0usize;
     if n < 3 {
         return 0; // (never: degree >= 3 here; as C says so)
+    }
+    if convex_on(d, n, lo, t_end) {
+        // the roots of p' alone (convex_on)
+        return roots_in_pieces(d.row(n - 1), d.row(n - 2), n - 1, lo, &[], t_end, TOL_CRITICAL, crit);
     }
     if let (Some(r), _) = quad_roots(d.row(2)[2], d.row(2)[1], d.row(2)[0]) {
         for x in r {
