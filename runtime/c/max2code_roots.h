@@ -99,7 +99,8 @@
  *           whole window: q's coefficients all positive: no root; one
  *           change each: one simple root of p (with nothing before it but,
  *           possibly, a stretch where p stays within the noise): polished.
- *        c. A touch from a: where q's Bernstein coefficients on (0, c (1 -
+ *        c. A touch from a (tried before b, which a touch leaves
+ *           undecided): where q's Bernstein coefficients on (0, c (1 -
  *           2^-10)] are all certainly positive (nothing before it), the
  *           derivative method (step 2) settles (c (1 - 2^-10), c (1 +
  *           3 2^-10)]; if it finds nothing there, e goes on from its right
@@ -130,7 +131,10 @@
  *        1 cannot start or go on: Yuksel (HPG 2022) style -- the roots of
  *        the derivatives in the interval, found recursively (to 2^-28
  *        relative, those of p' to 2^-36: they only bracket, and p' = 0 makes
- *        p insensitive to them), split it into monotone pieces, scanned left
+ *        p insensitive to them; where p'' is certainly positive on the
+ *        interval -- beyond the rounding of its value anywhere there -- the
+ *        roots of p' alone, the levels below being moot), split it into
+ *        monotone pieces, scanned left
  *        to right with the graze check at each critical point.  At a
  *        critical point the fma sign of p may be noise: a crossing before
  *        it counts only if compensated Horner confirms the sign (else the
