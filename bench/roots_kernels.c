@@ -89,8 +89,8 @@ static int prepare(Kept *k)
     int n = prepare_window(k->c, k->degree, k->tmax, c, &T, &k->a);
     if (n == 0)
         return 0;
-    double r, touch, pT;
-    if (!speculate_first_root(c, n, T, &r, &touch))
+    double r, touch, dip = 0, pT;
+    if (!speculate_first_root(c, n, T, &r, &touch, &dip))
         return 0;
     double w = r + r * 0x1p-20;
     w = w < T ? w : T;
@@ -138,10 +138,10 @@ static double region(int which, int m)
             break;
         }
         case REPLICA: {
-            double c[MAXN + 1], T = 0, r = 0, touch = 0, pT = 0, dp[MAXN];
+            double c[MAXN + 1], T = 0, r = 0, touch = 0, dip = 0, pT = 0, dp[MAXN];
             Point a;
             int n = prepare_window(k->c, k->degree, k->tmax + tiny, c, &T, &a);
-            speculate_first_root(c, n, T, &r, &touch);
+            speculate_first_root(c, n, T, &r, &touch, &dip);
             double w = r + r * 0x1p-20;
             w = w < T ? w : T;
             if (bernstein_test(&a, n, w, &pT, NULL) == BERN_ONE) {
@@ -157,8 +157,8 @@ static double region(int which, int m)
             break;
         }
         case GUESS: {
-            double r = 0, touch = 0;
-            dep = speculate_first_root(k->p, k->n, k->T + tiny, &r, &touch) + r;
+            double r = 0, touch = 0, dip = 0;
+            dep = speculate_first_root(k->p, k->n, k->T + tiny, &r, &touch, &dip) + r;
             break;
         }
         case CERTIFICATE: {

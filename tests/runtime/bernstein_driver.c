@@ -9,7 +9,8 @@
  *   ANSWER PEND [Q0 .. QN ERR EVEN CLEARED] SPECULATED R TOUCH MADDS ANSWER2 PEND2
  * ANSWER, PEND: bernstein_test(pt, N, W) with qb (PEND NaN when p's coefficients are not
  * formed); the bracket only unless ANSWER is BERN_CLEAR (qb is not filled then): qb's
- * coefficients, bound and even flag, and bernstein_clear(qb) (whatever qb.even says).
+ * coefficients, bound and even flag, and bernstein_clear(qb) (whatever qb.even says), halving
+ * only and with its first split at 0.3.
  * SPECULATED, R, TOUCH, MADDS: speculate_first_root on the polynomial PT with T = X + W, its
  * touch, and the multiply-adds it counts (3 N per Laguerre or Newton-on-p' step, N for the
  * rounding bound at a critical point: its number of steps).
@@ -54,12 +55,13 @@ int main(void)
         if (answer != BERN_CLEAR) {
             for (int j = 0; j <= n; j++)
                 printf(" %a", qb.b[j]);
-            printf(" %a %d %d", qb.err, qb.even != 0, bernstein_clear(&qb, n));
+            printf(" %a %d %d %d", qb.err, qb.even != 0, bernstein_clear(&qb, n, 0),
+                   bernstein_clear(&qb, n, 0.3)); /* halves only; the first split at 0.3 */
         }
-        double r = 0, touch = 0, before = m2c_count[2];
-        int speculated = speculate_first_root(pt.pt, n, pt.x + w, &r, &touch);
+        double r = 0, touch = 0, dip = 0, before = m2c_count[2];
+        int speculated = speculate_first_root(pt.pt, n, pt.x + w, &r, &touch, &dip);
         double madds = m2c_count[2] - before;
-        printf(" %d %a %a %.0f", speculated, speculated ? r : 0.0, touch, madds);
+        printf(" %d %a %a %a %.0f", speculated, speculated ? r : 0.0, touch, dip, madds);
         double pend2 = NAN;
         int answer2 = bernstein_test(&pt, n, w, &pend2, NULL);
         printf(" %d %a\n", answer2, pend2);

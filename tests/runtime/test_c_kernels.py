@@ -90,6 +90,32 @@ int main(void)
             CHECK(memcmp(&r2[j], &right[j], sizeof(double)) == 0, "halves right n=%d j=%d\n", n, j);
             CHECK(memcmp(&mirror[j], &right[j], sizeof(double)) == 0, "mirror n=%d j=%d\n", n, j);
         }
+        /* split_at: de Casteljau at t, each entry within 4 n u M of the same
+         * triangle in long double (64-bit mantissa: its own error is 2^-11 of
+         * that), M the largest |a_j|, as bernstein_clear's bound takes it */
+        {
+            (void)rnd(); /* (a fresh state: t uniform in bernstein_clear's (1/16, 15/16)) */
+            double t = 0.0625 + 0.875 * ((double)(state >> 11) / 9007199254740992.0), M = 0;
+            long double lw[MAXN + 1], ll[MAXN + 1], lr[MAXN + 1];
+            for (int j = 0; j <= n; j++) {
+                lw[j] = a[j];
+                M = fabs(a[j]) > M ? fabs(a[j]) : M;
+            }
+            ll[0] = lw[0];
+            lr[n] = lw[n];
+            for (int k = 1; k <= n; k++) {
+                for (int j = 0; j <= n - k; j++)
+                    lw[j] = lw[j] + (long double)t * (lw[j + 1] - lw[j]);
+                ll[k] = lw[0];
+                lr[n - k] = lw[n - k];
+            }
+            split_at(a, n, t, l2, r2);
+            double bound = 4.0 * n * UNIT_ROUNDOFF * M + DBL_MIN;
+            for (int j = 0; j <= n; j++)
+                CHECK(fabsl(l2[j] - ll[j]) <= bound && fabsl(r2[j] - lr[j]) <= bound,
+                      "split_at n=%d j=%d t=%a: %Lg %Lg beyond %g\n", n, j, t,
+                      fabsl(l2[j] - ll[j]), fabsl(r2[j] - lr[j]), bound);
+        }
         /* compensated_with_slope: horner_compensated's value, bit for bit, and
          * the slope of plain Horner on D (the two chains share one loop) */
         {

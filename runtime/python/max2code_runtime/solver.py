@@ -643,9 +643,26 @@ def _halves(b: Sequence[float], n: int) -> tuple[list[float], list[float]]:
 CLEAR_DEPTH = 12
 
 
-def _bernstein_clear(q: _BernQ, n: int) -> bool:
-    """q > 0 on q's interval, shown by depth-first halving in the Bernstein basis, the left
-    half first (C bernstein_clear, which says why and bounds the halves' errors)."""
+def _split_at(b: Sequence[float], n: int, t: float) -> tuple[list[float], list[float]]:
+    """The Bernstein coefficients of [0, t] and [t, 1] of the interval: de Casteljau at t,
+    n rounds of w_j + t (w_{j+1} - w_j) (C split_at)."""
+    w = [b[j] for j in range(n + 1)]
+    left = [0.0] * (n + 1)
+    right = [0.0] * (n + 1)
+    left[0] = w[0]
+    right[n] = w[n]
+    for k in range(1, n + 1):
+        for j in range(n - k + 1):
+            w[j] = w[j] + t * (w[j + 1] - w[j])
+        left[k] = w[0]
+        right[n - k] = w[n - k]
+    return left, right
+
+
+def _bernstein_clear(q: _BernQ, n: int, t0: float) -> bool:
+    """q > 0 on q's interval, shown by depth-first splitting in the Bernstein basis, the left
+    piece first, the first split at t0 (where p dips) when it is well inside, the others
+    halves (C bernstein_clear, which says why and bounds the pieces' errors)."""
     stack = [(q.b, q.err, 0)]
     while stack:
         b, e, d = stack.pop()
@@ -664,8 +681,9 @@ def _bernstein_clear(q: _BernQ, n: int) -> bool:
         M = -lo if -lo > hi else hi
         if d == CLEAR_DEPTH:
             return False
-        left, right = _halves(b, n)
-        ec = e + 2 * n * U * M + DBL_MIN
+        at = d == 0 and 0.0625 < t0 < 0.9375
+        left, right = _split_at(b, n, t0) if at else _halves(b, n)
+        ec = e + (8 if at else 2) * n * U * M + DBL_MIN
         stack.append((right, ec, d + 1))
         stack.append((left, ec, d + 1))
     return True
@@ -709,6 +727,7 @@ class _Guess(NamedTuple):
     bounds)."""
     root: float | None
     touch: float
+    dip: float = 0.0  # where p dips towards complex roots near the axis (C's *dip), or 0
 
 
 def _speculate_first_root(p: Sequence[float], n: int, T: float) -> _Guess:
@@ -743,7 +762,7 @@ def _speculate_first_root(p: Sequence[float], n: int, T: float) -> _Guess:
                 return _Guess(None, 0.0)
             if abs(s) <= PRECISE_FROM * x:
                 near = abs(f) <= TOUCH_NEAR * noise_factor(n) * _horner_abs(p, n, x, 0)
-                return _Guess(None, x if near else 0.0)
+                return _Guess(None, x, 0.0) if near else _Guess(None, 0.0, x)  # (else a dip)
             if critical > 1 and not (abs(s) <= 0.5 * abs(last)):
                 return _Guess(None, 0.0)
             critical += 1
@@ -754,8 +773,8 @@ def _speculate_first_root(p: Sequence[float], n: int, T: float) -> _Guess:
         g = d1 / f
         h = g * g - 2 * d2 / f
         disc = (n - 1) * (n * h - g * g)
-        if not (disc >= 0):  # complex roots in the way (or NaN)
-            return _Guess(None, 0.0)
+        if not (disc >= 0):  # complex roots in the way (or NaN): Newton on p' towards the dip
+            return _Guess(None, 0.0, x - _div(d1, 2 * d2) if d2 > 0 else 0.0)
         den = g - math.sqrt(disc)  # the step is -n / den: to the right
         if not (den < 0):
             return _Guess(None, 0.0)
@@ -858,7 +877,7 @@ def _isolate_first_root(p: Sequence[float], n: int, skin: float, T: float, faile
             return _polish_isolated(p, n, 0.0, T, a.px, start.pend), False
         q = start.q
         assert q is not None  # (asked for, and not cleared)
-        if q.even and _bernstein_clear(q, n):  # (after a guess that failed)
+        if q.even and _bernstein_clear(q, n, _div(guess.dip, T)):  # (after a guess that failed)
             return _CLEARED
     tk = [[BINOM[k][j] * p[j + k] if j + k <= n else 0.0 for j in range(n + 1)] for k in range(n + 1)]
     ta = [[abs(v) for v in row] for row in tk]

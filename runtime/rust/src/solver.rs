@@ -1148,12 +1148,30 @@ const CLEAR_DEPTH: usize = 12;
 /// (see the C source).  Out of line, as in C: a rare path.  Up to degree 8 on arrays of 9
 /// (constant sizes: no memcpy or memset calls, and half the stack to zero).
 #[inline(never)]
-fn bernstein_clear(q: &[f64; MAXN + 1], err0: f64, n: usize) -> bool {
+fn bernstein_clear(q: &[f64; MAXN + 1], err0: f64, n: usize, t0: f64) -> bool {
     if n <= 8 {
-        clear_pieces::<9>(std::array::from_fn(|j| q[j]), err0, n)
+        clear_pieces::<9>(std::array::from_fn(|j| q[j]), err0, n, t0)
     } else {
-        clear_pieces::<{ MAXN + 1 }>(*q, err0, n)
+        clear_pieces::<{ MAXN + 1 }>(*q, err0, n, t0)
     }
+}
+
+/// C `split_at`: the Bernstein coefficients of [0, t] and [t, 1] of the interval (de
+/// Casteljau at t in (0, 1): n rounds of w_j + t (w_{j+1} - w_j); left[k] the first entry
+/// after round k, right[n - k] the last), from entries 0..=n of `inp`.
+fn split_at<const W: usize>(inp: &[f64; W], n: usize, t: f64) -> ([f64; W], [f64; W]) {
+    let mut w = *inp;
+    let (mut left, mut right) = ([0.0f64; W], [0.0f64; W]);
+    left[0] = w[0];
+    right[n] = w[n];
+    for k in 1..n + 1 {
+        for j in 0..n + 1 - k {
+            w[j] = w[j] + t * (w[j + 1] - w[j]);
+        }
+        left[k] = w[0];
+        right[n - k] = w[n - k];
+    }
+    (left, right)
 }
 
 /// A piece of `bernstein_clear`'s interval: q's Bernstein coefficients on it (0..=n), the
@@ -1166,7 +1184,7 @@ struct Piece<const W: usize> {
 }
 
 #[inline(always)]
-fn clear_pieces<const W: usize>(q: [f64; W], err: f64, n: usize) -> bool {
+fn clear_pieces<const W: usize>(q: [f64; W], err: f64, n: usize, t0: f64) -> bool {
     let n = n.min(W - 1);
     // a stack of which st[..top] is in use, not zeroed: most calls end at the first piece
     // (zeroing the stack cost more than such a call)
@@ -1197,8 +1215,10 @@ fn clear_pieces<const W: usize>(q: [f64; W], err: f64, n: usize) -> bool {
         }
         // halves: the right one over b's slot, the left one above it (looked at first)
         count::madds(n * (n + 1) / 2);
-        let (left, right) = halves(&b, n);
-        let ec = e + (2 * n) as f64 * U * m + f64::MIN_POSITIVE;
+        // the first split at t0 (the dip: C bernstein_clear says why), the others at 1/2
+        let at = d == 0 && t0 > 0.0625 && t0 < 0.9375;
+        let (left, right) = if at { split_at(&b, n, t0) } else { halves(&b, n) };
+        let ec = e + ((if at { 8 } else { 2 }) * n) as f64 * U * m + f64::MIN_POSITIVE;
         st[top] = MaybeUninit::new(Piece { b: right, err: ec, depth: d + 1 });
         st[top + 1] = MaybeUninit::new(Piece { b: left, err: ec, depth: d + 1 });
         top += 2;
@@ -1232,6 +1252,9 @@ enum Guess {
     Root(f64),
     /// The critical point of a touch ahead (p there within TOUCH_NEAR rounding bounds).
     Touch(f64),
+    /// Nothing, but where p dips towards complex roots near the axis (C's *dip): a point
+    /// for bernstein_clear's first split.
+    Dip(f64),
     Nothing,
 }
 
@@ -1298,7 +1321,8 @@ fn speculate_first_root(p: &[f64], n: usize, t_end: f64) -> Guess {
             }
             if s.abs() <= PRECISE_FROM * x {
                 let near = f.abs() <= TOUCH_NEAR * noise_factor(n) * horner_abs(p, n, x, 0);
-                return if near { Guess::Touch(x) } else { Guess::Nothing };
+                // (not near: a dip clear of the axis, complex roots)
+                return if near { Guess::Touch(x) } else { Guess::Dip(x) };
             }
             if critical > 1 && !(s.abs() <= 0.5 * last.abs()) {
                 return Guess::Nothing;
@@ -1314,7 +1338,8 @@ fn speculate_first_root(p: &[f64], n: usize, t_end: f64) -> Guess {
         let h = g * g - 2.0 * d2 / f;
         let disc = n1f * (nf * h - g * g);
         if !(disc >= 0.0) {
-            return Guess::Nothing;
+            // complex roots in the way: one Newton step on p' towards the dip
+            return if d2 > 0.0 { Guess::Dip(x - d1 / (2.0 * d2)) } else { Guess::Nothing };
         }
         // the step is -n / den: to the right
         let den = g - disc.sqrt();
@@ -1402,7 +1427,7 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64, failed_w: f64)
     // A guess first, then a certificate: the guess (Laguerre from 0) and one Bernstein test on
     // (0, r (1 + 2^-20)] settle most solves with a root, which the test on the whole window
     // before them only delayed (measured: see the C source).
-    let mut touch = 0.0;
+    let (mut touch, mut dip) = (0.0, 0.0);
     match speculate_first_root(p, n, t_end) {
         Guess::Root(r) => {
             let w = r + r * SPECULATE_MARGIN;
@@ -1415,6 +1440,7 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64, failed_w: f64)
             }
         }
         Guess::Touch(x) => touch = x,
+        Guess::Dip(x) => dip = x,
         Guess::Nothing => {}
     }
     count::phase(1);
@@ -1455,7 +1481,7 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64, failed_w: f64)
             }
             Bernstein::Unknown => {}
         }
-        if start.even && bernstein_clear(&start.q, start.err, n) {
+        if start.even && bernstein_clear(&start.q, start.err, n, dip / t_end) {
             // (after a guess that failed)
             return Isolation::Cleared;
         }
