@@ -918,7 +918,9 @@ def _isolate_first_root(p: Sequence[float], n: int, skin: float, T: float, faile
             m = _isolation_split(a.x, b.x)
             mt = a.x + SPLIT_NEWTON * _div(-a.px, a.dpx)
             hair = a.x + 4 * MIN_WIDTH * b.x
-            if a.dpx < 0 and a.x < mt < b.x and mt - a.x > MIN_WIDTH * b.x:
+            if splits == 0 and a.x + 0.0625 * w < guess.dip < b.x - 0.0625 * w:
+                m = guess.dip  # the first split where the failed guess saw p dip (C says why)
+            elif a.dpx < 0 and a.x < mt < b.x and mt - a.x > MIN_WIDTH * b.x:
                 m = mt
             elif a.dpx < 0 and mt > a.x and mt - a.x <= MIN_WIDTH * b.x and hair < b.x:
                 m = hair

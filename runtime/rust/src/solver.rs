@@ -1549,7 +1549,9 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64, failed_w: f64)
             let mut m = isolation_split(a.x, bx);
             let mt = a.x + SPLIT_NEWTON * (-a.px / a.dpx);
             let hair = a.x + 4.0 * MIN_WIDTH * bx;
-            if a.dpx < 0.0 && mt > a.x && mt < bx && mt - a.x > MIN_WIDTH * bx {
+            if splits == 0 && dip > a.x + 0.0625 * w && dip < bx - 0.0625 * w {
+                m = dip; // the first split where the failed guess saw p dip (C says why)
+            } else if a.dpx < 0.0 && mt > a.x && mt < bx && mt - a.x > MIN_WIDTH * bx {
                 m = mt;
             } else if a.dpx < 0.0 && mt > a.x && mt - a.x <= MIN_WIDTH * bx && hair < bx {
                 m = hair;
