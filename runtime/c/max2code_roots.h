@@ -110,7 +110,11 @@
  *           Bernstein basis (de Casteljau) until every piece has q's
  *           coefficients all positive -- no root -- or a piece is in doubt
  *           (then on to e).  This is what clears windows with complex roots
- *           close to the axis.
+ *           close to the axis.  Where the guess (a) gave up on complex roots
+ *           in the way, the first split is at the dip of p it was heading
+ *           for (one Newton step on p'), when that is well inside (1/16 of
+ *           the window from either end): both sides then start where p is
+ *           least.  The same point is e's first split.
  *        e. Budan-Fourier counts of the roots of p and of q in subintervals
  *           of (0, T] (sign changes of the Taylor coefficients, each trusted
  *           only beyond its rounding bound; any doubt goes to step 2), plus
