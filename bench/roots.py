@@ -681,6 +681,21 @@ def run_python(polys: list, sweeps: int, backend) -> dict[int, tuple[int, float,
         rt._C = saved
 
 
+def c_backend():
+    """max2code_runtime's cffi backend, or None -- then said on stderr, with the reason (a stale
+    build is refused: the Python (C backend) column would otherwise be empty without a word)."""
+    sys.path.insert(0, str(ROOT / "runtime" / "python"))
+    if os.environ.get("MAX2CODE_PURE_PYTHON"):
+        print("bench/roots.py: MAX2CODE_PURE_PYTHON is set: no C backend to time", file=sys.stderr)
+        return None
+    try:
+        from max2code_runtime import _cbackend
+    except ImportError as exc:
+        print(f"bench/roots.py: the C backend is not in use: {exc}", file=sys.stderr)
+        return None
+    return _cbackend
+
+
 def runtime_comparison(polys: list, sweeps: int, rounds: int, exe_c: Path, pure_share: int) -> dict:
     """C and Rust alternately for `rounds` rounds (ratios per round, then their median), Python
     through cffi and pure Python after; answers compared with C's bit for bit."""
@@ -695,9 +710,7 @@ def runtime_comparison(polys: list, sweeps: int, rounds: int, exe_c: Path, pure_
         horner.append(ans["horner8"])
         if rust_exe is not None:
             rounds_r.append(run_rust(rust_exe, sub, sweeps))
-    sys.path.insert(0, str(ROOT / "runtime" / "python"))
-    import max2code_runtime as rt
-    cffi = rt._load_c()
+    cffi = c_backend()
     py_c = run_python(sub, sweeps, cffi) if cffi is not None else None
     pure_idx = [k for k in range(len(sub)) if k % pure_share == 0]
     py_pure = run_python([sub[k] for k in pure_idx], 1, None)
@@ -752,7 +765,7 @@ def batch_comparison(polys: list, repeats: int = 7) -> dict:
     out = {"M": len(rows)}
     saved = rt._C
     try:
-        for name, backend in (("c", rt._load_c()), ("python", None)):
+        for name, backend in (("c", c_backend()), ("python", None)):
             if name == "c" and backend is None:
                 continue
             rt._C = backend
@@ -869,10 +882,11 @@ def runtime_table(cmp: dict, meta: dict) -> str:
         tgt = TARGET_EVALS.get(fam)
         tgt_s = "–" if tgt is None else (f"≤ {tgt:.0f}" if fam not in ("collision8", "generic4") else f"< {tgt:.1f}")
         met = "" if tgt is None else (" ✓" if r["c_evals"] <= tgt else " ✗")
+        py_c = f"{r['py_c_ratio']:.1f}×" if "py_c_ratio" in r else "not in use"
         lines.append(
             f"| {label} | {r['c_ns']:.0f} ns | {r['c_evals']:.1f}{met} | {tgt_s} | "
             f"{r.get('c_mean_evals', math.nan):.1f} | {cy_s} | "
-            f"{r.get('rust_ratio', math.nan):.2f}× | {r.get('py_c_ratio', math.nan):.1f}× | "
+            f"{r.get('rust_ratio', math.nan):.2f}× | {py_c} | "
             f"{r['py_pure_ratio']:.0f}× |")
     lines += ["", "Answers against C's (status and root, bit for bit): " + ", ".join(
         f"{name} {bad} different of {n}" for name, (bad, n) in cmp["mismatch"].items()) + "."]
