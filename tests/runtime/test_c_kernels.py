@@ -11,15 +11,10 @@ printed and fails the test.
 """
 from __future__ import annotations
 
-import os
-import shutil
-import subprocess
 from pathlib import Path
 
-import pytest
+from .c_program import run_c_program
 
-ROOT = Path(__file__).resolve().parents[2]
-C_DIR = ROOT / "runtime" / "c"
 
 PROGRAM = r"""
 #include "max2code_roots.c"
@@ -233,16 +228,4 @@ int main(void)
 
 
 def test_kernels_match_their_definitions(tmp_path: Path) -> None:
-    gcc = shutil.which("gcc")
-    if gcc is None:
-        if os.environ.get("CI"):
-            pytest.fail("gcc not found (CI is set: a missing tool is a failure)")
-        pytest.skip("gcc not found")
-    src = tmp_path / "kernels.c"
-    src.write_text(PROGRAM)
-    exe = tmp_path / "kernels"
-    r = subprocess.run([gcc, "-O2", "-std=c11", "-DM2C_NO_GSL", "-I", str(C_DIR), str(src), "-o", str(exe),
-                        "-lm"], capture_output=True, text=True)
-    assert r.returncode == 0, r.stderr
-    run = subprocess.run([str(exe)], capture_output=True, text=True, timeout=300)
-    assert run.returncode == 0 and run.stdout.strip().endswith("0 differences"), run.stdout
+    run_c_program(PROGRAM, tmp_path, "kernels")
