@@ -1347,7 +1347,7 @@ static void split_at(const double in[], int n, double t, double left[], double r
  * axis, where Descartes' count stays 2 on every interval around them until
  * the intervals are about as narrow as the imaginary parts.
  * The first split is at t0 (relative to the interval) instead when it lies
- * in (1/16, 15/16): where the failed guess saw p dip towards such roots
+ * DIP_INSIDE or more from either end: where the failed guess saw p dip towards such roots
  * (speculate_first_root's *dip).  Split at the dip, each side starts where
  * p is least and rises away from it, and is often cleared at once, where
  * halves would first have to shrink around it (measured: bench/roots_ab.py
@@ -1355,6 +1355,9 @@ static void split_at(const double in[], int n, double t, double left[], double r
  * and in the mean; the other families within noise; the same answers).  A
  * split at t rounds three times per entry (split_at): 4 n u M, twice. */
 #define CLEAR_DEPTH 12
+/* A dip counts for a first split when it is at least this fraction of the
+ * interval from either end (bernstein_clear, isolate_first_root). */
+#define DIP_INSIDE 0.0625
 NOINLINE static int bernstein_clear(const BernQ *qb, int n, double t0)
 {
     double st[CLEAR_DEPTH + 2][MAXN + 1], err[CLEAR_DEPTH + 2];
@@ -1391,7 +1394,7 @@ NOINLINE static int bernstein_clear(const BernQ *qb, int n, double t0)
         whole[0] = b[0]; /* (gcc -Wmaybe-uninitialized cannot see n >= 1) */
         for (int j = 1; j <= n; j++)
             whole[j] = b[j];
-        int at = d == 0 && t0 > 0.0625 && t0 < 0.9375;
+        int at = d == 0 && t0 > DIP_INSIDE && t0 < 1 - DIP_INSIDE;
         if (at)
             split_at(whole, n, t0, st[top + 1], b);
         else
@@ -1706,7 +1709,7 @@ static int isolate_first_root(const double p[], int n, double skin,
             double m = isolation_split(a.x, b->x);
             double mt = a.x + SPLIT_NEWTON * (-a.px / a.dpx);
             double hair = a.x + 4 * MIN_WIDTH * b->x;
-            if (splits == 0 && dip > a.x + 0.0625 * w && dip < b->x - 0.0625 * w)
+            if (splits == 0 && dip > a.x + DIP_INSIDE * w && dip < b->x - DIP_INSIDE * w)
                 m = dip;
             else if (a.dpx < 0 && mt > a.x && mt < b->x && mt - a.x > MIN_WIDTH * b->x)
                 m = mt;
@@ -1779,8 +1782,6 @@ static int roots_in_pieces(const double P[], const double D[], int m,
     return count;
 }
 
-/* Roots in (lo, T) of the first derivative of d[n], found level by level
- * from the quadratic derivative upwards. */
 /* Is p'' certainly positive on [lo, T], beyond the rounding of its plain
  * Horner value anywhere there?  For 0 <= lo <= x <= T (no scaled
  * evaluation) and any m in [lo, T]: p''(x) >= p''(m) - h max |p'''|, with
@@ -1808,6 +1809,9 @@ static int convex_on(double d[MAXN + 1][MAXN + 1], int n, double lo, double T)
     return v - h * slope * (1 + rel) > 2 * noise_factor(n) * size * (1 + rel);
 }
 
+/* Roots in (lo, T) of the first derivative of d[n], found level by level
+ * from the quadratic derivative upwards (the last level alone where
+ * convex_on). */
 static int critical_points(double d[MAXN + 1][MAXN + 1], int n, double lo,
                            double T, double crit[])
 {

@@ -80,15 +80,15 @@ def test_sequence_kinds(backend: str) -> None:
     c = cases.poly_from_roots(["0.5", "2", "-3"], [("1", "1")])
     want = rt.first_root_status(list(c), 10.0)
     assert want[0] == 1 and want[1] == pytest.approx(0.5, rel=1e-15)
-    kinds: list = [tuple(c), array.array("d", c), range(0)]
+    kinds: list = [tuple(c), array.array("d", c)]
     try:
         import numpy as np
         kinds += [np.array(c), np.array([c])[0]]
     except ImportError:
         pass
-    for seq in kinds[:2] + kinds[3:]:
+    for seq in kinds:
         assert rt.first_root_status(seq, 10.0) == want, type(seq)
-    assert rt.first_root_status(kinds[2], 10.0)[0] == -1  # no coefficients
+    assert rt.first_root_status(range(0), 10.0)[0] == -1  # no coefficients
     assert rt.first_root_status((x for x in c), 10.0)[0] == -1  # no length
 
 

@@ -641,6 +641,9 @@ def _halves(b: Sequence[float], n: int) -> tuple[list[float], list[float]]:
 
 
 CLEAR_DEPTH = 12
+# a dip counts for a first split when it is at least this fraction of the interval from either
+# end (C DIP_INSIDE: _bernstein_clear, _isolate_first_root)
+DIP_INSIDE = 0.0625
 
 
 def _split_at(b: Sequence[float], n: int, t: float) -> tuple[list[float], list[float]]:
@@ -681,7 +684,7 @@ def _bernstein_clear(q: _BernQ, n: int, t0: float) -> bool:
         M = -lo if -lo > hi else hi
         if d == CLEAR_DEPTH:
             return False
-        at = d == 0 and 0.0625 < t0 < 0.9375
+        at = d == 0 and DIP_INSIDE < t0 < 1 - DIP_INSIDE
         left, right = _split_at(b, n, t0) if at else _halves(b, n)
         ec = e + (8 if at else 2) * n * U * M + DBL_MIN
         stack.append((right, ec, d + 1))
@@ -918,7 +921,7 @@ def _isolate_first_root(p: Sequence[float], n: int, skin: float, T: float, faile
             m = _isolation_split(a.x, b.x)
             mt = a.x + SPLIT_NEWTON * _div(-a.px, a.dpx)
             hair = a.x + 4 * MIN_WIDTH * b.x
-            if splits == 0 and a.x + 0.0625 * w < guess.dip < b.x - 0.0625 * w:
+            if splits == 0 and a.x + DIP_INSIDE * w < guess.dip < b.x - DIP_INSIDE * w:
                 m = guess.dip  # the first split where the failed guess saw p dip (C says why)
             elif a.dpx < 0 and a.x < mt < b.x and mt - a.x > MIN_WIDTH * b.x:
                 m = mt

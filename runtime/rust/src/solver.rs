@@ -1139,13 +1139,17 @@ fn halves_of_degree<const W: usize>(inp: &[f64; W], n: usize) -> ([f64; W], [f64
 
 /// Halvings after which `bernstein_clear` gives up.
 const CLEAR_DEPTH: usize = 12;
+/// C `DIP_INSIDE`: a dip counts for a first split when it is at least this fraction of the
+/// interval from either end (bernstein_clear, isolate_first_root).
+const DIP_INSIDE: f64 = 0.0625;
 
 /// C `bernstein_clear`: is q > 0 on the interval whose Bernstein coefficients are q[0..=n]
 /// (certain signs beyond `err`, an even count)?  Depth-first bisection in the Bernstein basis
 /// (left half first); a piece is cleared when its coefficients are all certainly positive, and
 /// the answer is no at the first piece with an uncertain sign or differing end signs, or
 /// beyond CLEAR_DEPTH halvings.  A child's error bound is its parent's plus 2 n u M + DBL_MIN
-/// (see the C source).  Out of line, as in C: a rare path.  Up to degree 8 on arrays of 9
+/// (see the C source); the first split is at t0 instead (the dip) when that is DIP_INSIDE or
+/// more from either end, its error 8 n u M.  Out of line, as in C: a rare path.  Up to degree 8 on arrays of 9
 /// (constant sizes: no memcpy or memset calls, and half the stack to zero).
 #[inline(never)]
 fn bernstein_clear(q: &[f64; MAXN + 1], err0: f64, n: usize, t0: f64) -> bool {
@@ -1216,7 +1220,7 @@ fn clear_pieces<const W: usize>(q: [f64; W], err: f64, n: usize, t0: f64) -> boo
         // halves: the right one over b's slot, the left one above it (looked at first)
         count::madds(n * (n + 1) / 2);
         // the first split at t0 (the dip: C bernstein_clear says why), the others at 1/2
-        let at = d == 0 && t0 > 0.0625 && t0 < 0.9375;
+        let at = d == 0 && t0 > DIP_INSIDE && t0 < 1.0 - DIP_INSIDE;
         let (left, right) = if at { split_at(&b, n, t0) } else { halves(&b, n) };
         let ec = e + ((if at { 8 } else { 2 }) * n) as f64 * U * m + f64::MIN_POSITIVE;
         st[top] = MaybeUninit::new(Piece { b: right, err: ec, depth: d + 1 });
@@ -1549,7 +1553,7 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64, failed_w: f64)
             let mut m = isolation_split(a.x, bx);
             let mt = a.x + SPLIT_NEWTON * (-a.px / a.dpx);
             let hair = a.x + 4.0 * MIN_WIDTH * bx;
-            if splits == 0 && dip > a.x + 0.0625 * w && dip < bx - 0.0625 * w {
+            if splits == 0 && dip > a.x + DIP_INSIDE * w && dip < bx - DIP_INSIDE * w {
                 m = dip; // the first split where the failed guess saw p dip (C says why)
             } else if a.dpx < 0.0 && mt > a.x && mt < bx && mt - a.x > MIN_WIDTH * bx {
                 m = mt;
