@@ -73,6 +73,14 @@
  *     has changed sign.
  *     0. No sign change in c as given (zeros skipped), c[0] != 0 and no
  *        skin: no root (Descartes), before any of the preparation above.
+ *        Nor, with tmax = +INFINITY, no skin and degree >= 3, where every
+ *        negative coefficient of sign(c_0) c stands alone between two
+ *        positive ones a and b with |c_i| (1 + e) / (1 - e) < 2 sqrt(a b)
+ *        (e twice the noise factor; a positive coefficient with two
+ *        negative neighbours lends half of itself to each): the neighbours
+ *        outweigh it for every t > 0 (AM-GM), so q > 0 on (0, inf).  (A
+ *        root that only the preparation's dropping of a negligible leading
+ *        term would make is no root here either.)
  *        Else, with tmax finite, no skin, degree >= 3 and the preparation
  *        bound to keep every term (the exponents show it): d's lower bound
  *        on q from its Taylor coefficients at 0 -- q(0) beats every

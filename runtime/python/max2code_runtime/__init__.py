@@ -119,6 +119,10 @@ def _solve_python(cc: list[float], tmax: float, method: str, eps: float) -> tupl
     if (solver._sign_changes(c, degree) == 0 and c[0] != 0 and eps == 0
             and method in ("interval", "interval-nograze")):
         return 0, math.nan, False
+    # Step 0a': AM-GM, with tmax = inf
+    if (tmax == math.inf and c[0] != 0 and eps == 0 and degree >= 3
+            and method in ("interval", "interval-nograze") and solver.outweighed(c, degree)):
+        return 0, math.nan, False
     # Step 0b: the window's first exclusion test, before the preparation; where it fails, the
     # window [0, tmax] it failed on (0: not tried), which the default method does not test again
     failed_w = 0.0

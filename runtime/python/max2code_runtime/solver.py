@@ -514,6 +514,33 @@ def _bounds_positive(qt: Sequence[float], tol: Sequence[float], n: int, w: float
     return m > 2 * rel * size
 
 
+def outweighed(c: Sequence[float], n: int) -> bool:
+    """Step 0a' (C outweighed): no root in (0, inf) by the AM-GM inequality, where every
+    negative coefficient of sign(c_0) c stands alone between two positive ones:
+    a t^(i-1) + b t^(i+1) >= 2 sqrt(a b) t^i for t > 0, each positive coefficient lending half
+    of itself to each of two negative neighbours (all of itself to one).  Shown for the
+    envelope q with twice the noise factor, so that no computed graze test sees a touch where
+    this sees none; the comparison's rounding is within K.  Only with tmax = inf, where step 0b
+    needs the preparation first.  c: n + 1 coefficients, c[0] != 0, n >= 3."""
+    s = -1.0 if c[0] < 0 else 1.0
+    e = 2 * noise_factor(n)
+    k = (1 + e) / (1 - e) * (1 + 16 * U)
+    if not s * c[n] > 0:
+        return False
+    for i in range(1, n):
+        v = s * c[i]
+        if not v < 0:
+            continue
+        a, b = s * c[i - 1], s * c[i + 1]
+        if not (a > 0 and b > 0):
+            return False  # a zero, or two negatives side by side
+        a *= 0.5 if i >= 2 and s * c[i - 2] < 0 else 1.0  # a lends to i - 2 too
+        b *= 0.5 if i + 2 <= n and s * c[i + 2] < 0 else 1.0
+        if not -v * k < 2 * (math.sqrt(a) * math.sqrt(b)):
+            return False
+    return True
+
+
 def cleared_at_once(c: Sequence[float], n: int, tmax: float) -> int:
     """Step 0b (C cleared_at_once): no root in (0, tmax] by _bounds_positive at 0 over the
     whole of [0, tmax], on the coefficients as given (degree n, c[0] != 0, tmax finite, no

@@ -178,6 +178,10 @@ fn solve(coef: &[f64], tmax: f64, method: Method, eps: f64) -> Status {
         return Status::NoRoot;
     }
     let degree = coef.len() - 1;
+    // Step 0a', as C: AM-GM, with tmax = inf
+    if tmax == f64::INFINITY && c[0] != 0.0 && eps == 0.0 && degree >= 3 && matches!(method, Method::Interval | Method::IntervalNoGraze) && solver::outweighed(&c, degree) {
+        return Status::NoRoot;
+    }
     // Step 0b, as C: the window's first test, before the preparation; where it fails, the
     // window [0, tmax] it failed on (0: not tried), which the default method then does not
     // test again (the no-graze method's test at 0 has no noise envelope: not the same test)

@@ -362,6 +362,39 @@ pub(crate) fn normalise(c: &mut Coeffs, n: usize, emax: i32, sign: f64) -> i32 {
     big_e
 }
 
+/// C `outweighed`, step 0a' of `solve` (see the C header): no root in (0, inf) by the AM-GM
+/// inequality, where every negative coefficient of sign(c_0) c stands alone between two
+/// positive ones, a t^(i-1) + b t^(i+1) >= 2 sqrt(a b) t^i for t > 0: each positive coefficient
+/// lends half of itself to each of two negative neighbours (all of itself to one), shown for
+/// the envelope q with twice the noise factor, so that no computed graze test sees a touch
+/// where this sees none.  The rounding of the comparison is within K; an infinite right side
+/// is a true one.  Only with tmax = inf (where step 0b needs the preparation first).
+/// c: n + 1 coefficients, c[0] != 0, n >= 3.
+pub(crate) fn outweighed(c: &Coeffs, n: usize) -> bool {
+    let s = if c[0] < 0.0 { -1.0 } else { 1.0 };
+    let e = 2.0 * noise_factor(n);
+    let k = (1.0 + e) / (1.0 - e) * (1.0 + 16.0 * U);
+    if !(s * c[n] > 0.0) {
+        return false;
+    }
+    for i in 1..n {
+        let v = s * c[i];
+        if !(v < 0.0) {
+            continue;
+        }
+        let (mut a, mut b) = (s * c[i - 1], s * c[i + 1]);
+        if !(a > 0.0 && b > 0.0) {
+            return false; // a zero, or two negatives side by side
+        }
+        a *= if i >= 2 && s * c[i - 2] < 0.0 { 0.5 } else { 1.0 }; // a lends to i - 2 too
+        b *= if i + 2 <= n && s * c[i + 2] < 0.0 { 0.5 } else { 1.0 };
+        if !(-v * k < 2.0 * (a.sqrt() * b.sqrt())) {
+            return false;
+        }
+    }
+    true
+}
+
 /// C `cleared_at_once`, step 0b of `solve` (see the C header): no root in (0, tmax] by the
 /// bounds of `clearly_positive` at 0 over the whole of [0, tmax], on the coefficients as
 /// given, before the preparation -- which, with the `Point` it fills, is most of the cost of a
