@@ -457,7 +457,12 @@ static double horner_abs(const double c[], int n, double x, int k)
 {
     COUNT_MADDS(n);
     double ax = fabs(x), acc = fabs(c[n]);
-    double xs = k ? ldexp(ax, -k) : ax, f = ldexp(1.0, -k), fi = 1.0;
+    if (k == 0) { /* (no ldexp: a library call, on every graze check) */
+        for (int i = n - 1; i >= 0; i--)
+            acc = acc * ax + fabs(c[i]);
+        return acc;
+    }
+    double xs = ldexp(ax, -k), f = ldexp(1.0, -k), fi = 1.0;
     for (int i = n - 1; i >= 0; i--) {
         fi *= f;
         acc = acc * xs + fabs(c[i]) * fi;

@@ -464,7 +464,14 @@ fn horner_abs(c: &[f64], n: usize, x: f64, k: i32) -> f64 {
     count::madds(n);
     let ax = x.abs();
     let mut acc = c[n].abs();
-    let xs = if k != 0 { ldexp(ax, -i64::from(k)) } else { ax };
+    if k == 0 {
+        // (as C: the common case without the scaling's products)
+        for i in (0..n).rev() {
+            acc = acc * ax + c[i].abs();
+        }
+        return acc;
+    }
+    let xs = ldexp(ax, -i64::from(k));
     let f = ldexp(1.0, -i64::from(k));
     let mut fi = 1.0;
     for i in (0..n).rev() {
