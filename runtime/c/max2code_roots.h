@@ -111,8 +111,9 @@
  *           undecided): where q's Bernstein coefficients on (0, c (1 -
  *           2^-10)] are all certainly positive (nothing before it), the
  *           derivative method (step 2) settles (c (1 - 2^-10), c (1 +
- *           3 2^-10)]; if it finds nothing there, e goes on from its right
- *           end.  With the graze check only.
+ *           3 2^-10)], its Newton for the critical point starting at c; if
+ *           it finds nothing there, e goes on from its right end.  With the
+ *           graze check only.
  *        d. Exclusion by halving: when q's signs are certain with an even
  *           count on the window (b), the window is halved in the
  *           Bernstein basis (de Casteljau) until every piece has q's
@@ -142,12 +143,15 @@
  *        which handles the whole window when it exceeds 2^100 or when step
  *        1 cannot start or go on: Yuksel (HPG 2022) style -- the roots of
  *        the derivatives in the interval, found recursively (to 2^-28
- *        relative, those of p' to 2^-36: they only bracket, and p' = 0 makes
- *        p insensitive to them; where p'' is certainly positive on the
+ *        relative, those of p' to 2^-36 -- or until a Newton step is
+ *        below 32 ulps, the rounding noise: they only bracket, and p' = 0
+ *        makes p insensitive to them; where p'' is certainly positive on the
  *        interval -- beyond the rounding of its value anywhere there -- the
  *        roots of p' alone, the levels below being moot), split it into
  *        monotone pieces, scanned left
- *        to right with the graze check at each critical point.  At a
+ *        to right with the graze check at each critical point (a touch is
+ *        reported there after one more Newton step on p' with compensated
+ *        Horner, kept when it is within the noise).  At a
  *        critical point the fma sign of p may be noise: a crossing before
  *        it counts only if compensated Horner confirms the sign (else the
  *        graze check runs there), and Newton towards it starts where

@@ -43,7 +43,7 @@ static int full_recursion(double d[MAXN + 1][MAXN + 1], int n, double lo, double
     for (int m = 3; m < n; m++) {
         double next[MAXN];
         double tol = m == n - 1 ? TOL_CRITICAL : TOL_LEVEL;
-        nl = roots_in_pieces(d[m], d[m - 1], m, lo, level, nl, T, tol, next);
+        nl = roots_in_pieces(d[m], d[m - 1], m, lo, level, nl, T, tol, 0, next);
         for (int i = 0; i < nl; i++)
             level[i] = next[i];
     }
@@ -107,7 +107,7 @@ int main(void)
                 }
             }
         }
-        int na = critical_points(d, n, lo, T, a), nb = full_recursion(d, n, lo, T, b);
+        int na = critical_points(d, n, lo, T, 0, a), nb = full_recursion(d, n, lo, T, b);
         int same = na == nb;
         for (int i = 0; same && i < na; i++)
             same = memcmp(&a[i], &b[i], sizeof(double)) == 0;

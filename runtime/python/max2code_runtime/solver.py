@@ -391,7 +391,9 @@ def _refine_root(P: Sequence[float], D: Sequence[float], m: int, lo: float, hi: 
         s = x - xn
         slow = it >= SLOW_AFTER and (lo == 0 or hi > 8 * lo) and abs(s) > 2.0**-10 * abs(xn)
         if not (lo < xn < hi) or abs(s) > 0.5 * abs(step_old) or slow:
-            if precise and abs(s) <= NOISE_STEP * abs(x):
+            # (with tol > 0 too: a step in the noise that a noisy sign pushed out of the
+            # bracket; bisecting from there crept to tol, see C refine_root)
+            if (precise or tol > 0) and abs(s) <= NOISE_STEP * abs(x):
                 return x
             far = hi * 2.0**-64
             xn = far if slow and lo == 0 and far > DBL_MIN else _split_point(lo, hi)
@@ -893,7 +895,7 @@ def _isolate_first_root(p: Sequence[float], n: int, skin: float, T: float, faile
         hi = touch + 3 * touch * TOUCH_WIDTH
         hi = hi if hi < T else T
         if _bernstein_test(a, n, lo, False).answer == BERN_CLEAR:
-            hit = _derivative_method(p, n, lo, hi, skin)
+            hit = _derivative_method(p, n, lo, hi, touch, skin)
             if hit is not None:
                 return hit
             if hi == T:
@@ -960,7 +962,7 @@ def _isolate_first_root(p: Sequence[float], n: int, skin: float, T: float, faile
                     splits += 1
                     stack.append(pt)
                     continue
-        hit = _derivative_method(p, n, a.x, b.x, skin)
+        hit = _derivative_method(p, n, a.x, b.x, 0.0, skin)
         if hit is not None:
             return hit
         if not (b.qt[0] - b.tol[0] > 0):
@@ -983,7 +985,8 @@ def _derivative_chain(c: Sequence[float], n: int) -> list[list[float]]:
     return d
 
 
-def _roots_in_pieces(P, D, m: int, lo: float, crit: list[float], T: float, tol: float) -> list[float]:
+def _roots_in_pieces(P, D, m: int, lo: float, crit: list[float], T: float, tol: float,
+                     x0: float = 0.0) -> list[float]:
     out = []
     a = lo
     sa = _sign_at(P, m, lo, False)
@@ -994,7 +997,7 @@ def _roots_in_pieces(P, D, m: int, lo: float, crit: list[float], T: float, tol: 
             if j < len(crit):
                 out.append(b)
         elif sa != 0 and sa != sb:
-            out.append(_refine_root(P, D, m, a, b, sa, tol, _split_point(a, b)))
+            out.append(_refine_root(P, D, m, a, b, sa, tol, x0 if a < x0 < b else _split_point(a, b)))
         a, sa = b, sb
     return out
 
@@ -1014,9 +1017,9 @@ def _convex_on(d: list[list[float]], n: int, lo: float, T: float) -> bool:
     return v - h * slope * (1 + rel) > 2 * noise_factor(n) * size * (1 + rel)
 
 
-def _critical_points(d: list[list[float]], n: int, lo: float, T: float) -> list[float]:
-    if _convex_on(d, n, lo, T):  # the roots of p' alone
-        return _roots_in_pieces(d[n - 1], d[n - 2], n - 1, lo, [], T, TOL_CRITICAL)
+def _critical_points(d: list[list[float]], n: int, lo: float, T: float, x0: float) -> list[float]:
+    if _convex_on(d, n, lo, T):  # the roots of p' alone (Newton from x0 if inside)
+        return _roots_in_pieces(d[n - 1], d[n - 2], n - 1, lo, [], T, TOL_CRITICAL, x0)
     level: list[float] = []
     roots, _ = quad_roots(d[2][2], d[2][1], d[2][0])
     if roots is not None:
@@ -1042,9 +1045,20 @@ def _crossing_before_critical(c: Sequence[float], d: list[list[float]], n: int, 
     return _refine_root(c, d[n - 1], n, a, b, sa, 0.0, x0)
 
 
-def _derivative_method(c: Sequence[float], n: int, lo: float, T: float, skin: float):
+def _touch_point(d: list[list[float]], n: int, b: float) -> float:
+    """C touch_point: where a touch is reported -- the critical point b, which plain Newton on
+    p' leaves anywhere within p''s rounding noise, moved by one Newton step on p' evaluated
+    precisely (compensated), kept only when that step is within the noise too (b unscaled)."""
+    if _scale_exponent(b, n - 1) != 0:
+        return b
+    v, slope, _ = _value_and_slope(d[n - 1], d[n - 2], n - 1, b, 0, True)
+    x = b - _div(v, slope)
+    return x if abs(x - b) <= NOISE_STEP * abs(b) else b
+
+
+def _derivative_method(c: Sequence[float], n: int, lo: float, T: float, x0: float, skin: float):
     d = _derivative_chain(c, n)
-    crit = _critical_points(d, n, lo, T)
+    crit = _critical_points(d, n, lo, T, x0)
     nc = len(crit)
     a, sa, sb, sb_known = lo, 1, 0, False
     for j in range(nc + 1):
@@ -1069,7 +1083,7 @@ def _derivative_method(c: Sequence[float], n: int, lo: float, T: float, skin: fl
             sb = _sign_at(c, n, b2, True)
             sb_known = True
             if sb == sa:
-                return b, True
+                return _touch_point(d, n, b), True
         a = b
     return None
 
@@ -1086,7 +1100,7 @@ def first_root_interval(p: Sequence[float], n: int, T: float, skin: float,
         if isinstance(r, tuple):
             return r
         lo = r
-    return _derivative_method(p, n, lo, T, skin)
+    return _derivative_method(p, n, lo, T, 0.0, skin)
 
 
 # ---------------------------------------------------------------------------
@@ -1147,7 +1161,7 @@ def first_root_sliced(c: Sequence[float], n: int, tmax: float, eps: float,
                 s = _sign_at(q, m, _LO, True)
                 if s < 0:
                     q = [-x for x in q]
-                hit = (_LO, False) if s == 0 else _derivative_method(q, m, _LO, T, skin)
+                hit = (_LO, False) if s == 0 else _derivative_method(q, m, _LO, T, 0.0, skin)
             if hit is not None:
                 return _ldexp(hit[0], k), hit[1]
         d += SLICE

@@ -683,7 +683,9 @@ fn refine_root(p: &[f64], d: &[f64], m: usize, mut lo: f64, mut hi: f64, slo: i3
         // see SLOW_AFTER
         let slow = it >= SLOW_AFTER && (lo == 0.0 || hi > 8.0 * lo) && s.abs() > 9.765_625e-4 * xn.abs(); // 2^-10
         if !(xn > lo && xn < hi) || s.abs() > 0.5 * step_old.abs() || slow {
-            if precise && s.abs() <= NOISE_STEP * x.abs() {
+            // (with tol > 0 too: a step in the noise that a noisy sign pushed out of the
+            // bracket; bisecting from there crept to tol, see C refine_root)
+            if (precise || tol > 0.0) && s.abs() <= NOISE_STEP * x.abs() {
                 return x;
             }
             let far = hi * f64::from_bits(0x3bf0_0000_0000_0000); // 2^-64
@@ -1504,7 +1506,7 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64, failed_w: f64)
         let hi = touch + 3.0 * touch * TOUCH_WIDTH;
         let hi = if hi < t_end { hi } else { t_end };
         if let Bernstein::Clear = bernstein_test(a, n, lo, None) {
-            let hit = derivative_method(p, n, lo, hi, skin);
+            let hit = derivative_method(p, n, lo, hi, touch, skin);
             count::phase(1);
             if let Some((t, g)) = hit {
                 return Isolation::Isolated(t, g);
@@ -1608,7 +1610,7 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64, failed_w: f64)
         }
         // SAFETY: as above.
         let b = unsafe { stack[top - 1].assume_init_ref() };
-        let hit = derivative_method(p, n, a.x, b.x, skin);
+        let hit = derivative_method(p, n, a.x, b.x, 0.0, skin);
         count::phase(1);
         if let Some(hit) = hit {
             return Isolation::Isolated(hit.0, hit.1);
@@ -1668,7 +1670,7 @@ fn derivative_chain(c: &[f64], n: usize) -> Chain {
 }
 
 #[allow(clippy::too_many_arguments)]
-fn roots_in_pieces(p: &[f64], d: &[f64], m: usize, lo: f64, crit: &[f64], t_end: f64, tol: f64, out: &mut [f64]) -> usize {
+fn roots_in_pieces(p: &[f64], d: &[f64], m: usize, lo: f64, crit: &[f64], t_end: f64, tol: f64, x0: f64, out: &mut [f64]) -> usize {
     let mut count = 0;
     let mut a = lo;
     let mut sa = sign_at(p, m, lo, false);
@@ -1681,7 +1683,7 @@ fn roots_in_pieces(p: &[f64], d: &[f64], m: usize, lo: f64, crit: &[f64], t_end:
                 count += 1;
             }
         } else if sa != 0 && sa != sb {
-            out[count] = refine_root(p, d, m, a, b, sa, tol, split_point(a, b));
+            out[count] = refine_root(p, d, m, a, b, sa, tol, if x0 > a && x0 < b { x0 } else { split_point(a, b) });
             count += 1;
         }
         a = b;
@@ -1707,7 +1709,7 @@ fn convex_on(d: &Chain, n: usize, lo: f64, t_end: f64) -> bool {
     v - h * slope * (1.0 + rel) > 2.0 * noise_factor(n) * size * (1.0 + rel)
 }
 
-fn critical_points(d: &Chain, n: usize, lo: f64, t_end: f64, crit: &mut [f64; MAXN]) -> usize {
+fn critical_points(d: &Chain, n: usize, lo: f64, t_end: f64, x0: f64, crit: &mut [f64; MAXN]) -> usize {
     let mut level = [0.0f64; MAXN];
     let mut nl = 0usize;
     if n < 3 {
@@ -1715,7 +1717,7 @@ fn critical_points(d: &Chain, n: usize, lo: f64, t_end: f64, crit: &mut [f64; MA
     }
     if convex_on(d, n, lo, t_end) {
         // the roots of p' alone (convex_on)
-        return roots_in_pieces(d.row(n - 1), d.row(n - 2), n - 1, lo, &[], t_end, TOL_CRITICAL, crit);
+        return roots_in_pieces(d.row(n - 1), d.row(n - 2), n - 1, lo, &[], t_end, TOL_CRITICAL, x0, crit);
     }
     if let (Some(r), _) = quad_roots(d.row(2)[2], d.row(2)[1], d.row(2)[0]) {
         for x in r {
@@ -1728,7 +1730,7 @@ fn critical_points(d: &Chain, n: usize, lo: f64, t_end: f64, crit: &mut [f64; MA
     for m in 3..n {
         let mut next = [0.0f64; MAXN];
         let tol = if m == n - 1 { TOL_CRITICAL } else { TOL_LEVEL };
-        nl = roots_in_pieces(d.row(m), d.row(m - 1), m, lo, &level[..nl], t_end, tol, &mut next);
+        nl = roots_in_pieces(d.row(m), d.row(m - 1), m, lo, &level[..nl], t_end, tol, 0.0, &mut next);
         level[..nl].copy_from_slice(&next[..nl]);
     }
     crit[..nl].copy_from_slice(&level[..nl]);
@@ -1749,12 +1751,29 @@ fn crossing_before_critical(c: &[f64], d: &Chain, n: usize, a: f64, b: f64, sa: 
     refine_root(c, d.row(n - 1), n, a, b, sa, 0.0, x0)
 }
 
-fn derivative_method(c: &[f64], n: usize, lo: f64, t_end: f64, skin: f64) -> Option<(f64, bool)> {
+/// C `touch_point`: where a touch is reported -- the critical point b, which plain Newton on
+/// p' leaves anywhere within p''s rounding noise, moved by one Newton step on p' evaluated
+/// precisely (compensated), kept only when that step is within the noise too (b unscaled).
+fn touch_point(d: &Chain, n: usize, b: f64) -> f64 {
+    if scale_exponent(b, n - 1) != 0 {
+        return b;
+    }
+    count::event(5);
+    let (v, slope, _) = value_and_slope(d.row(n - 1), d.row(n - 2), n - 1, b, 0, true);
+    let x = b - v / slope;
+    if (x - b).abs() <= NOISE_STEP * b.abs() {
+        x
+    } else {
+        b
+    }
+}
+
+fn derivative_method(c: &[f64], n: usize, lo: f64, t_end: f64, x0: f64, skin: f64) -> Option<(f64, bool)> {
     count::phase(3);
     count::event(7);
     let d = derivative_chain(c, n);
     let mut crit = [0.0f64; MAXN];
-    let nc = critical_points(&d, n, lo, t_end, &mut crit);
+    let nc = critical_points(&d, n, lo, t_end, x0, &mut crit);
     let mut a = lo;
     let sa = 1;
     let mut sb = 0;
@@ -1788,7 +1807,7 @@ fn derivative_method(c: &[f64], n: usize, lo: f64, t_end: f64, skin: f64) -> Opt
             sb = sign_at(c, n, b2, true);
             sb_known = true;
             if sb == sa {
-                return Some((b, true));
+                return Some((touch_point(&d, n, b), true));
             }
         }
         a = b;
@@ -1808,7 +1827,7 @@ pub(crate) fn first_root_interval(p: &Coeffs, n: usize, t_end: f64, skin: f64, f
             Isolation::Unresolved(a) => lo = a,
         }
     }
-    derivative_method(p, n, lo, t_end, skin)
+    derivative_method(p, n, lo, t_end, 0.0, skin)
 }
 
 /// The quadratic, for the entry point.
@@ -1905,7 +1924,7 @@ pub(crate) fn first_root_sliced(c: &[f64], n: usize, tmax: f64, eps: f64, nograz
                     if s == 0 {
                         Some((lo, false))
                     } else {
-                        derivative_method(&q, m, lo, t_end, skin)
+                        derivative_method(&q, m, lo, t_end, 0.0, skin)
                     }
                 }
             };
