@@ -1771,13 +1771,18 @@ static int isolate_first_root(const double p[], int n, double skin,
 /* Derivative method (Yuksel)                                           */
 /* ------------------------------------------------------------------ */
 
-/* All derivatives: d[m] is the derivative of order n-m, of degree m. */
+/* The derivatives d[m] of degrees m = n .. CHAIN_FIRST(n) (the derivative
+ * of order n - m): those the derivative method always reads (convex_on
+ * reads p'''); critical_points forms the rest, down to degree 2, only where
+ * it needs them (the shortcut of convex_on does not: most calls on the
+ * grazes). */
+#define CHAIN_FIRST(n) ((n) - 3 > 1 ? (n) - 3 : 1)
 static void derivative_chain(const double c[], int n,
                              double d[MAXN + 1][MAXN + 1])
 {
     for (int i = 0; i <= n; i++)
         d[n][i] = c[i];
-    for (int m = n; m > 1; m--)
+    for (int m = n; m > CHAIN_FIRST(n); m--)
         derivative(d[m], m, d[m - 1]);
 }
 
@@ -1849,6 +1854,8 @@ static int critical_points(double d[MAXN + 1][MAXN + 1], int n, double lo,
                    * otherwise warns that d[2] may be unset) */
     if (convex_on(d, n, lo, T)) /* the roots of p' alone (above) */
         return roots_in_pieces(d[n - 1], d[n - 2], n - 1, lo, NULL, 0, T, TOL_CRITICAL, x0, crit);
+    for (int m = CHAIN_FIRST(n); m > 2; m--) /* the rest of the chain */
+        derivative(d[m], m, d[m - 1]);
     if (quad_roots(d[2][2], d[2][1], d[2][0], r, &disc) == 2)
         for (int i = 0; i < 2; i++)
             if (r[i] > lo && r[i] < T && (nl == 0 || r[i] > level[nl - 1]))
