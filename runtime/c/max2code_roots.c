@@ -484,12 +484,20 @@ static double noise_factor(int n)
 }
 
 /* Is |p(x)| within the rounding noise of its evaluation at x, plus the
- * contact skin (>= 0, in the units of the normalised p)? */
+ * contact skin (>= 0, in the units of the normalised p)?  noise_holds: the
+ * same from v = horner(c, n, x, k, 1), k = scale_exponent(x, n), already
+ * computed. */
+static int noise_holds(const double c[], int n, double x, int k, double v,
+                       double skin)
+{
+    double sk = k == 0 ? skin : ldexp(skin, -k * n);
+    return fabs(v) <= noise_factor(n) * horner_abs(c, n, x, k) + sk;
+}
+
 static int within_noise(const double c[], int n, double x, double skin)
 {
     int k = scale_exponent(x, n);
-    double sk = k == 0 ? skin : ldexp(skin, -k * n);
-    return fabs(horner(c, n, x, k, 1)) <= noise_factor(n) * horner_abs(c, n, x, k) + sk;
+    return noise_holds(c, n, x, k, horner(c, n, x, k, 1), skin);
 }
 
 /* Sign of p(x) as -1, 0, 1 (scaling does not change it). */
@@ -1925,8 +1933,12 @@ static int derivative_method(const double c[], int n, double lo, double T,
     int sb = 0, sb_known = 0;
     for (int j = 0; j <= nc; j++) {
         double b = j < nc ? crit[j] : T;
-        if (!sb_known)
-            sb = sign_at(c, n, b, 1);
+        int kb = scale_exponent(b, n), have_v = !sb_known;
+        double vb = 0; /* p(b) by fma Horner (sign_at's value), for the graze check */
+        if (have_v) {
+            vb = horner(c, n, b, kb, 1);
+            sb = (vb > 0) - (vb < 0);
+        }
         sb_known = 0;
         if (sb == 0) { /* exact zero: at a critical point it is a double root */
             *t = b;
@@ -1936,7 +1948,7 @@ static int derivative_method(const double c[], int n, double lo, double T,
         /* At a critical point p may be within the rounding noise (a touch),
          * and the sign of its fma Horner value is noise: a crossing there
          * is decided by the precise value (where b needs no scaling). */
-        int precise = sb != sa && j < nc && scale_exponent(b, n) == 0;
+        int precise = sb != sa && j < nc && kb == 0;
         double pb = precise ? horner_compensated(c, n, b) : 0;
         if (precise && pb != 0 && (pb > 0) == (sa > 0))
             sb = sa; /* no crossing in (a, b]: maybe a touch at b (below) */
@@ -1946,7 +1958,8 @@ static int derivative_method(const double c[], int n, double lo, double T,
             *graze = 0;
             return 1;
         }
-        if (skin >= 0 && j < nc && within_noise(c, n, b, skin)) {
+        if (skin >= 0 && j < nc &&
+            (have_v ? noise_holds(c, n, b, kb, vb, skin) : within_noise(c, n, b, skin))) {
             /* touch or cross?  Look at the far end of the next piece. */
             double b2 = j + 1 < nc ? crit[j + 1] : T;
             sb = sign_at(c, n, b2, 1);

@@ -502,8 +502,13 @@ pub(crate) fn noise_factor(n: usize) -> f64 {
 
 fn within_noise(c: &[f64], n: usize, x: f64, skin: f64) -> bool {
     let k = scale_exponent(x, n);
+    noise_holds(c, n, x, k, horner(c, n, x, k, true), skin)
+}
+
+/// C `noise_holds`: `within_noise` from v = horner(c, n, x, k, true), already computed.
+fn noise_holds(c: &[f64], n: usize, x: f64, k: i32, v: f64, skin: f64) -> bool {
     let sk = if k == 0 { skin } else { ldexp(skin, -i64::from(k) * n as i64) };
-    horner(c, n, x, k, true).abs() <= noise_factor(n) * horner_abs(c, n, x, k) + sk
+    v.abs() <= noise_factor(n) * horner_abs(c, n, x, k) + sk
 }
 
 fn sign_at(c: &[f64], n: usize, x: f64, precise: bool) -> i32 {
@@ -1780,8 +1785,12 @@ fn derivative_method(c: &[f64], n: usize, lo: f64, t_end: f64, x0: f64, skin: f6
     let mut sb_known = false;
     for j in 0..=nc {
         let b = if j < nc { crit[j] } else { t_end };
-        if !sb_known {
-            sb = sign_at(c, n, b, true);
+        let kb = scale_exponent(b, n);
+        let have_v = !sb_known;
+        let mut vb = 0.0; // p(b) by fma Horner (sign_at's value), for the graze check (as C)
+        if have_v {
+            vb = horner(c, n, b, kb, true);
+            sb = i32::from(vb > 0.0) - i32::from(vb < 0.0);
         }
         sb_known = false;
         if sb == 0 {
@@ -1789,7 +1798,7 @@ fn derivative_method(c: &[f64], n: usize, lo: f64, t_end: f64, x0: f64, skin: f6
         }
         // at a critical point the fma sign may be noise (a touch): the precise value decides
         // whether p crosses in (a, b] (where b needs no scaling)
-        let precise = sb != sa && j < nc && scale_exponent(b, n) == 0;
+        let precise = sb != sa && j < nc && kb == 0;
         let pb = if precise { horner_compensated(c, n, b) } else { 0.0 };
         if precise && pb != 0.0 && (pb > 0.0) == (sa > 0) {
             sb = sa; // no crossing in (a, b]: maybe a touch at b (below)
@@ -1802,7 +1811,7 @@ fn derivative_method(c: &[f64], n: usize, lo: f64, t_end: f64, x0: f64, skin: f6
             };
             return Some((t, false));
         }
-        if skin >= 0.0 && j < nc && within_noise(c, n, b, skin) {
+        if skin >= 0.0 && j < nc && (if have_v { noise_holds(c, n, b, kb, vb, skin) } else { within_noise(c, n, b, skin) }) {
             let b2 = if j + 1 < nc { crit[j + 1] } else { t_end };
             sb = sign_at(c, n, b2, true);
             sb_known = true;
