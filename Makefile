@@ -24,8 +24,10 @@ test: setup
 	$(PYTHON) -m pytest
 
 # Speed against accuracy: root methods, Taylor model error, example scenes, the engine against
-# pymunk and Box2D -> bench/results/ (needs the bench extra: pip install -e .[bench]).
+# pymunk and Box2D -> bench/results/ (the bench extra, installed here when missing).
 bench: setup
+	$(PYTHON) -c "import numpy, matplotlib, mpmath, pymunk, Box2D" 2>/dev/null || \
+	    $(PYTHON) -m pip install -q --disable-pip-version-check --root-user-action=ignore -e '.[bench]'
 	$(PYTHON) bench/roots.py
 	$(PYTHON) bench/engine.py
 
