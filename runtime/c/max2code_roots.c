@@ -1120,15 +1120,6 @@ typedef struct {
  * the way, measured 5 times slower. */
 static void binomial_sums(double a[], int n)
 {
-    if (n == 4) {
-        double b0 = a[0], b1 = a[1], b2 = a[2], b3 = a[3], b4 = a[4];
-        b4 += b3; b3 += b2; b2 += b1; b1 += b0;
-        b4 += b3; b3 += b2; b2 += b1;
-        b4 += b3; b3 += b2;
-        b4 += b3;
-        a[0] = b0; a[1] = b1; a[2] = b2; a[3] = b3; a[4] = b4;
-        return;
-    }
     if (n <= 8) {
         double b0 = a[0], b1 = a[1], b2 = a[2], b3 = a[3], b4 = a[4], b5 = a[5],
                b6 = a[6], b7 = a[7], b8 = a[8];
