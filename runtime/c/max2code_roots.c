@@ -1921,16 +1921,18 @@ static int derivative_method(const double c[], int n, double lo, double T,
     int nc = critical_points(d, n, lo, T, x0, crit);
     double a = lo;
     int sa = 1;
-    int sb = 0, sb_known = 0;
+    /* p(b) by fma Horner (sign_at's value, kept for the graze check), and
+     * whether the last graze check has already taken it at this b */
+    double vb = 0;
+    int kb = 0, vb_known = 0;
     for (int j = 0; j <= nc; j++) {
         double b = j < nc ? crit[j] : T;
-        int kb = scale_exponent(b, n), have_v = !sb_known;
-        double vb = 0; /* p(b) by fma Horner (sign_at's value), for the graze check */
-        if (have_v) {
+        if (!vb_known) {
+            kb = scale_exponent(b, n);
             vb = horner(c, n, b, kb, 1);
-            sb = (vb > 0) - (vb < 0);
         }
-        sb_known = 0;
+        vb_known = 0;
+        int sb = (vb > 0) - (vb < 0);
         if (sb == 0) { /* exact zero: at a critical point it is a double root */
             *t = b;
             *graze = j < nc;
@@ -1949,13 +1951,13 @@ static int derivative_method(const double c[], int n, double lo, double T,
             *graze = 0;
             return 1;
         }
-        if (skin >= 0 && j < nc &&
-            (have_v ? noise_holds(c, n, b, kb, vb, skin) : within_noise(c, n, b, skin))) {
+        if (skin >= 0 && j < nc && noise_holds(c, n, b, kb, vb, skin)) {
             /* touch or cross?  Look at the far end of the next piece. */
             double b2 = j + 1 < nc ? crit[j + 1] : T;
-            sb = sign_at(c, n, b2, 1);
-            sb_known = 1;
-            if (sb == sa) {
+            kb = scale_exponent(b2, n);
+            vb = horner(c, n, b2, kb, 1);
+            vb_known = 1;
+            if ((vb > 0) - (vb < 0) == sa) {
                 *t = touch_point(d, n, b);
                 *graze = 1;
                 return 1;

@@ -1781,18 +1781,19 @@ fn derivative_method(c: &[f64], n: usize, lo: f64, t_end: f64, x0: f64, skin: f6
     let nc = critical_points(&d, n, lo, t_end, x0, &mut crit);
     let mut a = lo;
     let sa = 1;
-    let mut sb = 0;
-    let mut sb_known = false;
+    // p(b) by fma Horner (sign_at's value, kept for the graze check), and whether the last
+    // graze check has already taken it at this b (as C)
+    let mut vb = 0.0;
+    let mut kb = 0;
+    let mut vb_known = false;
     for j in 0..=nc {
         let b = if j < nc { crit[j] } else { t_end };
-        let kb = scale_exponent(b, n);
-        let have_v = !sb_known;
-        let mut vb = 0.0; // p(b) by fma Horner (sign_at's value), for the graze check (as C)
-        if have_v {
+        if !vb_known {
+            kb = scale_exponent(b, n);
             vb = horner(c, n, b, kb, true);
-            sb = i32::from(vb > 0.0) - i32::from(vb < 0.0);
         }
-        sb_known = false;
+        vb_known = false;
+        let mut sb = i32::from(vb > 0.0) - i32::from(vb < 0.0);
         if sb == 0 {
             return Some((b, j < nc));
         }
@@ -1811,11 +1812,12 @@ fn derivative_method(c: &[f64], n: usize, lo: f64, t_end: f64, x0: f64, skin: f6
             };
             return Some((t, false));
         }
-        if skin >= 0.0 && j < nc && (if have_v { noise_holds(c, n, b, kb, vb, skin) } else { within_noise(c, n, b, skin) }) {
+        if skin >= 0.0 && j < nc && noise_holds(c, n, b, kb, vb, skin) {
             let b2 = if j + 1 < nc { crit[j + 1] } else { t_end };
-            sb = sign_at(c, n, b2, true);
-            sb_known = true;
-            if sb == sa {
+            kb = scale_exponent(b2, n);
+            vb = horner(c, n, b2, kb, true);
+            vb_known = true;
+            if i32::from(vb > 0.0) - i32::from(vb < 0.0) == sa {
                 return Some((touch_point(&d, n, b), true));
             }
         }
