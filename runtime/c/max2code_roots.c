@@ -2666,25 +2666,25 @@ static int solve(const double c_in[], int degree, double tmax, int method,
         return -1; /* a NaN or an infinity */
     PHASE(0);
     COUNT(8);
+    /* Where the early exits below apply: the interval methods, no skin,
+     * c_0 != 0 */
+    int early = c[0] != 0 && eps == 0 &&
+                (method == M2C_METHOD_INTERVAL || method == M2C_METHOD_INTERVAL_NOGRAZE);
     /* Descartes on the input: no sign change, c_0 != 0, no root in (0, inf)
      * (and none of p = +-c's envelope q either, whose coefficients have
      * p's signs): the interval methods would clear it, after the
      * preparation that would be most of such a solve's cost */
-    if (sc.changes == 0 && c[0] != 0 && eps == 0 &&
-        (method == M2C_METHOD_INTERVAL || method == M2C_METHOD_INTERVAL_NOGRAZE))
+    if (early && sc.changes == 0)
         return 0;
     /* Step 0a': AM-GM, with tmax = inf (outweighed) */
-    if (tmax == INFINITY && c[0] != 0 && eps == 0 && degree >= 3 &&
-        (method == M2C_METHOD_INTERVAL || method == M2C_METHOD_INTERVAL_NOGRAZE) &&
-        outweighed(c, degree))
+    if (early && degree >= 3 && tmax == INFINITY && outweighed(c, degree))
         return 0;
     /* Step 0b: the window's first test, before the preparation; where it
      * fails, the window [0, tmax] it failed on (0: not tried), which the
      * default method then does not test again */
     double failed_w = 0;
     int cleared = -1;
-    if (eps == 0 && tmax < INFINITY && c[0] != 0 && degree >= 3 &&
-        (method == M2C_METHOD_INTERVAL || method == M2C_METHOD_INTERVAL_NOGRAZE)) {
+    if (early && degree >= 3 && tmax < INFINITY) {
         cleared = cleared_at_once(c, e, nz, degree, tmax, sc);
         if (cleared > 0)
             return 0;

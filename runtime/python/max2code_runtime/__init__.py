@@ -113,22 +113,21 @@ def _solve_python(cc: list[float], tmax: float, method: str, eps: float) -> tupl
     """The C runtime's solve(), on validated input."""
     degree = len(cc) - 1
     c = cc + [0.0] * (MAX_DEGREE + 1 - len(cc))
+    # where the early exits apply: the interval methods, no skin, c_0 != 0
+    early = c[0] != 0 and eps == 0 and method in ("interval", "interval-nograze")
     # Descartes on the input: no sign change (zeros skipped), c_0 != 0: no root in (0, inf).
     # (C counts the changes in the pass that reads the exponents, and reuses that pass's
     # spread when reduce drops nothing; the numbers are the same as computed here.)
-    if (solver._sign_changes(c, degree) == 0 and c[0] != 0 and eps == 0
-            and method in ("interval", "interval-nograze")):
+    if early and solver._sign_changes(c, degree) == 0:
         return 0, math.nan, False
     # Step 0a': AM-GM, with tmax = inf
-    if (tmax == math.inf and c[0] != 0 and eps == 0 and degree >= 3
-            and method in ("interval", "interval-nograze") and solver.outweighed(c, degree)):
+    if early and degree >= 3 and tmax == math.inf and solver.outweighed(c, degree):
         return 0, math.nan, False
     # Step 0b: the window's first exclusion test, before the preparation; where it fails, the
     # window [0, tmax] it failed on (0: not tried), which the default method does not test again
     failed_w = 0.0
     cleared = -1
-    if (eps == 0 and tmax < math.inf and c[0] != 0 and degree >= 3
-            and method in ("interval", "interval-nograze")):
+    if early and degree >= 3 and tmax < math.inf:
         cleared = solver.cleared_at_once(c, degree, tmax)
         if cleared > 0:
             return 0, math.nan, False

@@ -172,14 +172,16 @@ fn solve(coef: &[f64], tmax: f64, method: Method, eps: f64) -> Status {
     }
     count::phase(0);
     count::event(8);
+    // where the early exits below apply, as C: the interval methods, no skin, c_0 != 0
+    let early = c[0] != 0.0 && eps == 0.0 && matches!(method, Method::Interval | Method::IntervalNoGraze);
     // Descartes on the input, as C: no sign change and c_0 != 0, no root in (0, inf); the
     // interval methods would clear it after the preparation (most of such a solve's cost)
-    if sc.changes == 0 && c[0] != 0.0 && eps == 0.0 && matches!(method, Method::Interval | Method::IntervalNoGraze) {
+    if early && sc.changes == 0 {
         return Status::NoRoot;
     }
     let degree = coef.len() - 1;
     // Step 0a', as C: AM-GM, with tmax = inf
-    if tmax == f64::INFINITY && c[0] != 0.0 && eps == 0.0 && degree >= 3 && matches!(method, Method::Interval | Method::IntervalNoGraze) && solver::outweighed(&c, degree) {
+    if early && degree >= 3 && tmax == f64::INFINITY && solver::outweighed(&c, degree) {
         return Status::NoRoot;
     }
     // Step 0b, as C: the window's first test, before the preparation; where it fails, the
@@ -187,7 +189,7 @@ fn solve(coef: &[f64], tmax: f64, method: Method, eps: f64) -> Status {
     // test again (the no-graze method's test at 0 has no noise envelope: not the same test)
     let mut failed_w = 0.0;
     let mut cleared = None;
-    if eps == 0.0 && tmax < f64::INFINITY && c[0] != 0.0 && degree >= 3 && matches!(method, Method::Interval | Method::IntervalNoGraze) {
+    if early && degree >= 3 && tmax < f64::INFINITY {
         cleared = solver::cleared_at_once(&c, &e, &nz, degree, tmax, sc);
         if cleared == Some(true) {
             return Status::NoRoot;
