@@ -773,9 +773,9 @@ def _speculate_first_root(p: Sequence[float], n: int, T: float) -> _Guess:
     critical point -- a simple root of p', quadratic convergence where Laguerre crawls -- and
     reports it as a touch when p there is near the rounding bound.  No Newton step is counted
     (C counts none here, neither Laguerre's nor those on p').  Python's float division
-    overflows to inf as C's does; no division here can be by 0 but s / last (f != 0, den < 0,
-    d2 > 0; last is a step that did not converge, so nonzero: _div all the same), and the disc
-    test comes before sqrt, which raises on a negative argument where C's would give NaN."""
+    overflows to inf as C's does; the step's denominator and s / last may be 0 (_div gives C's
+    inf or NaN), and the test of u comes before sqrt, which raises on a negative argument where
+    C's would give NaN."""
     x = last = qprev = 0.0
     critical = steady = 0  # Newton on p' (after the double-root signature)
     for it in range(SPECULATE_STEPS + TOUCH_EXTRA + TOUCH_STEPS):
@@ -802,15 +802,13 @@ def _speculate_first_root(p: Sequence[float], n: int, T: float) -> _Guess:
             continue
         if f == 0:
             return _Guess(x if x > 0 else None, 0.0)
-        g = d1 / f
-        h = g * g - 2 * d2 / f
-        disc = (n - 1) * (n * h - g * g)
-        if not (disc >= 0):  # complex roots in the way (or NaN): Newton on p' towards the dip
+        # (n - 1) f^2 times Laguerre's discriminant: its sign, and the step from one division
+        u = (n - 1) * (d1 * d1) - 2 * n * (f * d2)
+        if not (u >= 0):  # complex roots in the way (or NaN): Newton on p' towards the dip
             return _Guess(None, 0.0, x - _div(d1, 2 * d2) if d2 > 0 else 0.0)
-        den = g - math.sqrt(disc)  # the step is -n / den: to the right
-        if not (den < 0):
+        s = _div(n * f, d1 - math.copysign(math.sqrt((n - 1) * u), f))  # to the right: < 0
+        if not (s < 0):
             return _Guess(None, 0.0)
-        s = n / den
         x -= s
         if not (x > 0 and x < T):
             return _Guess(None, 0.0)

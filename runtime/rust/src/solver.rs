@@ -1385,19 +1385,17 @@ fn speculate_first_root(p: &[f64], n: usize, t_end: f64) -> Guess {
         if f == 0.0 {
             return if x > 0.0 { Guess::Root(x) } else { Guess::Nothing };
         }
-        let g = d1 / f;
-        let h = g * g - 2.0 * d2 / f;
-        let disc = n1f * (nf * h - g * g);
-        if !(disc >= 0.0) {
+        // (n - 1) f^2 times Laguerre's discriminant: its sign, and the step from one division
+        let u = n1f * (d1 * d1) - 2.0 * nf * (f * d2);
+        if !(u >= 0.0) {
             // complex roots in the way: one Newton step on p' towards the dip
             return if d2 > 0.0 { Guess::Dip(x - d1 / (2.0 * d2)) } else { Guess::Nothing };
         }
-        // the step is -n / den: to the right
-        let den = g - disc.sqrt();
-        if !(den < 0.0) {
+        // the step to the right (negative), or none
+        let s = nf * f / (d1 - (n1f * u).sqrt().copysign(f));
+        if !(s < 0.0) {
             return Guess::Nothing;
         }
-        let s = nf / den;
         x -= s;
         if !(x > 0.0 && x < t_end) {
             return Guess::Nothing;
