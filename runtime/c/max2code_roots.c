@@ -275,13 +275,19 @@ static int scaled_le(double a, double T, int et, int j, double k, double b)
 /* Does the exponents alone show the leading term far from negligible over
  * [0, T] (T finite): |c_n| T^(n-i) above 4 n eps |c_i| by a factor 8 for
  * every i, beyond all the roundings of the comparison?  Almost always, and
- * then leading_negligible needs no floating-point loop. */
-static int leading_far(const int e[], const int nz[], int n, double T)
+ * then leading_negligible needs no floating-point loop.  emax: the largest
+ * e_i of a nonzero c_i where known (load_coefficients' Scan), else INT_MAX:
+ * the least of the left sides against it settles every term at once, as it
+ * almost always does (measured: bench/roots_ab.py --instructions, about 100
+ * fewer a solve on every family that reaches step 0b). */
+static int leading_far(const int e[], const int nz[], int n, double T, int emax)
 {
     if (!(T >= DBL_MIN && T <= DBL_MAX))
         return 0;
     /* T >= 2^eT, k < 2^(ek + 1), |c| in [2^e, 2^(e + 1)) */
     int eT = exponent_of(T), ek = exponent_of(4.0 * n * DBL_EPSILON), far = 1;
+    if (emax < INT_MAX && e[n] + (eT >= 0 ? eT : n * eT) >= emax + ek + 5)
+        return 1;
     int lhs = e[n] + eT; /* a lower bound on log2 |c_n| T^(n-i) */
     for (int i = n - 1; i >= 0; i--, lhs += eT)
         far &= !nz[i] | (lhs >= e[i] + ek + 5); /* (no branches) */
@@ -312,7 +318,7 @@ static int leading_negligible(const double c[], const int e[], const int nz[],
                                     : 0; /* (the exponents then) */
     }
     double k = 4.0 * n * DBL_EPSILON;
-    if (leading_far(e, nz, n, T))
+    if (leading_far(e, nz, n, T, INT_MAX))
         return 0;
     double Tp = 1.0;
     for (int i = n - 1; i >= 0; i--) {
@@ -875,6 +881,25 @@ static int sign_changes(const double v[], int n)
     return count;
 }
 
+/* Sign changes in v[0..n] when no entry is 0 or NaN (every sign certain:
+ * point_at, bernstein_test): from the sign bits alone, the same count as
+ * sign_changes with a third of its instructions (measured with
+ * bench/roots_ab.py: generic octics 0.944 of the instructions, grazes 0.947,
+ * quartics 0.965; timed --sweeps 15, aligned, 0.96-0.97 of the time, grazes
+ * 1.00 at the median and 0.97 in the mean; the same answers, bit for bit). */
+static int changes_certain(const double v[], int n)
+{
+    uint64_t prev, b;
+    memcpy(&prev, &v[0], sizeof prev);
+    int count = 0;
+    for (int i = 1; i <= n; i++) {
+        memcpy(&b, &v[i], sizeof b);
+        count += (int)((b ^ prev) >> 63);
+        prev = b;
+    }
+    return count;
+}
+
 /* The Taylor coefficients of p at x are the values at x of the polynomials
  * p^(k)/k!, whose coefficients C(j+k, k) p_{j+k} are tabulated once per
  * solve (tk[k][j]; ta the same for |p_i|, whose Taylor coefficients bound
@@ -946,12 +971,15 @@ static void point_at_zero(const double p[], int n, double e, double skin,
     pt->pt[0] = p[0];
     pt->qt[0] = p[0] - e * fabs(p[0]);
     pt->tol[0] = DBL_EPSILON * fabs(p[0]);
+    int zero = 0;
     for (int i = 1; i <= n; i++) {
         pt->pt[i] = p[i];
         pt->qt[i] = p[i] - e * fabs(p[i]);
         pt->tol[i] = DBL_EPSILON * fabs(p[i]);
+        zero |= p[i] == 0;
     }
-    pt->vp = sign_changes(p, n);
+    /* (p[0] > 0; without zeros, from the sign bits) */
+    pt->vp = zero ? sign_changes(p, n) : changes_certain(p, n);
     if (skin > 0) {
         pt->qt[0] -= skin;
         pt->tol[0] += DBL_EPSILON * skin;
@@ -1025,8 +1053,8 @@ static int point_at(const Taylor *tb, int n, double x, Point *pt)
     pt->x = x;
     pt->px = a[0];
     pt->dpx = a[1];
-    pt->vp = sign_changes(a, n);
-    pt->vq = sign_changes(s, n);
+    pt->vp = changes_certain(a, n); /* (every |a_k|, |b_k| > tol > 0 above) */
+    pt->vq = changes_certain(s, n);
     return 1;
 }
 
@@ -1208,17 +1236,19 @@ static int bernstein_test(const Point *pt, int n, double w, double *pend,
     double tol = 2 * g + DBL_MIN;
     double *b = aq;
     binomial_sums(aq, n);
-    /* (branch-free: the signs are data) */
-    int clear = 1, certain = 1, vq = 0, last = 0;
+    /* (branch-free: the signs are data; the sign bits count only where
+     * every sign is certain, which is all that is read of them) */
+    int certain = 1;
+    uint64_t neg = 0;
     for (int j = 0; j <= n; j++) {
-        int s = (b[j] > 0) - (b[j] < 0);
+        uint64_t bits;
+        memcpy(&bits, &b[j], sizeof bits);
         certain &= fabs(b[j]) > tol;
-        vq += s * last < 0;
-        last = s;
-        clear &= s > 0;
+        neg |= bits;
     }
-    if (clear && certain)
+    if (certain && !(neg >> 63))
         return BERN_CLEAR;
+    int vq = changes_certain(b, n);
     if (qb != NULL) {
         for (int j = 0; j <= n; j++)
             qb->b[j] = b[j];
@@ -1235,7 +1265,7 @@ static int bernstein_test(const Point *pt, int n, double w, double *pend,
     *pend = b[n];
     for (int j = 0; j <= n; j++)
         certain &= fabs(b[j]) > tol;
-    return certain && sign_changes(b, n) == 1 ? BERN_ONE : BERN_UNKNOWN;
+    return certain && changes_certain(b, n) == 1 ? BERN_ONE : BERN_UNKNOWN;
 }
 
 /* A point of (a, b) to split at: the midpoint, geometric when the interval
@@ -2606,7 +2636,7 @@ NOINLINE static int cleared_at_once(const double c[], const int e[],
 {
     int E = sc.emax + 1;
     if (!nz[n] || sc.emax - sc.emin > MAX_SPREAD || E < DBL_MIN_EXP ||
-        E > DBL_MAX_EXP - 2 || !leading_far(e, nz, n, tmax))
+        E > DBL_MAX_EXP - 2 || !leading_far(e, nz, n, tmax, sc.emax))
         return -1;
     double f = (c[0] < 0 ? -1 : 1) * pow2(-E), en = noise_factor(n);
     double qt[MAXN + 1], tol[MAXN + 1];

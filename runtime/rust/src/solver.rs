@@ -224,12 +224,18 @@ fn scaled_le(a: f64, t: f64, et: Option<i32>, j: usize, k: f64, b: f64) -> bool 
 /// the roundings of the comparison?  Almost always; then `leading_negligible` needs no
 /// floating-point loop, and `cleared_at_once` knows that `reduce` keeps every term.
 /// Branch-free, as in C (which terms are nonzero is data).
-fn leading_far(e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n: usize, t: f64) -> bool {
+fn leading_far(e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n: usize, t: f64, emax: Option<i32>) -> bool {
     if !(f64::MIN_POSITIVE..=f64::MAX).contains(&t) {
         return false;
     }
     // T >= 2^eT, k < 2^(ek + 1), |c| in [2^e, 2^(e + 1))
     let (e_t, ek) = (exponent_of(t), exponent_of(4.0 * n as f64 * f64::EPSILON));
+    // emax (the Scan's largest exponent, where known): the least left side settles every term
+    if let Some(emax) = emax {
+        if e[n] + if e_t >= 0 { e_t } else { n as i32 * e_t } >= emax + ek + 5 {
+            return true;
+        }
+    }
     let mut far = true;
     let mut lhs = e[n] + e_t; // a lower bound on log2 |c_n| T^(n-i)
     for i in (0..n).rev() {
@@ -266,7 +272,7 @@ fn leading_negligible(c: &Coeffs, e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n:
         };
     }
     let k = 4.0 * n as f64 * f64::EPSILON;
-    if leading_far(e, nz, n, t) {
+    if leading_far(e, nz, n, t, None) {
         return false;
     }
     let mut tp = 1.0;
@@ -411,7 +417,7 @@ pub(crate) fn cleared_at_once(c: &Coeffs, e: &[i32; MAXN + 1], nz: &[bool; MAXN 
     let big_e = sc.emax + 1;
     // (DBL_MIN_EXP = -1021, DBL_MAX_EXP - 2 = 1022: the range where normalise scales by one
     // product; the spread is computed only for a nonzero c_n, so never of the empty scan)
-    if !nz[n] || sc.emax - sc.emin > MAX_SPREAD || !(-1021..=1022).contains(&big_e) || !leading_far(e, nz, n, tmax) {
+    if !nz[n] || sc.emax - sc.emin > MAX_SPREAD || !(-1021..=1022).contains(&big_e) || !leading_far(e, nz, n, tmax, Some(sc.emax)) {
         return None;
     }
     let f = (if c[0] < 0.0 { -1.0 } else { 1.0 }) * pow2(-big_e);
@@ -725,6 +731,19 @@ fn sign_changes(v: &[f64], n: usize) -> i32 {
     count
 }
 
+/// C `changes_certain`: the sign changes of `v[..=n]` when no entry is 0 or NaN, from the sign
+/// bits alone (a third of `sign_changes`' instructions).
+fn changes_certain(v: &[f64], n: usize) -> i32 {
+    let mut prev = v[0].to_bits();
+    let mut count = 0;
+    for &x in &v[1..=n] {
+        let b = x.to_bits();
+        count += ((b ^ prev) >> 63) as i32;
+        prev = b;
+    }
+    count
+}
+
 /// The Taylor table of the C runtime.  Only the entries `[k][j]` with `j + k <= n` are written
 /// and only those are read (as in C, where the rest stays uninitialised): zeroing two 17 x 17
 /// tables on every solve would cost more than the solve of a window without a root.
@@ -859,12 +878,15 @@ fn point_at_zero<'a>(p: &[f64], n: usize, e: f64, skin: f64, slot: &'a mut Maybe
         (*pt).x = 0.0;
         (*pt).px = p[0];
         (*pt).dpx = p[1];
+        let mut zero = false;
         for i in 0..n + 1 {
             (*pt).pt[i] = MaybeUninit::new(p[i]);
             (*pt).qt[i] = MaybeUninit::new(p[i] - e * p[i].abs());
             (*pt).tol[i] = MaybeUninit::new(f64::EPSILON * p[i].abs());
+            zero |= p[i] == 0.0;
         }
-        (*pt).vp = sign_changes(p, n);
+        // (without zeros, from the sign bits)
+        (*pt).vp = if zero { sign_changes(p, n) } else { changes_certain(p, n) };
         (*pt).vq = (*pt).vp;
         let pt = slot.assume_init_mut();
         if skin > 0.0 {
@@ -958,8 +980,8 @@ fn point_at(tb: &Taylor, n: usize, x: f64, slot: &mut MaybeUninit<Point>) -> boo
         (*pt).x = x;
         (*pt).px = a[0];
         (*pt).dpx = a[1];
-        (*pt).vp = sign_changes(&a, n);
-        (*pt).vq = sign_changes(&s, n);
+        (*pt).vp = changes_certain(&a, n); // (every |a_k|, |b_k| > tol > 0 above)
+        (*pt).vq = changes_certain(&s, n);
     }
     true
 }
@@ -1115,18 +1137,17 @@ fn bernstein_test(pt: &Point, n: usize, w: f64, start: Option<&mut Start>) -> Be
     let tol = 2.0 * g + f64::MIN_POSITIVE;
     binomial_sums(&mut aq, n);
     let b = &aq;
-    // (branch-free, as in C: the signs are data)
-    let (mut clear, mut certain, mut vq, mut last) = (true, true, 0, 0);
+    // (branch-free, as in C: the signs are data; the sign bits count only where every sign is
+    // certain, which is all that is read of them)
+    let (mut certain, mut neg) = (true, 0u64);
     for &bj in &b[..=n] {
-        let s = i32::from(bj > 0.0) - i32::from(bj < 0.0);
         certain &= bj.abs() > tol;
-        vq += i32::from(s * last < 0);
-        last = s;
-        clear &= s > 0;
+        neg |= bj.to_bits();
     }
-    if clear && certain {
+    if certain && neg >> 63 == 0 {
         return Bernstein::Clear;
     }
+    let vq = changes_certain(b, n);
     if let Some(start) = start {
         if n <= 8 {
             start.q[..9].copy_from_slice(&b[..9]); // (constant size: no memcpy call)
@@ -1147,7 +1168,7 @@ fn bernstein_test(pt: &Point, n: usize, w: f64, start: Option<&mut Start>) -> Be
     for &bj in &ap[..=n] {
         certain &= bj.abs() > tol;
     }
-    if certain && sign_changes(&ap, n) == 1 {
+    if certain && changes_certain(&ap, n) == 1 {
         Bernstein::One(pend)
     } else {
         Bernstein::Unknown
