@@ -275,18 +275,19 @@ static int scaled_le(double a, double T, int et, int j, double k, double b)
 /* Does the exponents alone show the leading term far from negligible over
  * [0, T] (T finite): |c_n| T^(n-i) above 4 n eps |c_i| by a factor 8 for
  * every i, beyond all the roundings of the comparison?  Almost always, and
- * then leading_negligible needs no floating-point loop.  emax: the largest
- * e_i of a nonzero c_i where known (load_coefficients' Scan), else INT_MAX:
+ * then leading_negligible needs no floating-point loop.  emax: a bound on
+ * every e_i of a nonzero c_i (load_coefficients' largest), or INT_MAX:
  * the least of the left sides against it settles every term at once, as it
  * almost always does (measured: bench/roots_ab.py --instructions, about 100
- * fewer a solve on every family that reaches step 0b). */
+ * fewer a solve on every family that reaches step 0b or, with tmax = inf,
+ * reduce). */
 static int leading_far(const int e[], const int nz[], int n, double T, int emax)
 {
     if (!(T >= DBL_MIN && T <= DBL_MAX))
         return 0;
     /* T >= 2^eT, k < 2^(ek + 1), |c| in [2^e, 2^(e + 1)) */
     int eT = exponent_of(T), ek = exponent_of(4.0 * n * DBL_EPSILON), far = 1;
-    if (emax < INT_MAX && e[n] + (eT >= 0 ? eT : n * eT) >= emax + ek + 5)
+    if (emax < INT_MAX && emax > INT_MIN && e[n] + (eT >= 0 ? eT : n * eT) >= emax + ek + 5)
         return 1;
     int lhs = e[n] + eT; /* a lower bound on log2 |c_n| T^(n-i) */
     for (int i = n - 1; i >= 0; i--, lhs += eT)
@@ -302,7 +303,7 @@ static int leading_far(const int e[], const int nz[], int n, double T, int emax)
  * show |c_n| T^(n-i) above k |c_i| by a factor 8 for every i (beyond all the
  * roundings of the comparison), the answer is no without the loop. */
 static int leading_negligible(const double c[], const int e[], const int nz[],
-                              int n, double tmax)
+                              int n, double tmax, int emax)
 {
     double T = tmax;
     int et = INT_MIN; /* T's exponent when T is a power of two beyond range */
@@ -318,7 +319,7 @@ static int leading_negligible(const double c[], const int e[], const int nz[],
                                     : 0; /* (the exponents then) */
     }
     double k = 4.0 * n * DBL_EPSILON;
-    if (leading_far(e, nz, n, T, INT_MAX))
+    if (leading_far(e, nz, n, T, emax))
         return 0;
     double Tp = 1.0;
     for (int i = n - 1; i >= 0; i--) {
@@ -337,8 +338,9 @@ static int leading_negligible(const double c[], const int e[], const int nz[],
 
 /* Drop zero/negligible leading terms and factors of t; returns the degree
  * left, or -1 for the zero polynomial.  c and its exponents (e, nz) are
- * modified in place. */
-static int reduce(double c[], int e[], int nz[], int n, double tmax)
+ * modified in place.  emax: load_coefficients' largest exponent, which
+ * stays a bound on every e_i left (leading_far). */
+static int reduce(double c[], int e[], int nz[], int n, double tmax, int emax)
 {
     for (;;) {
         while (n > 0 && c[n] == 0)
@@ -356,7 +358,7 @@ static int reduce(double c[], int e[], int nz[], int n, double tmax)
             n--;
             continue;
         }
-        if (leading_negligible(c, e, nz, n, tmax)) {
+        if (leading_negligible(c, e, nz, n, tmax, emax)) {
             c[n] = 0;
             e[n] = nz[n] = 0;
             n--;
@@ -2730,7 +2732,7 @@ static int solve(const double c_in[], int degree, double tmax, int method,
     /* (a test step 0b ran -- only where c_n, c_0 != 0 and leading_far shows
      * the leading term far from negligible over [0, tmax] -- means reduce
      * would drop nothing: the same checks, not repeated) */
-    int n = cleared == 0 ? degree : reduce(c, e, nz, degree, tmax);
+    int n = cleared == 0 ? degree : reduce(c, e, nz, degree, tmax, sc.emax);
     if (n <= 0)
         return 0;
     double root = 0;

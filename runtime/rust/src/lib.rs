@@ -198,7 +198,7 @@ fn solve(coef: &[f64], tmax: f64, method: Method, eps: f64) -> Status {
     }
     // (a test step 0b ran -- only where c_n, c_0 != 0 and leading_far shows the leading term
     // far from negligible over [0, tmax] -- means reduce would drop nothing: not repeated)
-    let n = if cleared == Some(false) { degree as i32 } else { solver::reduce(&mut c, &mut e, &mut nz, degree, tmax) };
+    let n = if cleared == Some(false) { degree as i32 } else { solver::reduce(&mut c, &mut e, &mut nz, degree, tmax, sc.emax) };
     if n <= 0 {
         return Status::NoRoot;
     }

@@ -231,7 +231,7 @@ fn leading_far(e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n: usize, t: f64, ema
     // T >= 2^eT, k < 2^(ek + 1), |c| in [2^e, 2^(e + 1))
     let (e_t, ek) = (exponent_of(t), exponent_of(4.0 * n as f64 * f64::EPSILON));
     // emax (the Scan's largest exponent, where known): the least left side settles every term
-    if let Some(emax) = emax {
+    if let Some(emax) = emax.filter(|&m| m > i32::MIN) {
         if e[n] + if e_t >= 0 { e_t } else { n as i32 * e_t } >= emax + ek + 5 {
             return true;
         }
@@ -249,7 +249,7 @@ fn leading_far(e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n: usize, t: f64, ema
 /// exponents of c (`load_coefficients`).  When the exponents alone show |c_n| T^(n-i) above
 /// k |c_i| by a factor 8 for every i (`leading_far`), the answer is no without the
 /// floating-point loop.
-fn leading_negligible(c: &Coeffs, e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n: usize, tmax: f64) -> bool {
+fn leading_negligible(c: &Coeffs, e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n: usize, tmax: f64, emax: i32) -> bool {
     let mut t = tmax;
     let mut et = None; // T's exponent when T is a power of two beyond range
     if t.is_infinite() {
@@ -272,7 +272,7 @@ fn leading_negligible(c: &Coeffs, e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n:
         };
     }
     let k = 4.0 * n as f64 * f64::EPSILON;
-    if leading_far(e, nz, n, t, None) {
+    if leading_far(e, nz, n, t, Some(emax)) {
         return false;
     }
     let mut tp = 1.0;
@@ -293,8 +293,9 @@ fn leading_negligible(c: &Coeffs, e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n:
 }
 
 /// Drop zero/negligible leading terms and factors of t; the degree left, or -1.  c and its
-/// exponents (e, nz) are modified in place.
-pub(crate) fn reduce(c: &mut Coeffs, e: &mut [i32; MAXN + 1], nz: &mut [bool; MAXN + 1], mut n: usize, tmax: f64) -> i32 {
+/// exponents (e, nz) are modified in place.  emax: load_coefficients' largest exponent, which stays
+/// a bound on every e_i left (`leading_far`).
+pub(crate) fn reduce(c: &mut Coeffs, e: &mut [i32; MAXN + 1], nz: &mut [bool; MAXN + 1], mut n: usize, tmax: f64, emax: i32) -> i32 {
     loop {
         while n > 0 && c[n] == 0.0 {
             n -= 1;
@@ -314,7 +315,7 @@ pub(crate) fn reduce(c: &mut Coeffs, e: &mut [i32; MAXN + 1], nz: &mut [bool; MA
             n -= 1;
             continue;
         }
-        if leading_negligible(c, e, nz, n, tmax) {
+        if leading_negligible(c, e, nz, n, tmax, emax) {
             c[n] = 0.0;
             e[n] = 0;
             nz[n] = false;
