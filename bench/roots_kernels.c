@@ -66,7 +66,7 @@ static int prepare_window(const double src[], int degree, double tmax, double c[
             return 0;
     }
     double failed_w = cleared == 0 ? tmax : 0;
-    int n = cleared == 0 ? degree : reduce(c, e, nz, degree, tmax);
+    int n = cleared == 0 ? degree : reduce(c, e, nz, degree, tmax, sc.emax);
     int emax = sc.emax;
     if (n < 3 || (n == degree ? sc.emax - sc.emin : spread(e, nz, n, &emax)) > MAX_SPREAD)
         return 0;
