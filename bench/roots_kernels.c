@@ -1,8 +1,9 @@
 /*
  * roots_kernels.c -- where the time of a solve that the certified guess settles goes, kernel by
  * kernel, in units of one degree-8 Horner evaluation (bench/timing.h's unit): the guess
- * (Laguerre's method from 0), its certificate (one Bernstein test on (0, r (1 + 2^-20)]), the
- * polish (one compensated Newton step, usually), and the whole solve; the preparation and the
+ * (Laguerre's method from 0), its certificate (one Bernstein test on (0, r (1 + 2^-20)], or
+ * up to the end of a step that went past the root), the polish (one compensated Newton step,
+ * usually; plain Newton first after such a step), and the whole solve; the preparation and the
  * early tests are what is left.  Issue 10 asks for a generic octic in 15 evaluations: this says
  * which parts a faster solver would have to shrink.
  *
@@ -37,7 +38,8 @@ typedef struct {
     int degree;
     double p[MAXN + 1]; /* normalised, p[0] > 0 */
     int n;
-    double T, w, r; /* window, certificate window, guess */
+    double T, w, r; /* window, certificate window, guess (Newton's start) */
+    double tol;     /* refine_root's: PRECISE_NOW after a converged guess, 0 after an overshot */
     Point a;        /* the point 0 */
     double dp[MAXN];
     double root; /* the public solve's answer */
@@ -89,11 +91,13 @@ static int prepare(Kept *k)
     int n = prepare_window(k->c, k->degree, k->tmax, c, &T, &k->a);
     if (n == 0)
         return 0;
-    double r, touch, dip = 0, pT;
-    if (!speculate_first_root(c, n, T, &r, &touch, &dip))
+    double r, touch, dip = 0, pT, over = 0;
+    int guess = speculate_first_root(c, n, T, &r, &touch, &dip, &over);
+    if (!guess)
         return 0;
-    double w = r + r * 0x1p-20;
+    double end = guess == OVERSHOT ? over : r, w = end + end * 0x1p-20;
     w = w < T ? w : T;
+    k->tol = guess == OVERSHOT ? 0 : PRECISE_NOW;
     if (bernstein_test(&k->a, n, w, &pT, NULL) != BERN_ONE)
         return 0;
     memcpy(k->p, c, sizeof c);
@@ -138,15 +142,15 @@ static double region(int which, int m)
             break;
         }
         case REPLICA: {
-            double c[MAXN + 1], T = 0, r = 0, touch = 0, dip = 0, pT = 0, dp[MAXN];
+            double c[MAXN + 1], T = 0, r = 0, touch = 0, dip = 0, pT = 0, dp[MAXN], over = 0;
             Point a;
             int n = prepare_window(k->c, k->degree, k->tmax + tiny, c, &T, &a);
-            speculate_first_root(c, n, T, &r, &touch, &dip);
-            double w = r + r * 0x1p-20;
+            int guess = speculate_first_root(c, n, T, &r, &touch, &dip, &over);
+            double end = guess == OVERSHOT ? over : r, w = end + end * 0x1p-20;
             w = w < T ? w : T;
             if (bernstein_test(&a, n, w, &pT, NULL) == BERN_ONE) {
                 derivative(c, n, dp);
-                dep = refine_root(c, dp, n, 0, w, 1, PRECISE_NOW, r);
+                dep = refine_root(c, dp, n, 0, w, 1, guess == OVERSHOT ? 0 : PRECISE_NOW, r);
             }
             break;
         }
@@ -157,8 +161,8 @@ static double region(int which, int m)
             break;
         }
         case GUESS: {
-            double r = 0, touch = 0, dip = 0;
-            dep = speculate_first_root(k->p, k->n, k->T + tiny, &r, &touch, &dip) + r;
+            double r = 0, touch = 0, dip = 0, over = 0;
+            dep = speculate_first_root(k->p, k->n, k->T + tiny, &r, &touch, &dip, &over) + r;
             break;
         }
         case CERTIFICATE: {
@@ -169,7 +173,7 @@ static double region(int which, int m)
         case POLISH: {
             double dp[MAXN];
             derivative(k->p, k->n, dp);
-            dep = refine_root(k->p, dp, k->n, 0, k->w, 1, PRECISE_NOW, k->r + tiny);
+            dep = refine_root(k->p, dp, k->n, 0, k->w, 1, k->tol, k->r + tiny);
             break;
         }
         }

@@ -58,10 +58,10 @@ int main(void)
             printf(" %a %d %d %d", qb.err, qb.even != 0, bernstein_clear(&qb, n, 0),
                    bernstein_clear(&qb, n, 0.3)); /* halves only; the first split at 0.3 */
         }
-        double r = 0, touch = 0, dip = 0, before = m2c_count[2];
-        int speculated = speculate_first_root(pt.pt, n, pt.x + w, &r, &touch, &dip);
+        double r = 0, touch = 0, dip = 0, over = 0, before = m2c_count[2];
+        int speculated = speculate_first_root(pt.pt, n, pt.x + w, &r, &touch, &dip, &over);
         double madds = m2c_count[2] - before;
-        printf(" %d %a %a %a %.0f", speculated, speculated ? r : 0.0, touch, dip, madds);
+        printf(" %d %a %a %a %a %.0f", speculated, speculated ? r : 0.0, touch, dip, over, madds);
         double pend2 = NAN;
         int answer2 = bernstein_test(&pt, n, w, &pend2, NULL);
         printf(" %d %a\n", answer2, pend2);

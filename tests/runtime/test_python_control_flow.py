@@ -333,13 +333,15 @@ def _kernel_line(solver: Any, pt: Any, n: int, w: float, seen: Counter[str],
         out += [_num(v) for v in first.q.b]
         out += [_num(first.q.err), str(int(first.q.even)), str(int(cleared)), str(int(cleared_at))]
     steps[:] = [0, 0]
-    r, touch, dip = solver._speculate_first_root(pt.pt, n, pt.x + w)
+    r, touch, dip, over = solver._speculate_first_root(pt.pt, n, pt.x + w)
     seen["no guess root" if r is None else "guess root"] += 1
     seen["touch" if touch > 0 else "no touch"] += 1
     seen["dip" if dip != 0 else "no dip"] += 1
+    seen["overshot" if over > 0 else "not overshot"] += 1
     seen[f"{steps[0]} Laguerre steps"] += 1
-    out += ["0", _num(0.0)] if r is None else ["1", _num(r)]
-    out += [_num(touch), _num(dip)]
+    # (C's OVERSHOT is 2, with Newton's start in r and the step's end in over)
+    out += ["0", _num(0.0)] if r is None else ["2" if over > 0 else "1", _num(r)]
+    out += [_num(touch), _num(dip), _num(over)]
     out.append(str(3 * n * steps[0] + n * steps[1]))  # C's count: 3 n a step, n a bound
     second = solver._bernstein_test(pt, n, w, False)
     return out + [str(second.answer), _num(second.pend)]
@@ -389,7 +391,7 @@ def test_bernstein_kernels_bit_for_bit(bernstein_driver: Path,
     assert not bad, f"{len(bad)} of {len(lines)} differ, first:\n" + "\n".join(bad[:5])
     ends = [f"answer {a}" for a in (solver.BERN_UNKNOWN, solver.BERN_CLEAR, solver.BERN_ONE)]
     ends += ["cleared by halving", "not cleared by halving", "cleared, split at 0.3",
-             "not cleared, split at 0.3", "guess root", "no guess root", "touch", "dip"]
+             "not cleared, split at 0.3", "guess root", "no guess root", "touch", "dip", "overshot"]
     assert all(seen[k] > len(lines) // 100 for k in ends), f"rarely reached: {seen}"
 
 

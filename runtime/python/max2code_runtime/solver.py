@@ -760,6 +760,7 @@ class _Guess(NamedTuple):
     root: float | None
     touch: float
     dip: float = 0.0  # where p dips towards complex roots near the axis (C's *dip), or 0
+    over: float = 0.0  # > 0: a step went past a root (C's OVERSHOT), p < 0 here; root: Newton's start
 
 
 def _speculate_first_root(p: Sequence[float], n: int, T: float) -> _Guess:
@@ -771,12 +772,14 @@ def _speculate_first_root(p: Sequence[float], n: int, T: float) -> _Guess:
     to the first root after 0, cubically near it.  A double root ahead shows as linear
     convergence, a steady step ratio (0.284 at degree 8); then Newton on p' goes to the
     critical point -- a simple root of p', quadratic convergence where Laguerre crawls -- and
-    reports it as a touch when p there is near the rounding bound.  No Newton step is counted
+    reports it as a touch when p there is near the rounding bound.  A step that lands past a
+    root (complex roots near it, or one rounding past a converged root) is reported with over,
+    the point where p < 0, and root, Newton's start inside the step.  No Newton step is counted
     (C counts none here, neither Laguerre's nor those on p').  Python's float division
     overflows to inf as C's does; the step's denominator and s / last may be 0 (_div gives C's
     inf or NaN), and the test of u comes before sqrt, which raises on a negative argument where
     C's would give NaN."""
-    x = last = qprev = 0.0
+    x = last = qprev = xprev = 0.0
     critical = steady = 0  # Newton on p' (after the double-root signature)
     for it in range(SPECULATE_STEPS + TOUCH_EXTRA + TOUCH_STEPS):
         if not critical and it >= SPECULATE_STEPS and (
@@ -802,6 +805,9 @@ def _speculate_first_root(p: Sequence[float], n: int, T: float) -> _Guess:
             continue
         if f == 0:
             return _Guess(x if x > 0 else None, 0.0)
+        if f < 0:  # past a root: one in (xprev, x); Newton from x if it stays inside
+            y = x - _div(f, d1)
+            return _Guess(y if xprev < y < x else xprev + 0.5 * (x - xprev), 0.0, 0.0, x)
         # (n - 1) f^2 times Laguerre's discriminant: its sign, and the step from one division
         u = (n - 1) * (d1 * d1) - 2 * n * (f * d2)
         if not (u >= 0):  # complex roots in the way (or NaN): Newton on p' towards the dip
@@ -809,6 +815,7 @@ def _speculate_first_root(p: Sequence[float], n: int, T: float) -> _Guess:
         s = _div(n * f, d1 - math.copysign(math.sqrt((n - 1) * u), f))  # to the right: < 0
         if not (s < 0):
             return _Guess(None, 0.0)
+        xprev = x
         x -= s
         if not (x > 0 and x < T):
             return _Guess(None, 0.0)
@@ -875,10 +882,12 @@ def _isolate_first_root(p: Sequence[float], n: int, skin: float, T: float, faile
     guess = _speculate_first_root(p, n, T)
     r = guess.root
     if r is not None:
-        w = r + r * SPECULATE_MARGIN
+        end = guess.over if guess.over > 0 else r  # (overshot: up to the step's end)
+        w = end + end * SPECULATE_MARGIN
         w = w if w < T else T
         if _bernstein_test(a, n, w, False).answer == BERN_ONE:
-            return _refine_root(p, _derivative(p, n), n, 0.0, w, 1, PRECISE_NOW, r), False
+            tol = 0.0 if guess.over > 0 else PRECISE_NOW
+            return _refine_root(p, _derivative(p, n), n, 0.0, w, 1, tol, r), False
     frm = 0.0  # > 0: (0, frm] is settled, the counts go on from it (C's `from`)
     # A touch ahead, with the graze check only: (0, lo] certified clear by the Bernstein test,
     # then the derivative method on (lo, hi] -- small, so few roots of the derivatives in it

@@ -1323,6 +1323,9 @@ const TOUCH_WIDTH: f64 = 9.765_625e-4;
 enum Guess {
     /// Laguerre converged here: maybe the first root (the caller certifies it).
     Root(f64),
+    /// A step went past a root: p < 0 at `over`, a root in (0, over), Newton's start inside
+    /// the step first (C's OVERSHOT; the caller certifies it up to `over`).
+    Overshot { start: f64, over: f64 },
     /// The critical point of a touch ahead (p there within TOUCH_NEAR rounding bounds).
     Touch(f64),
     /// Nothing, but where p dips towards complex roots near the axis (C's *dip): a point
@@ -1353,6 +1356,10 @@ enum Guess {
 /// rounding bound (a complex pair clear of the axis is not: not worth the derivative method).
 /// Like the root, it only chooses where to look (`isolate_first_root`).
 ///
+/// A step that lands past a root (complex roots near the first real one, or an iterate one
+/// rounding past a root it has converged to) gives `Overshot`: p < 0 at the new x, a root in
+/// (0, x), and Newton's start where Newton from x points if inside the step, else its middle.
+///
 /// The arithmetic is C's, operation for operation (the results are bit-identical): three
 /// Horner chains in C's statement order, `2 * d2 / f` as `(2 d2) / f`, the integer factors
 /// converted as C converts them, the exit rules at the same places.
@@ -1362,7 +1369,7 @@ fn speculate_first_root(p: &[f64], n: usize, t_end: f64) -> Guess {
     let p = &p[..=n];
     // C's (n - 1) converted to double, exact (and no usize underflow)
     let (nf, n1f) = (n as f64, n as f64 - 1.0);
-    let (mut x, mut last, mut qprev) = (0.0f64, 0.0f64, 0.0f64);
+    let (mut x, mut last, mut qprev, mut xprev) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
     // critical > 0: Newton on p' (after the double-root signature), its step number
     let (mut critical, mut steady) = (0usize, 0usize);
     for it in 0..SPECULATE_STEPS + TOUCH_EXTRA + TOUCH_STEPS {
@@ -1407,6 +1414,12 @@ fn speculate_first_root(p: &[f64], n: usize, t_end: f64) -> Guess {
         if f == 0.0 {
             return if x > 0.0 { Guess::Root(x) } else { Guess::Nothing };
         }
+        if f < 0.0 {
+            // past a root: one in (xprev, x)
+            let y = x - f / d1;
+            let start = if y > xprev && y < x { y } else { xprev + 0.5 * (x - xprev) };
+            return Guess::Overshot { start, over: x };
+        }
         // (n - 1) f^2 times Laguerre's discriminant: its sign, and the step from one division
         let u = n1f * (d1 * d1) - 2.0 * nf * (f * d2);
         if !(u >= 0.0) {
@@ -1418,6 +1431,7 @@ fn speculate_first_root(p: &[f64], n: usize, t_end: f64) -> Guess {
         if !(s < 0.0) {
             return Guess::Nothing;
         }
+        xprev = x;
         x -= s;
         if !(x > 0.0 && x < t_end) {
             return Guess::Nothing;
@@ -1508,6 +1522,16 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64, failed_w: f64)
                 let dp = derivative(p, n);
                 count::phase(2);
                 return Isolation::Isolated(refine_root(p, &dp, n, 0.0, w, 1, PRECISE_NOW, r), false);
+            }
+        }
+        Guess::Overshot { start, over } => {
+            let w = over + over * SPECULATE_MARGIN;
+            let w = if w < t_end { w } else { t_end };
+            count::phase(1);
+            if let Bernstein::One(_) = bernstein_test(a, n, w, None) {
+                let dp = derivative(p, n);
+                count::phase(2);
+                return Isolation::Isolated(refine_root(p, &dp, n, 0.0, w, 1, 0.0, start), false);
             }
         }
         Guess::Touch(x) => touch = x,
