@@ -91,3 +91,27 @@ def assert_ports_take_c_path(driver: Path, vecs: Sequence[Vector],
             f"Python {(st, t, graze)} vs C {cr[:3]}: c={coeffs!r}, tmax={tmax!r}"
         assert events == [int(x) for x in cr[3:8]], \
             f"Python {events} vs C {cr[3:8]}: c={coeffs!r}, tmax={tmax!r}"
+
+
+def python_returns(name: str, vecs: Sequence[Vector],
+                   monkeypatch: pytest.MonkeyPatch) -> list[list[object]]:
+    """What the pure-Python solver's function `name` returned in the default solve of each
+    vector, call by call: where a test asserts which way the solver went."""
+    import max2code_runtime as rt
+    from max2code_runtime import solver
+
+    seen: list[object] = []
+    inner = getattr(solver, name)
+
+    def spy(*args: object) -> object:
+        seen.append(inner(*args))
+        return seen[-1]
+    monkeypatch.setattr(solver, name, spy)
+    monkeypatch.setattr(rt, "_C", None)
+    out = []
+    for c, tmax in vecs:
+        seen.clear()
+        rt.first_root_status(list(c), tmax, "interval", 0.0)
+        out.append(list(seen))
+    monkeypatch.undo()
+    return out

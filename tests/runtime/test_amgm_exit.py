@@ -126,9 +126,6 @@ def test_every_runtime_against_the_oracle(runtime: str, tmp_path: Path,
 
 def test_paths(counts_driver: Path,  # noqa: F811 (the imported fixture)
                monkeypatch: pytest.MonkeyPatch) -> None:
-    import max2code_runtime as rt
-    from max2code_runtime import solver
-
     # C: no counted work at eps = 0 on the OUTWEIGHED vectors, some with a skin (full path)
     lines = [" ".join([str(m), repr(eps), _num(t), str(len(c) - 1), *(_num(x) for x in c)])
              for c, t in OUTWEIGHED for _, m, eps, _ in CALLS]
@@ -145,19 +142,9 @@ def test_paths(counts_driver: Path,  # noqa: F811 (the imported fixture)
             skin_work += any(cc)
     assert skin_work >= len(OUTWEIGHED) // 2, skin_work
     # Python: outweighed() says yes on exactly the OUTWEIGHED vectors it is asked about
-    said: list[bool] = []
-    inner = solver.outweighed
-
-    def observed(*args: object) -> bool:
-        said.append(inner(*args))  # type: ignore[arg-type]
-        return said[-1]
-    monkeypatch.setattr(solver, "outweighed", observed)
-    monkeypatch.setattr(rt, "_C", None)
-    for c, t in OUTWEIGHED + NOT_OUTWEIGHED:
-        said.clear()
-        rt.first_root_status(list(c), t, "interval", 0.0)
+    vecs = OUTWEIGHED + NOT_OUTWEIGHED
+    for (c, t), said in zip(vecs, paths.python_returns("outweighed", vecs, monkeypatch)):
         assert said == ([True] if (c, t) in OUTWEIGHED else [] if t < INF else [False]), (c, t, said)
-    monkeypatch.undo()
     # Rust and Python take C's path on every vector
     paths.assert_ports_take_c_path(counts_driver, OUTWEIGHED + NOT_OUTWEIGHED, monkeypatch)
 

@@ -8,7 +8,7 @@ step.  Before, the steps went on to the right towards the next root, crept and g
 the solve bisected with Taylor points.  Checked here:
 
 * the vectors are what they claim: products of a complex pair, the first real root and a few
-  more factors, exact in binary; the pure-Python guess (bit for bit C's:
+  more factors; the pure-Python guess (bit for bit C's:
   test_python_control_flow.py) overshoots on each, with the exact first root before the step's
   end;
 * every runtime (the C driver, the Rust crate, Python's pure and C backends) answers every
@@ -20,97 +20,57 @@ the solve bisected with Taylor points.  Checked here:
 """
 from __future__ import annotations
 
-from fractions import Fraction
 from pathlib import Path
 from typing import Sequence
 
 import pytest
 
+from . import cases
 from . import exact_roots as ex
 from . import paths
 from .test_python_control_flow import counts_driver  # noqa: F401
 
 Vector = tuple[tuple[float, ...], float]
-F = Fraction
 
 
-def _product(factors: Sequence[Sequence[Fraction]]) -> tuple[float, ...]:
-    """The coefficients (ascending) of the product, each exact as a double."""
-    out = [F(1)]
-    for f in factors:
-        new = [F(0)] * (len(out) + len(f) - 1)
-        for i, a in enumerate(out):
-            for j, b in enumerate(f):
-                new[i + j] += a * b
-        out = new
-    assert all(F(float(x)) == x for x in out), out
-    return tuple(float(x) for x in out)
+def _vec(pair: tuple[str, str], first: str, real: Sequence[str] = (),
+         pairs: Sequence[tuple[str, str]] = ()) -> Vector:
+    """The complex pair (real part, imaginary part), the first positive root, other real roots
+    and pairs (exact decimals: cases.poly_from_roots); tmax 10.  (A root at 4 comes with lead
+    -1/4, the factor 1 - t/4: a scaling by a power of two and a sign, which leaves the solver's
+    normalised polynomial, and so its path, as it is.)"""
+    lead = "-0.25" if "4" in real else "1"
+    return cases.poly_from_roots([first, *real], [pair, *pairs], lead), 10.0
 
 
-def _pair(a: Fraction, b: Fraction) -> list[Fraction]:
-    """(t - a)^2 + b^2: the complex pair a +- ib."""
-    return [a * a + b * b, -2 * a, F(1)]
-
-
-def _root(r: Fraction) -> list[Fraction]:
-    return [-r, F(1)]
-
-
-def _vec(a: Fraction, b: Fraction, r: Fraction, *more: list[Fraction]) -> Vector:
-    """The pair a +- ib, the first real root r, then the other factors; tmax 10."""
-    return _product([_pair(a, b), _root(r), *more]), 10.0
-
-
-NEG2, NEG5, POS4 = [F(2), F(1)], [F(5), F(1)], [F(1), F(-1, 4)]  # roots -2, -5 and 4
 # Laguerre steps past the first root, and (0, the step's end] holds it alone in the
 # Bernstein basis: the certified guess settles the solve
 CERTIFIED: list[Vector] = [
-    _vec(F(1, 2), F(1, 2), F(5, 4), NEG2, NEG5),          # past 1.25 to 1.62
-    _vec(F(1, 2), F(1, 2), F(5, 4), NEG2, NEG5, POS4),    # the next root at 4
-    _vec(F(3, 4), F(1, 2), F(1), [F(3), F(1)]),           # degree 4
-    _vec(F(1), F(1, 2), F(7, 8), POS4),
-    _vec(F(1), F(1, 8), F(7, 8), NEG2, NEG5),             # one rounding past 0.875
-    _vec(F(1), F(1, 8), F(1), POS4),                      # one rounding past 1
+    _vec(("0.5", "0.5"), "1.25", ["-2", "-5"]),         # past 1.25 to 1.62
+    _vec(("0.5", "0.5"), "1.25", ["-2", "-5", "4"]),    # the next root at 4
+    _vec(("0.75", "0.5"), "1", ["-3"]),                 # degree 4
+    _vec(("1", "0.5"), "0.875", ["4"]),
+    _vec(("1", "0.125"), "0.875", ["-2", "-5"]),        # one rounding past 0.875
+    _vec(("1", "0.125"), "1", ["4"]),                   # one rounding past 1
     # degree 8: two more pairs, one on each side
-    _vec(F(3, 4), F(1, 2), F(1), _pair(F(2), F(1)), _pair(F(-3), F(1, 2)), POS4),
-    _vec(F(1, 2), F(1, 2), F(5, 4), _pair(F(-1), F(1)), _pair(F(-4), F(1, 2)), [F(4), F(1)]),
+    _vec(("0.75", "0.5"), "1", ["4"], [("2", "1"), ("-3", "0.5")]),
+    _vec(("0.5", "0.5"), "1.25", ["-4"], [("-1", "1"), ("-4", "0.5")]),
 ]
 # the pair is inside the Bernstein test's reach: the bracket is not certified, and the solve
 # goes on as when a guess gives up
 NOT_CERTIFIED: list[Vector] = [
-    _vec(F(1, 2), F(1, 4), F(5, 4), POS4),
-    _vec(F(1), F(1, 4), F(3, 2), NEG2, NEG5),
-    _vec(F(3, 4), F(1, 2), F(1), _pair(F(-2), F(1, 2)), _pair(F(-4), F(1, 2)), POS4),
+    _vec(("0.5", "0.25"), "1.25", ["4"]),
+    _vec(("1", "0.25"), "1.5", ["-2", "-5"]),
+    _vec(("0.75", "0.5"), "1", ["4"], [("-2", "0.5"), ("-4", "0.5")]),
 ]
 VECTORS = CERTIFIED + NOT_CERTIFIED
 
 
-def _guesses(vecs: Sequence[Vector], monkeypatch: pytest.MonkeyPatch) -> list[object]:
-    """The pure-Python solver's guess (its first _speculate_first_root) on each vector."""
-    import max2code_runtime as rt
-    from max2code_runtime import solver
-
-    seen: list[object] = []
-    inner = solver._speculate_first_root
-
-    def spy(*args: object) -> object:
-        seen.append(inner(*args))  # type: ignore[arg-type]
-        return seen[-1]
-    monkeypatch.setattr(solver, "_speculate_first_root", spy)
-    monkeypatch.setattr(rt, "_C", None)
-    out = []
-    for c, tmax in vecs:
-        seen.clear()
-        rt.first_root_status(list(c), tmax, "interval", 0.0)
-        assert seen, (c, tmax)
-        out.append(seen[0])
-    monkeypatch.undo()
-    return out
-
-
 def test_the_vectors_overshoot(monkeypatch: pytest.MonkeyPatch) -> None:
     assert {len(c) - 1 for c, _ in CERTIFIED} >= {4, 5, 6, 8}
-    for (c, tmax), guess in zip(VECTORS, _guesses(VECTORS, monkeypatch)):
+    for (c, tmax), guesses in zip(VECTORS, paths.python_returns("_speculate_first_root", VECTORS,
+                                                                 monkeypatch)):
+        guess = guesses[0]
         truth = ex.first_root(c, tmax)
         assert truth.kind == "simple", (c, tmax, truth)
         over, start = guess.over, guess.root  # type: ignore[attr-defined]

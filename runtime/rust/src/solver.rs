@@ -1513,30 +1513,30 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64, failed_w: f64)
     // (0, r (1 + 2^-20)] settle most solves with a root, which the test on the whole window
     // before them only delayed (measured: see the C source).
     let (mut touch, mut dip) = (0.0, 0.0);
-    match speculate_first_root(p, n, t_end) {
-        Guess::Root(r) => {
-            let w = r + r * SPECULATE_MARGIN;
-            let w = if w < t_end { w } else { t_end };
-            count::phase(1);
-            if let Bernstein::One(_) = bernstein_test(a, n, w, None) {
-                let dp = derivative(p, n);
-                count::phase(2);
-                return Isolation::Isolated(refine_root(p, &dp, n, 0.0, w, 1, PRECISE_NOW, r), false);
-            }
+    // a root to certify: (the certificate's end, Newton's start, refine_root's tol) -- after a
+    // step past the root, the step's end and plain evaluation first
+    let certify = match speculate_first_root(p, n, t_end) {
+        Guess::Root(r) => Some((r, r, PRECISE_NOW)),
+        Guess::Overshot { start, over } => Some((over, start, 0.0)),
+        Guess::Touch(x) => {
+            touch = x;
+            None
         }
-        Guess::Overshot { start, over } => {
-            let w = over + over * SPECULATE_MARGIN;
-            let w = if w < t_end { w } else { t_end };
-            count::phase(1);
-            if let Bernstein::One(_) = bernstein_test(a, n, w, None) {
-                let dp = derivative(p, n);
-                count::phase(2);
-                return Isolation::Isolated(refine_root(p, &dp, n, 0.0, w, 1, 0.0, start), false);
-            }
+        Guess::Dip(x) => {
+            dip = x;
+            None
         }
-        Guess::Touch(x) => touch = x,
-        Guess::Dip(x) => dip = x,
-        Guess::Nothing => {}
+        Guess::Nothing => None,
+    };
+    if let Some((end, start, tol)) = certify {
+        let w = end + end * SPECULATE_MARGIN;
+        let w = if w < t_end { w } else { t_end };
+        count::phase(1);
+        if let Bernstein::One(_) = bernstein_test(a, n, w, None) {
+            let dp = derivative(p, n);
+            count::phase(2);
+            return Isolation::Isolated(refine_root(p, &dp, n, 0.0, w, 1, tol, start), false);
+        }
     }
     count::phase(1);
     let mut from = 0.0; // > 0: (0, from] is settled, the counts go on from it
