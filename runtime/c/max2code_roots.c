@@ -1464,8 +1464,8 @@ NOINLINE static int bernstein_clear(const BernQ *qb, int n, double t0)
  * to the first root after its start, cubically near it, from any start --
  * and from 0, the first positive root is the one we want.  Returns 1 with
  * *r set once a step is below PRECISE_FROM; gives up (0)
- * where the square root's argument is negative (complex roots in the way),
- * when no step to the right exists, when x leaves (0, T), when a step from
+ * where the square root's argument is negative (complex roots in the way)
+ * and Newton may not step instead (below), when no step to the right exists, when x leaves (0, T), when a step from
  * the fifth on has neither halved nor shrunk by more than the step before
  * (far from every root Laguerre creeps, then speeds up: it gives up only
  * while it is not slowing down), or after SPECULATE_STEPS; stops once a step
@@ -1517,8 +1517,22 @@ NOINLINE static int bernstein_clear(const BernQ *qb, int n, double t0)
  * 16 (49); bench/roots_ab.py --sweeps 15, aligned: generic octics 0.94 of
  * the time at the median and 0.90 in the mean, quartics 0.96 / 0.88,
  * degree 12 0.92 / 0.90, degree 16 0.98 / 0.89, the rest within noise;
- * 0.89-0.91 of the instructions; the same answers, bit for bit. */
+ * 0.89-0.91 of the instructions; the same answers, bit for bit.
+ *
+ * With a bracket caught, the guess can also step where Laguerre's square
+ * root's argument is negative: a Newton step to the right (p falling) takes
+ * Laguerre's place, up to GUESS_NEWTON times a guess -- past the complex
+ * pair's pull Laguerre's steps often resume, and a step past the root is an
+ * overshoot like any other (measured: bench/roots_ab.py --instructions,
+ * generic octics 0.921, degree 16 0.941, grazes 0.962, quartics 0.982,
+ * the rest 1.00-1.02; 1 and 4 steps: generic octics 0.943 and 0.921;
+ * timed --sweeps 21, aligned, median / mean: generic octics 1.00 / 0.93,
+ * degree 12 0.99 / 0.94, degree 16 0.99 / 0.96, grazes 0.98 / 0.98,
+ * quartics 1.00 / 0.98 -- the solves it moves are the costly ones -- but
+ * complex roots near the window 1.03 / 1.03, where the steps lead nowhere;
+ * the same answers, bit for bit). */
 #define OVERSHOT 2
+#define GUESS_NEWTON 2
 #define SPECULATE_STEPS 8
 #define TOUCH_EXTRA 4
 #define TOUCH_STEPS 6
@@ -1531,6 +1545,7 @@ static int speculate_first_root(const double p[], int n, double T, double *r,
 {
     PHASE(2);
     double x = 0, last = 0, qprev = 0, xprev = 0;
+    int newton = 0; /* Newton steps in Laguerre's place (below) */
     int critical = 0, steady = 0; /* Newton on p' (after the double-root signature) */
     *touch = 0;
     for (int it = 0; it < SPECULATE_STEPS + TOUCH_EXTRA + TOUCH_STEPS; it++) {
@@ -1597,13 +1612,20 @@ static int speculate_first_root(const double p[], int n, double T, double *r,
          * all touches or double roots split by rounding).  Overflow of the
          * products (windows beyond 2^64 at degree 8) makes u NaN: no guess. */
         double u = (n - 1) * (d1 * d1) - 2 * n * (f * d2);
+        double s;
         if (!(u >= 0)) {
-            /* complex roots in the way: one Newton step on p' towards the dip */
+            /* complex roots in the way: one Newton step on p' towards the
+             * dip, and in Laguerre's place, up to GUESS_NEWTON times while
+             * p falls, a Newton step (see above) */
             if (d2 > 0)
                 *dip = x - d1 / (2 * d2);
-            return 0;
+            if (newton == GUESS_NEWTON || !(d1 < 0))
+                return 0;
+            newton++;
+            s = f / d1;
+        } else {
+            s = n * f / (d1 - copysign(sqrt((n - 1) * u), f));
         }
-        double s = n * f / (d1 - copysign(sqrt((n - 1) * u), f));
         if (!(s < 0))
             return 0;
         xprev = x;

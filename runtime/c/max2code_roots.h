@@ -101,7 +101,9 @@
  *           root (else the guess is dropped).  A step that lands past a
  *           root (p < 0 at the new x: complex roots near the first real
  *           one) ends the guess too: the same test on (0, x (1 + 2^-20)],
- *           and the polish starts inside the step.  A touch ahead shows as
+ *           and the polish starts inside the step; where complex roots
+ *           leave Laguerre no real step and p falls, a Newton step takes
+ *           its place (twice at most).  A touch ahead shows as
  *           Laguerre's linear convergence (3 step ratios in a row in [0.25,
  *           0.31]: 0.284 at degree 8 for a double root); the guess then
  *           goes to the critical point c by Newton on p', and keeps it

@@ -733,6 +733,7 @@ TOUCH_STEPS = 6
 TOUCH_RATIO_LO = 0.25
 TOUCH_RATIO_HI = 0.31
 TOUCH_STEADY = 3
+GUESS_NEWTON = 2  # Newton steps that may take Laguerre's place (complex roots in the way)
 TOUCH_NEAR = 2.0**20
 # half-width (relative) of the interval around a touch that goes to the derivative method
 TOUCH_WIDTH = 2.0**-10
@@ -774,53 +775,64 @@ def _speculate_first_root(p: Sequence[float], n: int, T: float) -> _Guess:
     critical point -- a simple root of p', quadratic convergence where Laguerre crawls -- and
     reports it as a touch when p there is near the rounding bound.  A step that lands past a
     root (complex roots near it, or one rounding past a converged root) is reported with over,
-    the point where p < 0, and root, Newton's start inside the step.  No Newton step is counted
+    the point where p < 0, and root, Newton's start inside the step; where Laguerre's square
+    root's argument is negative and p falls, a Newton step takes its place (GUESS_NEWTON times
+    at most).  No Newton step is counted
     (C counts none here, neither Laguerre's nor those on p').  Python's float division
     overflows to inf as C's does; the step's denominator and s / last may be 0 (_div gives C's
     inf or NaN), and the test of u comes before sqrt, which raises on a negative argument where
     C's would give NaN."""
-    x = last = qprev = xprev = 0.0
+    x = last = qprev = xprev = dip = 0.0  # dip: C's *dip, set wherever the guess saw one
     critical = steady = 0  # Newton on p' (after the double-root signature)
+    newton = 0  # Newton steps in Laguerre's place
     for it in range(SPECULATE_STEPS + TOUCH_EXTRA + TOUCH_STEPS):
         if not critical and it >= SPECULATE_STEPS and (
                 steady == 0 or it >= SPECULATE_STEPS + TOUCH_EXTRA):
-            return _Guess(None, 0.0)
+            return _Guess(None, 0.0, dip)
         f, d1, d2 = _laguerre_terms(p, n, x)
         if critical:
             # Newton on p' towards the critical point: a simple root of p' where p'' > 0 (a
             # minimum of p > 0)
             if not (d2 > 0):
-                return _Guess(None, 0.0)
+                return _Guess(None, 0.0, dip)
             s = d1 / (2 * d2)
             x -= s
             if not (x > 0 and x < T):
-                return _Guess(None, 0.0)
+                return _Guess(None, 0.0, dip)
             if abs(s) <= PRECISE_FROM * x:
                 near = abs(f) <= TOUCH_NEAR * noise_factor(n) * _horner_abs(p, n, x, 0)
-                return _Guess(None, x, 0.0) if near else _Guess(None, 0.0, x)  # (else a dip)
+                return _Guess(None, x, dip) if near else _Guess(None, 0.0, x)  # (else a dip)
             if critical > 1 and not (abs(s) <= 0.5 * abs(last)):
-                return _Guess(None, 0.0)
+                return _Guess(None, 0.0, dip)
             critical += 1
             last = s
             continue
         if f == 0:
-            return _Guess(x if x > 0 else None, 0.0)
+            return _Guess(x if x > 0 else None, 0.0, dip)
         if f < 0:  # past a root: one in (xprev, x); Newton from x if it stays inside
             y = x - _div(f, d1)
-            return _Guess(y if xprev < y < x else xprev + 0.5 * (x - xprev), 0.0, 0.0, x)
+            return _Guess(y if xprev < y < x else xprev + 0.5 * (x - xprev), 0.0, dip, x)
         # (n - 1) f^2 times Laguerre's discriminant: its sign, and the step from one division
         u = (n - 1) * (d1 * d1) - 2 * n * (f * d2)
-        if not (u >= 0):  # complex roots in the way (or NaN): Newton on p' towards the dip
-            return _Guess(None, 0.0, x - _div(d1, 2 * d2) if d2 > 0 else 0.0)
-        s = _div(n * f, d1 - math.copysign(math.sqrt((n - 1) * u), f))  # to the right: < 0
+        if not (u >= 0):
+            # complex roots in the way (or NaN): Newton on p' towards the dip, and in
+            # Laguerre's place, up to GUESS_NEWTON times while p falls, a Newton step
+            if d2 > 0:
+                dip = x - _div(d1, 2 * d2)
+            if newton == GUESS_NEWTON or not (d1 < 0):
+                return _Guess(None, 0.0, dip)
+            newton += 1
+            s = f / d1
+        else:
+            s = _div(n * f, d1 - math.copysign(math.sqrt((n - 1) * u), f))  # to the right: < 0
         if not (s < 0):
-            return _Guess(None, 0.0)
+            return _Guess(None, 0.0, dip)
         xprev = x
         x -= s
         if not (x > 0 and x < T):
-            return _Guess(None, 0.0)
+            return _Guess(None, 0.0, dip)
         if abs(s) <= PRECISE_FROM * x:
-            return _Guess(x, 0.0)
+            return _Guess(x, 0.0, dip)
         q = _div(s, last) if it > 0 else 0.0
         steady = steady + 1 if TOUCH_RATIO_LO <= q <= TOUCH_RATIO_HI else 0
         if steady >= TOUCH_STEADY:
@@ -831,10 +843,10 @@ def _speculate_first_root(p: Sequence[float], n: int, T: float) -> _Guess:
         # one before: Laguerre far from every root creeps, then speeds up; give up only while
         # it is not slowing down
         if it >= 4 and not (abs(s) <= 0.5 * abs(last)) and not (q < qprev):
-            return _Guess(None, 0.0)
+            return _Guess(None, 0.0, dip)
         qprev = q
         last = s
-    return _Guess(None, 0.0)
+    return _Guess(None, 0.0, dip)
 
 
 def _derivative(p: Sequence[float], n: int) -> list[float]:

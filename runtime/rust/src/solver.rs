@@ -1313,13 +1313,17 @@ const TOUCH_RATIO_LO: f64 = 0.25;
 const TOUCH_RATIO_HI: f64 = 0.31;
 /// Ratios in a row in that range that make the guess turn to the critical point.
 const TOUCH_STEADY: usize = 3;
+/// Newton steps that may take Laguerre's place where its square root's argument is negative.
+const GUESS_NEWTON: usize = 2;
 /// A critical point is a touch where |p| is within this times the rounding bound (2^20).
 const TOUCH_NEAR: f64 = 1_048_576.0;
 /// Half-width (relative) of the interval around a touch that goes to the derivative method
 /// (2^-10; `isolate_first_root`).
 const TOUCH_WIDTH: f64 = 9.765_625e-4;
 
-/// What `speculate_first_root` found (C: its return value, `*r` and `*touch`).
+/// What `speculate_first_root` found (C: its return value, `*r`, `*touch` and `*over`; C's
+/// `*dip`, where p dips towards complex roots near the axis, is its out-parameter `dip`: set
+/// where it saw one, whatever it returns).
 enum Guess {
     /// Laguerre converged here: maybe the first root (the caller certifies it).
     Root(f64),
@@ -1328,9 +1332,6 @@ enum Guess {
     Overshot { start: f64, over: f64 },
     /// The critical point of a touch ahead (p there within TOUCH_NEAR rounding bounds).
     Touch(f64),
-    /// Nothing, but where p dips towards complex roots near the axis (C's *dip): a point
-    /// for bernstein_clear's first split.
-    Dip(f64),
     Nothing,
 }
 
@@ -1359,17 +1360,21 @@ enum Guess {
 /// A step that lands past a root (complex roots near the first real one, or an iterate one
 /// rounding past a root it has converged to) gives `Overshot`: p < 0 at the new x, a root in
 /// (0, x), and Newton's start where Newton from x points if inside the step, else its middle.
+/// Where the square root's argument is negative and p falls, a Newton step takes Laguerre's
+/// place, up to GUESS_NEWTON times: past the complex pair's pull Laguerre's steps often
+/// resume, and a step past the root is an overshoot like any other.
 ///
 /// The arithmetic is C's, operation for operation (the results are bit-identical): three
 /// Horner chains in C's statement order, `2 * d2 / f` as `(2 d2) / f`, the integer factors
 /// converted as C converts them, the exit rules at the same places.
 #[inline(always)]
-fn speculate_first_root(p: &[f64], n: usize, t_end: f64) -> Guess {
+fn speculate_first_root(p: &[f64], n: usize, t_end: f64, dip: &mut f64) -> Guess {
     count::phase(2);
     let p = &p[..=n];
     // C's (n - 1) converted to double, exact (and no usize underflow)
     let (nf, n1f) = (n as f64, n as f64 - 1.0);
     let (mut x, mut last, mut qprev, mut xprev) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+    let mut newton = 0; // Newton steps in Laguerre's place
     // critical > 0: Newton on p' (after the double-root signature), its step number
     let (mut critical, mut steady) = (0usize, 0usize);
     for it in 0..SPECULATE_STEPS + TOUCH_EXTRA + TOUCH_STEPS {
@@ -1402,7 +1407,11 @@ fn speculate_first_root(p: &[f64], n: usize, t_end: f64) -> Guess {
             if s.abs() <= PRECISE_FROM * x {
                 let near = f.abs() <= TOUCH_NEAR * noise_factor(n) * horner_abs(p, n, x, 0);
                 // (not near: a dip clear of the axis, complex roots)
-                return if near { Guess::Touch(x) } else { Guess::Dip(x) };
+                if near {
+                    return Guess::Touch(x);
+                }
+                *dip = x;
+                return Guess::Nothing;
             }
             if critical > 1 && !(s.abs() <= 0.5 * last.abs()) {
                 return Guess::Nothing;
@@ -1422,12 +1431,21 @@ fn speculate_first_root(p: &[f64], n: usize, t_end: f64) -> Guess {
         }
         // (n - 1) f^2 times Laguerre's discriminant: its sign, and the step from one division
         let u = n1f * (d1 * d1) - 2.0 * nf * (f * d2);
-        if !(u >= 0.0) {
-            // complex roots in the way: one Newton step on p' towards the dip
-            return if d2 > 0.0 { Guess::Dip(x - d1 / (2.0 * d2)) } else { Guess::Nothing };
-        }
-        // the step to the right (negative), or none
-        let s = nf * f / (d1 - (n1f * u).sqrt().copysign(f));
+        let s = if !(u >= 0.0) {
+            // complex roots in the way: one Newton step on p' towards the dip, and in
+            // Laguerre's place, up to GUESS_NEWTON times while p falls, a Newton step
+            if d2 > 0.0 {
+                *dip = x - d1 / (2.0 * d2);
+            }
+            if newton == GUESS_NEWTON || !(d1 < 0.0) {
+                return Guess::Nothing;
+            }
+            newton += 1;
+            f / d1
+        } else {
+            // the step to the right (negative), or none
+            nf * f / (d1 - (n1f * u).sqrt().copysign(f))
+        };
         if !(s < 0.0) {
             return Guess::Nothing;
         }
@@ -1515,15 +1533,11 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64, failed_w: f64)
     let (mut touch, mut dip) = (0.0, 0.0);
     // a root to certify: (the certificate's end, Newton's start, refine_root's tol) -- after a
     // step past the root, the step's end and plain evaluation first
-    let certify = match speculate_first_root(p, n, t_end) {
+    let certify = match speculate_first_root(p, n, t_end, &mut dip) {
         Guess::Root(r) => Some((r, r, PRECISE_NOW)),
         Guess::Overshot { start, over } => Some((over, start, 0.0)),
         Guess::Touch(x) => {
             touch = x;
-            None
-        }
-        Guess::Dip(x) => {
-            dip = x;
             None
         }
         Guess::Nothing => None,
