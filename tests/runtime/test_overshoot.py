@@ -1,11 +1,15 @@
-"""The guess's step past a root (C's OVERSHOT): certified as a bracket, not given up.
+"""The guess past complex roots: a step past a root (C's OVERSHOT) certified as a bracket, and
+Newton's steps where Laguerre has no real one.
 
 Laguerre's method from 0 converges monotonically to the first root when every root is real.
 A complex pair near the first real root turns a step past it: p < 0 at the new iterate.  The
 guess then reports a bracket -- a root in (0, x) -- which the Bernstein test on
 (0, x (1 + 2^-20)] certifies as it does a converged guess, and the polish starts inside the
 step.  Before, the steps went on to the right towards the next root, crept and gave up, and
-the solve bisected with Taylor points.  Checked here:
+the solve bisected with Taylor points.  Where complex roots leave Laguerre no real step (its
+square root's argument negative: at 0 already, on NEWTON) and p falls, a Newton step takes its
+place, twice at most, after which Laguerre often resumes; before, the guess gave up there.
+Checked here:
 
 * the vectors are what they claim: products of a complex pair, the first real root and a few
   more factors; the pure-Python guess (bit for bit C's:
@@ -13,13 +17,15 @@ the solve bisected with Taylor points.  Checked here:
   end;
 * every runtime (the C driver, the Rust crate, Python's pure and C backends) answers every
   call right by the exact oracle (exact_roots.judge: integer arithmetic on the doubles);
-* the path: C settles each default solve of CERTIFIED by the certified guess -- one Bernstein
+* NEWTON's vectors have Laguerre's discriminant negative at 0 (exact arithmetic);
+* the path: C settles each default solve of CERTIFIED and NEWTON by the certified guess -- one Bernstein
   test, no Taylor point, no derivative method, the polish from plain Newton -- and those of
   NOT_CERTIFIED (the pair within the test's reach) by the rest of the solver; Rust and Python
   take C's path on all of them (paths.assert_ports_take_c_path).
 """
 from __future__ import annotations
 
+from fractions import Fraction
 from pathlib import Path
 from typing import Sequence
 
@@ -64,6 +70,14 @@ NOT_CERTIFIED: list[Vector] = [
     _vec(("0.75", "0.5"), "1", ["4"], [("-2", "0.5"), ("-4", "0.5")]),
 ]
 VECTORS = CERTIFIED + NOT_CERTIFIED
+# a complex pair nearer 0 than the first root: no real Laguerre step at 0
+NEWTON: list[Vector] = [
+    _vec(("0.05", "0.2"), "0.5", ["-2", "-5"]),
+    _vec(("0.05", "0.2"), "1", ["-3"], [("-1", "1")]),
+    _vec(("0.1", "0.2"), "0.3", ["4"]),
+    _vec(("0.2", "0.2"), "0.5", ["-3"], [("-1", "1")]),
+    _vec(("0.1", "0.1"), "0.3", ["-2", "-5"]),
+]
 
 
 def test_the_vectors_overshoot(monkeypatch: pytest.MonkeyPatch) -> None:
@@ -80,12 +94,21 @@ def test_the_vectors_overshoot(monkeypatch: pytest.MonkeyPatch) -> None:
         assert 0 < truth.hi < over, (c, float(truth.lo), over)
 
 
+def test_no_real_laguerre_step_at_0() -> None:
+    for c, _ in NEWTON:
+        n, (c0, c1, c2) = len(c) - 1, (Fraction(x) for x in c[:3])
+        # (n - 1) f^2 times the discriminant at 0, f = c0, p' = c1, p''/2 = c2: its sign does
+        # not depend on the solver's scaling
+        assert (n - 1) * c1 * c1 - 2 * n * c0 * c2 < 0, c
+
+
 @pytest.mark.parametrize("runtime", ["c", "rust", "python", "python-c"])
 def test_every_runtime_against_the_oracle(runtime: str, tmp_path: Path,
                                           monkeypatch: pytest.MonkeyPatch) -> None:
-    got = paths.answers(runtime, VECTORS, tmp_path, monkeypatch)
+    vecs = VECTORS + NEWTON
+    got = paths.answers(runtime, vecs, tmp_path, monkeypatch)
     bad = []
-    for i, (c, tmax) in enumerate(VECTORS):
+    for i, (c, tmax) in enumerate(vecs):
         for j, (method, _, eps, _) in enumerate(paths.CALLS):
             st, t, g = got[len(paths.CALLS) * i + j]
             verdict = ex.judge(c, tmax, st, t, g, eps)
@@ -97,9 +120,12 @@ def test_every_runtime_against_the_oracle(runtime: str, tmp_path: Path,
 def test_c_certifies_the_bracket(counts_driver: Path,  # noqa: F811 (the imported fixture)
                                  monkeypatch: pytest.MonkeyPatch) -> None:
     # STATUS T GRAZE PLAIN PRECISE POINTS DERIVATIVE BERNSTEIN MADDS0..3
-    for i, ((c, tmax), row) in enumerate(zip(VECTORS, paths.c_rows(counts_driver, VECTORS))):
+    vecs = VECTORS + NEWTON
+    for i, ((c, tmax), row) in enumerate(zip(vecs, paths.c_rows(counts_driver, vecs))):
         st, points, derivative, bernstein = int(row[0]), int(row[5]), int(row[6]), int(row[7])
-        if i < len(CERTIFIED):
+        if i >= len(VECTORS):
+            assert (st, points, derivative, bernstein) == (1, 0, 0, 1), (c, tmax, row)
+        elif i < len(CERTIFIED):
             # one Bernstein test, the polish: plain Newton first (from inside the step), then
             # the precise step(s)
             assert (st, points, derivative, bernstein) == (1, 0, 0, 1), (c, tmax, row)
@@ -107,5 +133,5 @@ def test_c_certifies_the_bracket(counts_driver: Path,  # noqa: F811 (the importe
         else:
             # the failed certificate, then the whole window's test, and more
             assert st == 1 and bernstein >= 2 and points + derivative > 0, (c, tmax, row)
-    paths.assert_ports_take_c_path(counts_driver, VECTORS, monkeypatch)
+    paths.assert_ports_take_c_path(counts_driver, vecs, monkeypatch)
 
