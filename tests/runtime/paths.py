@@ -8,10 +8,11 @@ from __future__ import annotations
 import math
 import subprocess
 from pathlib import Path
-from typing import Sequence
+from typing import NamedTuple, Sequence
 
 import pytest
 
+from . import exact_roots as ex
 from . import test_fuzz_runtimes as tf
 from . import test_rust_runtime as rust
 from .test_python_control_flow import _counting, _num
@@ -50,6 +51,35 @@ def answers(runtime: str, vecs: Sequence[Vector], tmp: Path,
     assert monkeypatch is not None, "the Python runtimes are selected through monkeypatch"
     tf.select_backend("python" if runtime == "python" else "c", monkeypatch)
     return [rt.first_root_status(list(c), t, method, eps) for c, t in vecs for method, _, eps, _ in CALLS]
+
+
+class Judged(NamedTuple):
+    """One call of CALLS on one vector, and the exact oracle's verdict on its answer."""
+    index: int  # the vector's
+    c: tuple[float, ...]
+    tmax: float
+    method: str
+    eps: float
+    answer: tuple[int, float, bool]  # (status, root, graze)
+    verdict: str  # exact_roots.judge's: "ok..." or what is wrong
+
+    def __str__(self) -> str:
+        return (f"{self.verdict}: {self.method} eps={self.eps} gave {self.answer} for "
+                f"c={self.c!r}, tmax={self.tmax!r}")
+
+
+def judged(runtime: str, vecs: Sequence[Vector], tmp: Path,
+           monkeypatch: pytest.MonkeyPatch | None = None) -> list[Judged]:
+    """Every call of CALLS on every vector through `runtime` (answers()), judged by the exact
+    oracle (exact_roots.judge: integer arithmetic on the doubles)."""
+    got = answers(runtime, vecs, tmp, monkeypatch)
+    out = []
+    for i, (c, tmax) in enumerate(vecs):
+        for j, (method, _, eps, _) in enumerate(CALLS):
+            st, t, g = got[len(CALLS) * i + j]
+            out.append(Judged(i, tuple(c), tmax, method, eps, (st, t, g),
+                              ex.judge(c, tmax, st, t, g, eps)))
+    return out
 
 
 def _run(cmd: list[str], lines: list[str]) -> list[list[str]]:
