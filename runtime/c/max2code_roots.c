@@ -1463,14 +1463,13 @@ NOINLINE static int bernstein_clear(const BernQ *qb, int n, double t0)
  * up): for a polynomial whose roots are all real it converges monotonically
  * to the first root after its start, cubically near it, from any start --
  * and from 0, the first positive root is the one we want.  Returns 1 with
- * *r set once a step is below PRECISE_FROM; gives up (0)
- * where the square root's argument is negative (complex roots in the way)
- * and Newton may not step instead (below), when no step to the right exists, when x leaves (0, T), when a step from
- * the fifth on has neither halved nor shrunk by more than the step before
- * (far from every root Laguerre creeps, then speeds up: it gives up only
- * while it is not slowing down), or after SPECULATE_STEPS; stops once a step
- * is below PRECISE_FROM.  Nothing
- * is certain about the guess: it is trusted only once a Bernstein test on
+ * *r set once a step is below PRECISE_FROM; gives up (0) where the square
+ * root's argument is negative (complex roots in the way) and Newton may not
+ * step instead (below), when no step to the right exists, when x leaves
+ * (0, T), when a step from the fifth on has neither halved nor shrunk by
+ * more than the step before (far from every root Laguerre creeps, then
+ * speeds up: it gives up only while it is not slowing down), or after
+ * SPECULATE_STEPS.  Nothing is certain about the guess: it is trusted only once a Bernstein test on
  * (0, r (1 + 2^-20)] finds exactly one root of p and of q there (then r is
  * the first root, polished as any isolated root).  Measured on the
  * benchmark families (tried, then, where p's control polygon on the window
