@@ -276,8 +276,9 @@ static int scaled_le(double a, double T, int et, int j, double k, double b)
  * [0, T] (T finite): |c_n| T^(n-i) above 4 n eps |c_i| by a factor 8 for
  * every i, beyond all the roundings of the comparison?  Almost always, and
  * then leading_negligible needs no floating-point loop.  emax: a bound on
- * every e_i of a nonzero c_i (load_coefficients' largest), or INT_MAX:
- * the least of the left sides against it settles every term at once, as it
+ * every e_i of a nonzero c_i (load_coefficients' largest; INT_MIN, every
+ * c_i 0, leaves it to the loop): the least of the left sides against it
+ * settles every term at once, as it
  * almost always does (measured: bench/roots_ab.py --instructions, about 100
  * fewer a solve on every family that reaches step 0b or, with tmax = inf,
  * reduce). */
@@ -287,7 +288,7 @@ static int leading_far(const int e[], const int nz[], int n, double T, int emax)
         return 0;
     /* T >= 2^eT, k < 2^(ek + 1), |c| in [2^e, 2^(e + 1)) */
     int eT = exponent_of(T), ek = exponent_of(4.0 * n * DBL_EPSILON), far = 1;
-    if (emax < INT_MAX && emax > INT_MIN && e[n] + (eT >= 0 ? eT : n * eT) >= emax + ek + 5)
+    if (emax > INT_MIN && e[n] + (eT >= 0 ? eT : n * eT) >= emax + ek + 5)
         return 1;
     int lhs = e[n] + eT; /* a lower bound on log2 |c_n| T^(n-i) */
     for (int i = n - 1; i >= 0; i--, lhs += eT)

@@ -224,17 +224,16 @@ fn scaled_le(a: f64, t: f64, et: Option<i32>, j: usize, k: f64, b: f64) -> bool 
 /// the roundings of the comparison?  Almost always; then `leading_negligible` needs no
 /// floating-point loop, and `cleared_at_once` knows that `reduce` keeps every term.
 /// Branch-free, as in C (which terms are nonzero is data).
-fn leading_far(e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n: usize, t: f64, emax: Option<i32>) -> bool {
+fn leading_far(e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n: usize, t: f64, emax: i32) -> bool {
     if !(f64::MIN_POSITIVE..=f64::MAX).contains(&t) {
         return false;
     }
     // T >= 2^eT, k < 2^(ek + 1), |c| in [2^e, 2^(e + 1))
     let (e_t, ek) = (exponent_of(t), exponent_of(4.0 * n as f64 * f64::EPSILON));
-    // emax (the Scan's largest exponent, where known): the least left side settles every term
-    if let Some(emax) = emax.filter(|&m| m > i32::MIN) {
-        if e[n] + if e_t >= 0 { e_t } else { n as i32 * e_t } >= emax + ek + 5 {
-            return true;
-        }
+    // emax (a bound on every e_i of a nonzero c_i: the Scan's largest; i32::MIN, every c_i 0,
+    // leaves it to the loop): the least left side settles every term
+    if emax > i32::MIN && e[n] + if e_t >= 0 { e_t } else { n as i32 * e_t } >= emax + ek + 5 {
+        return true;
     }
     let mut far = true;
     let mut lhs = e[n] + e_t; // a lower bound on log2 |c_n| T^(n-i)
@@ -272,7 +271,7 @@ fn leading_negligible(c: &Coeffs, e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n:
         };
     }
     let k = 4.0 * n as f64 * f64::EPSILON;
-    if leading_far(e, nz, n, t, Some(emax)) {
+    if leading_far(e, nz, n, t, emax) {
         return false;
     }
     let mut tp = 1.0;
@@ -418,7 +417,7 @@ pub(crate) fn cleared_at_once(c: &Coeffs, e: &[i32; MAXN + 1], nz: &[bool; MAXN 
     let big_e = sc.emax + 1;
     // (DBL_MIN_EXP = -1021, DBL_MAX_EXP - 2 = 1022: the range where normalise scales by one
     // product; the spread is computed only for a nonzero c_n, so never of the empty scan)
-    if !nz[n] || sc.emax - sc.emin > MAX_SPREAD || !(-1021..=1022).contains(&big_e) || !leading_far(e, nz, n, tmax, Some(sc.emax)) {
+    if !nz[n] || sc.emax - sc.emin > MAX_SPREAD || !(-1021..=1022).contains(&big_e) || !leading_far(e, nz, n, tmax, sc.emax) {
         return None;
     }
     let f = (if c[0] < 0.0 { -1.0 } else { 1.0 }) * pow2(-big_e);
