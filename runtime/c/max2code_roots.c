@@ -1288,6 +1288,11 @@ static double isolation_split(double a, double b)
 
 static int derivative_method(const double c[], int n, double lo, double T,
                              double x0, double skin, double *t, int *graze);
+static int scan_pieces(const double c[], double d[MAXN + 1][MAXN + 1], int n,
+                       double lo, double T, const double crit[], int nc,
+                       double skin, double *t, int *graze);
+static double touch_critical(const double p[], double d[MAXN + 1][MAXN + 1],
+                             int n, double lo, double hi, double x);
 
 /* dp[0..n-1]: the coefficients of p' (p of degree n). */
 static void derivative(const double p[], int n, double dp[])
@@ -1728,12 +1733,31 @@ static int isolate_first_root(const double p[], int n, double skin,
      * test on the whole window, which a touch ahead leaves undecided: q
      * dips to 0 there, so q's coefficients on (0, T] are neither all
      * positive nor one change with p's (on bench/roots.py's families:
-     * undecided on all 179 solves with a touch ahead). */
+     * undecided on all 179 solves with a touch ahead).  (lo, hi] is
+     * settled by scan_pieces on the critical point that touch_critical
+     * certifies in one pass, as the derivative method would settle it
+     * (measured: bench/roots_ab.py --sweeps 21, aligned, graze8 0.92 of the
+     * time at the median, 0.96 in the mean; the other families within
+     * noise; 5 of 3250 answers moved -- touches by a few ulps, where the
+     * derivative method's convexity test had failed and its full recursion
+     * found the critical point -- all right by the exact oracle); where the
+     * pass cannot tell (1 of the 184 touches of the grazes), the derivative
+     * method. */
     if (touch > 0 && skin >= 0) { /* (not for the no-graze baseline) */
         double lo = touch - touch * TOUCH_WIDTH, hi = touch + 3 * touch * TOUCH_WIDTH;
         hi = hi < T ? hi : T;
         if (bernstein_test(&a, n, lo, &pT, NULL) == BERN_CLEAR) {
-            int hit = derivative_method(p, n, lo, hi, touch, skin, t, graze);
+            int hit;
+            PHASE(3);
+            double d[MAXN + 1][MAXN + 1];
+            derivative(p, n, d[n - 1]);
+            derivative(d[n - 1], n - 1, d[n - 2]);
+            double b = touch_critical(p, d, n, lo, hi, touch);
+            if (b > 0) {
+                hit = scan_pieces(p, d, n, lo, hi, &b, 1, skin, t, graze);
+            } else {
+                hit = derivative_method(p, n, lo, hi, touch, skin, t, graze);
+            }
             PHASE(1);
             if (hit)
                 return ISOLATED;
@@ -1997,18 +2021,14 @@ static double touch_point(double d[MAXN + 1][MAXN + 1], int n, double b)
     return fabs(x - b) <= NOISE_STEP * fabs(b) ? x : b;
 }
 
-/* First root in (lo, T] of c (degree n >= 3, normalised, c(lo) > 0): the
- * critical points split (lo, T] into monotone pieces, scanned left to right
- * with the graze check at each critical point.  x0: a critical point known
- * to within rounding (the guess's touch), or 0. */
-static int derivative_method(const double c[], int n, double lo, double T,
-                             double x0, double skin, double *t, int *graze)
+/* First root in (lo, T] of c (degree n >= 3, normalised, c(lo) > 0), given
+ * its critical points there, crit[0..nc-1] (ascending), and d[n - 1], d[n - 2]
+ * (p', p''): they split (lo, T] into monotone pieces, scanned left to right
+ * with the graze check at each critical point. */
+static int scan_pieces(const double c[], double d[MAXN + 1][MAXN + 1], int n,
+                       double lo, double T, const double crit[], int nc,
+                       double skin, double *t, int *graze)
 {
-    PHASE(3);
-    COUNT(7);
-    double d[MAXN + 1][MAXN + 1], crit[MAXN];
-    derivative_chain(c, n, d);
-    int nc = critical_points(d, n, lo, T, x0, crit);
     double a = lo;
     int sa = 1;
     /* p(b) by fma Horner (sign_at's value, kept for the graze check), and
@@ -2056,6 +2076,78 @@ static int derivative_method(const double c[], int n, double lo, double T,
         a = b;
     }
     return 0;
+}
+
+/* First root in (lo, T] of c (degree n >= 3, normalised, c(lo) > 0): the
+ * critical points, then scan_pieces.  x0: a critical point known to within
+ * rounding (the guess's touch), or 0. */
+static int derivative_method(const double c[], int n, double lo, double T,
+                             double x0, double skin, double *t, int *graze)
+{
+    PHASE(3);
+    COUNT(7);
+    double d[MAXN + 1][MAXN + 1], crit[MAXN];
+    derivative_chain(c, n, d);
+    int nc = critical_points(d, n, lo, T, x0, crit);
+    return scan_pieces(c, d, n, lo, T, crit, nc, skin, t, graze);
+}
+
+/* The critical point of p in (lo, hi) around the guess's touch x, certified
+ * in one pass, or 0 where the pass cannot tell (the derivative method then
+ * settles (lo, hi] as before).  d[n - 1], d[n - 2]: p', p''.  At x, Horner's
+ * chains give the Taylor coefficients f1 = p', f2 = p''/2, f3 = p'''/6, each
+ * within e g_k of the exact one (e = noise_factor(n), twice gamma_{2n}),
+ * where g_k = sum C(i, k) |p_i| hi^(i-k) bounds the k-th chain's terms for
+ * 0 <= x <= hi; g4 bounds |p''''/24| on [0, hi].  So on [lo, hi] (h: the
+ * farther end from x)
+ *     p''/2 >= L = f2 - e g2 - 3 (|f3| + e g3) h - 6 g4 h^2,
+ * and with L > 0, p' rises there by at least 2 L per unit: p'(lo) < 0 <
+ * p'(hi) when |f1| + e g1 < 2 L (x - lo) and < 2 L (hi - x).  Then p is
+ * convex on [lo, hi] with exactly one critical point, found as the
+ * derivative method finds it: Newton on p' from x, the same first step
+ * (p' and p'' from their coefficients), which ends it there when it is
+ * within TOL_CRITICAL -- else 0 here, and the derivative method takes
+ * the further steps.  (With |p'''| bounded by g3 over [0, hi] instead of by
+ * its value at x, L was negative on 26 of the 184 touches of bench/roots.py's
+ * grazes: g3 sums the terms' sizes, which cancel.)  This replaces, on the
+ * touch's interval, the derivative method's p''', its convexity test and
+ * the signs of p' at both ends, one after the other, by chains that run
+ * side by side: the same critical point, bit for bit. */
+static double touch_critical(const double p[], double d[MAXN + 1][MAXN + 1],
+                             int n, double lo, double hi, double x)
+{
+    if (!(lo >= 0 && lo < x && x < hi) || scale_exponent(hi, n) != 0)
+        return 0;
+    COUNT_MADDS(9 * n);
+    double f0 = p[n], f1 = 0, f2 = 0, f3 = 0;
+    double g0 = fabs(p[n]), g1 = 0, g2 = 0, g3 = 0, g4 = 0;
+    for (int i = n - 1; i >= 0; i--) {
+        f3 = f3 * x + f2;
+        f2 = f2 * x + f1;
+        f1 = f1 * x + f0;
+        f0 = f0 * x + p[i];
+        g4 = g4 * hi + g3;
+        g3 = g3 * hi + g2;
+        g2 = g2 * hi + g1;
+        g1 = g1 * hi + g0;
+        g0 = g0 * hi + fabs(p[i]);
+    }
+    double e = noise_factor(n), rel = 4.0 * (n + 1) * UNIT_ROUNDOFF;
+    double h = x - lo > hi - x ? x - lo : hi - x;
+    double L = f2 * (1 - rel) -
+               (e * g2 + 3 * (fabs(f3) + e * g3) * h + 6 * g4 * h * h) * (1 + rel);
+    double slope = (fabs(f1) + e * g1) * (1 + rel); /* >= |p'(x)| */
+    if (!(L > 0 && slope < 2 * L * (x - lo) * (1 - rel) &&
+          slope < 2 * L * (hi - x) * (1 - rel)))
+        return 0;
+    /* refine_root's first step on p' from x (tol TOL_CRITICAL), and its
+     * stop */
+    COUNT(4);
+    double df, size, v = value_and_slope(d[n - 1], d[n - 2], n - 1, x, 0, 0, &df, &size);
+    if (v == 0)
+        return x;
+    double b = x - v / df;
+    return b > lo && b < hi && fabs(x - b) <= TOL_CRITICAL * fabs(b) ? b : 0;
 }
 
 /* ------------------------------------------------------------------ */

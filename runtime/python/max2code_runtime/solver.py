@@ -914,7 +914,14 @@ def _isolate_first_root(p: Sequence[float], n: int, skin: float, T: float, faile
         hi = touch + 3 * touch * TOUCH_WIDTH
         hi = hi if hi < T else T
         if _bernstein_test(a, n, lo, False).answer == BERN_CLEAR:
-            hit = _derivative_method(p, n, lo, hi, touch, skin)
+            # p convex around the touch, its critical point certified in one pass
+            # (_touch_critical), else the derivative method (see the C source)
+            d: list[list[float]] = [[] for _ in range(n)]  # rows n - 1, n - 2 only
+            d[n - 1] = _derivative(p, n)
+            d[n - 2] = _derivative(d[n - 1], n - 1)
+            b = _touch_critical(p, d, n, lo, hi, touch)
+            hit = (_scan_pieces(p, d, n, lo, hi, [b], skin) if b > 0 else
+                   _derivative_method(p, n, lo, hi, touch, skin))
             if hit is not None:
                 return hit
             if hi == T:
@@ -1076,8 +1083,50 @@ def _touch_point(d: list[list[float]], n: int, b: float) -> float:
 
 
 def _derivative_method(c: Sequence[float], n: int, lo: float, T: float, x0: float, skin: float):
+    """C derivative_method: the critical points in (lo, T), then _scan_pieces."""
     d = _derivative_chain(c, n)
-    crit = _critical_points(d, n, lo, T, x0)
+    return _scan_pieces(c, d, n, lo, T, _critical_points(d, n, lo, T, x0), skin)
+
+
+def _touch_critical(p: Sequence[float], d: list[list[float]], n: int, lo: float, hi: float, x: float) -> float:
+    """C touch_critical: the critical point of p in (lo, hi) around the guess's touch x,
+    certified in one pass (p convex on [lo, hi], p' < 0 at lo and > 0 at hi, from Horner's
+    chains for p', p''/2, p'''/6 at x and bounds at hi; the C source has the bound), found as
+    the derivative method finds it (its first Newton step on p' from x, ending there within
+    TOL_CRITICAL); 0 where the pass cannot tell.  d[n - 1], d[n - 2]: p', p''."""
+    if not (lo >= 0 and lo < x < hi) or _scale_exponent(hi, n) != 0:
+        return 0.0
+    f0, f1, f2, f3 = p[n], 0.0, 0.0, 0.0
+    g0, g1, g2, g3, g4 = abs(p[n]), 0.0, 0.0, 0.0, 0.0
+    for i in range(n - 1, -1, -1):
+        f3 = f3 * x + f2
+        f2 = f2 * x + f1
+        f1 = f1 * x + f0
+        f0 = f0 * x + p[i]
+        g4 = g4 * hi + g3
+        g3 = g3 * hi + g2
+        g2 = g2 * hi + g1
+        g1 = g1 * hi + g0
+        g0 = g0 * hi + abs(p[i])
+    e, rel = noise_factor(n), 4.0 * (n + 1) * U
+    h = x - lo if x - lo > hi - x else hi - x
+    L = f2 * (1 - rel) - (e * g2 + 3 * (abs(f3) + e * g3) * h + 6 * g4 * h * h) * (1 + rel)
+    slope = (abs(f1) + e * g1) * (1 + rel)  # >= |p'(x)|
+    if not (L > 0 and slope < 2 * L * (x - lo) * (1 - rel) and slope < 2 * L * (hi - x) * (1 - rel)):
+        return 0.0
+    # refine_root's first step on p' from x (tol TOL_CRITICAL), and its stop
+    v, df, _ = _value_and_slope(d[n - 1], d[n - 2], n - 1, x, 0, False)
+    if v == 0:
+        return x
+    b = x - _div(v, df)
+    return b if lo < b < hi and abs(x - b) <= TOL_CRITICAL * abs(b) else 0.0
+
+
+def _scan_pieces(c: Sequence[float], d: list[list[float]], n: int, lo: float, T: float,
+                 crit: list[float], skin: float):
+    """C scan_pieces: the first root in (lo, T] of c (c(lo) > 0), given its critical points
+    there (ascending) and p', p'' in d[n - 1], d[n - 2]: monotone pieces scanned left to right,
+    with the graze check at each critical point."""
     nc = len(crit)
     a, sa, sb, sb_known = lo, 1, 0, False
     for j in range(nc + 1):

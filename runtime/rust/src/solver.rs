@@ -1568,7 +1568,14 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64, failed_w: f64)
         let hi = touch + 3.0 * touch * TOUCH_WIDTH;
         let hi = if hi < t_end { hi } else { t_end };
         if let Bernstein::Clear = bernstein_test(a, n, lo, None) {
-            let hit = derivative_method(p, n, lo, hi, touch, skin);
+            // p convex around the touch, its critical point certified in one pass
+            // (touch_critical), else the derivative method (see the C source)
+            count::phase(3);
+            let d = derivative_rows(p, n, n - 2);
+            let hit = match touch_critical(p, &d, n, lo, hi, touch) {
+                Some(b) => scan_pieces(p, &d, n, lo, hi, &[b], skin),
+                None => derivative_method(p, n, lo, hi, touch, skin),
+            };
             count::phase(1);
             if let Some((t, g)) = hit {
                 return Isolation::Isolated(t, g);
@@ -1699,14 +1706,15 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64, failed_w: f64)
 struct Chain {
     t: [[MaybeUninit<f64>; MAXN + 1]; MAXN + 1],
     n: usize,
+    low: usize,
 }
 
 impl Chain {
-    /// Row m (1 <= m <= n): the coefficients 0..=m of the derivative of degree m.
+    /// Row m (low <= m <= n): the coefficients 0..=m of the derivative of degree m.
     #[inline(always)]
     fn row(&self, m: usize) -> &[f64] {
-        assert!((1..=self.n).contains(&m));
-        // SAFETY: derivative_chain wrote entries 0..=m of every row 1 <= m <= n (asserted);
+        assert!(m >= 1 && (self.low..=self.n).contains(&m));
+        // SAFETY: derivative_rows wrote entries 0..=m of every row low <= m <= n (asserted);
         // MaybeUninit<f64> has f64's layout.
         unsafe { std::slice::from_raw_parts(self.t[m].as_ptr().cast::<f64>(), m + 1) }
     }
@@ -1715,12 +1723,19 @@ impl Chain {
 /// C `derivative_chain` (and its `derivative` calls, row m into row m - 1, in place).
 #[inline(always)]
 fn derivative_chain(c: &[f64], n: usize) -> Chain {
+    derivative_rows(c, n, 1)
+}
+
+/// Rows n down to low (>= 1) of the chain: C's touch path forms only p' and p''.
+#[inline(always)]
+fn derivative_rows(c: &[f64], n: usize, low: usize) -> Chain {
     let n = n.min(MAXN);
-    let mut d = Chain { t: [[MaybeUninit::uninit(); MAXN + 1]; MAXN + 1], n };
+    let low = low.clamp(1, n);
+    let mut d = Chain { t: [[MaybeUninit::uninit(); MAXN + 1]; MAXN + 1], n, low };
     for (v, &ci) in d.t[n].iter_mut().zip(&c[..=n]) {
         *v = MaybeUninit::new(ci);
     }
-    for m in (2..=n).rev() {
+    for m in (low + 1..=n).rev() {
         for i in 0..m {
             // SAFETY: entries 0..=m of row m are written (row n above, row m < n by the
             // previous m), and i + 1 <= m.
@@ -1830,12 +1845,66 @@ fn touch_point(d: &Chain, n: usize, b: f64) -> f64 {
     }
 }
 
+/// C `derivative_method`: the critical points in (lo, t_end), then `scan_pieces`.
 fn derivative_method(c: &[f64], n: usize, lo: f64, t_end: f64, x0: f64, skin: f64) -> Option<(f64, bool)> {
     count::phase(3);
     count::event(7);
     let d = derivative_chain(c, n);
     let mut crit = [0.0f64; MAXN];
     let nc = critical_points(&d, n, lo, t_end, x0, &mut crit);
+    scan_pieces(c, &d, n, lo, t_end, &crit[..nc], skin)
+}
+
+/// C `touch_critical`: the critical point of p in (lo, hi) around the guess's touch x,
+/// certified in one pass (p convex on [lo, hi], p' < 0 at lo and > 0 at hi, from Horner's
+/// chains for p', p''/2, p'''/6 at x and bounds at hi; see the C source), and found as the
+/// derivative method finds it (its first Newton step on p' from x, ending there within
+/// TOL_CRITICAL); None where the pass cannot tell.
+fn touch_critical(p: &[f64], d: &Chain, n: usize, lo: f64, hi: f64, x: f64) -> Option<f64> {
+    if !(lo >= 0.0 && lo < x && x < hi) || scale_exponent(hi, n) != 0 {
+        return None;
+    }
+    count::madds(9 * n);
+    let (mut f0, mut f1, mut f2, mut f3) = (p[n], 0.0f64, 0.0f64, 0.0f64);
+    let (mut g0, mut g1, mut g2, mut g3, mut g4) = (p[n].abs(), 0.0f64, 0.0f64, 0.0f64, 0.0f64);
+    for &pi in p[..n].iter().rev() {
+        f3 = f3 * x + f2;
+        f2 = f2 * x + f1;
+        f1 = f1 * x + f0;
+        f0 = f0 * x + pi;
+        g4 = g4 * hi + g3;
+        g3 = g3 * hi + g2;
+        g2 = g2 * hi + g1;
+        g1 = g1 * hi + g0;
+        g0 = g0 * hi + pi.abs();
+    }
+    let e = noise_factor(n);
+    let rel = 4.0 * (n + 1) as f64 * U;
+    let h = if x - lo > hi - x { x - lo } else { hi - x };
+    let l = f2 * (1.0 - rel) - (e * g2 + 3.0 * (f3.abs() + e * g3) * h + 6.0 * g4 * h * h) * (1.0 + rel);
+    let slope = (f1.abs() + e * g1) * (1.0 + rel); // >= |p'(x)|
+    if !(l > 0.0 && slope < 2.0 * l * (x - lo) * (1.0 - rel) && slope < 2.0 * l * (hi - x) * (1.0 - rel)) {
+        return None;
+    }
+    // refine_root's first step on p' from x (tol TOL_CRITICAL), and its stop
+    count::event(4);
+    let (v, df, _) = value_and_slope(d.row(n - 1), d.row(n - 2), n - 1, x, 0, false);
+    if v == 0.0 {
+        return Some(x);
+    }
+    let b = x - v / df;
+    if b > lo && b < hi && (x - b).abs() <= TOL_CRITICAL * b.abs() {
+        Some(b)
+    } else {
+        None
+    }
+}
+
+/// C `scan_pieces`: the first root in (lo, t_end] of c (c(lo) > 0), given its critical points
+/// there (ascending) and p', p'' in d: monotone pieces scanned left to right, with the graze
+/// check at each critical point.
+fn scan_pieces(c: &[f64], d: &Chain, n: usize, lo: f64, t_end: f64, crit: &[f64], skin: f64) -> Option<(f64, bool)> {
+    let nc = crit.len();
     let mut a = lo;
     let sa = 1;
     // p(b) by fma Horner (sign_at's value, kept for the graze check), and whether the last
@@ -1863,7 +1932,7 @@ fn derivative_method(c: &[f64], n: usize, lo: f64, t_end: f64, x0: f64, skin: f6
         }
         if sb != sa {
             let t = if precise {
-                crossing_before_critical(c, &d, n, a, b, sa, pb)
+                crossing_before_critical(c, d, n, a, b, sa, pb)
             } else {
                 refine_root(c, d.row(n - 1), n, a, b, sa, 0.0, split_point(a, b))
             };
@@ -1875,7 +1944,7 @@ fn derivative_method(c: &[f64], n: usize, lo: f64, t_end: f64, x0: f64, skin: f6
             vb = horner(c, n, b2, kb, true);
             vb_known = true;
             if i32::from(vb > 0.0) - i32::from(vb < 0.0) == sa {
-                return Some((touch_point(&d, n, b), true));
+                return Some((touch_point(d, n, b), true));
             }
         }
         a = b;
