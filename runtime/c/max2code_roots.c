@@ -2116,7 +2116,9 @@ static int derivative_method(const double c[], int n, double lo, double T,
 static double touch_critical(const double p[], double d[MAXN + 1][MAXN + 1],
                              int n, double lo, double hi, double x)
 {
-    if (!(lo >= 0 && lo < x && x < hi) || scale_exponent(hi, n) != 0)
+    /* (a bracket below TOL_CRITICAL would end refine_root before its
+     * step: left to it) */
+    if (!(lo >= 0 && lo < x && hi - x > TOL_CRITICAL * hi) || scale_exponent(hi, n) != 0)
         return 0;
     COUNT_MADDS(9 * n);
     double f0 = p[n], f1 = 0, f2 = 0, f3 = 0;

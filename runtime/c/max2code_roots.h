@@ -114,11 +114,15 @@
  *           possibly, a stretch where p stays within the noise): polished.
  *        c. A touch from a (tried before b, which a touch leaves
  *           undecided): where q's Bernstein coefficients on (0, c (1 -
- *           2^-10)] are all certainly positive (nothing before it), the
- *           derivative method (step 2) settles (c (1 - 2^-10), c (1 +
- *           3 2^-10)], its Newton for the critical point starting at c; if
- *           it finds nothing there, e goes on from its right end.  With the
- *           graze check only.
+ *           2^-10)] are all certainly positive (nothing before it),
+ *           (c (1 - 2^-10), c (1 + 3 2^-10)] is settled: where a bound
+ *           from p's Taylor coefficients at c shows p convex there with p'
+ *           changing sign, the derivative method's Newton step on p' from
+ *           c gives the one critical point and its scan of the two
+ *           monotone pieces the answer (touch_critical); else the
+ *           derivative method (step 2), its Newton for the critical point
+ *           starting at c.  If nothing is found there, e goes on from the
+ *           right end.  With the graze check only.
  *        d. Exclusion by halving: when q's signs are certain with an even
  *           count on the window (b), the window is halved in the
  *           Bernstein basis (de Casteljau) until every piece has q's

@@ -1088,13 +1088,15 @@ def _derivative_method(c: Sequence[float], n: int, lo: float, T: float, x0: floa
     return _scan_pieces(c, d, n, lo, T, _critical_points(d, n, lo, T, x0), skin)
 
 
-def _touch_critical(p: Sequence[float], d: list[list[float]], n: int, lo: float, hi: float, x: float) -> float:
+def _touch_critical(p: Sequence[float], d: list[list[float]], n: int, lo: float, hi: float,
+                    x: float) -> float:
     """C touch_critical: the critical point of p in (lo, hi) around the guess's touch x,
     certified in one pass (p convex on [lo, hi], p' < 0 at lo and > 0 at hi, from Horner's
     chains for p', p''/2, p'''/6 at x and bounds at hi; the C source has the bound), found as
     the derivative method finds it (its first Newton step on p' from x, ending there within
     TOL_CRITICAL); 0 where the pass cannot tell.  d[n - 1], d[n - 2]: p', p''."""
-    if not (lo >= 0 and lo < x < hi) or _scale_exponent(hi, n) != 0:
+    # (a bracket below TOL_CRITICAL would end refine_root before its step: left to it)
+    if not (lo >= 0 and lo < x and hi - x > TOL_CRITICAL * hi) or _scale_exponent(hi, n) != 0:
         return 0.0
     f0, f1, f2, f3 = p[n], 0.0, 0.0, 0.0
     g0, g1, g2, g3, g4 = abs(p[n]), 0.0, 0.0, 0.0, 0.0

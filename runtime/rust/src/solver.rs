@@ -1861,7 +1861,8 @@ fn derivative_method(c: &[f64], n: usize, lo: f64, t_end: f64, x0: f64, skin: f6
 /// derivative method finds it (its first Newton step on p' from x, ending there within
 /// TOL_CRITICAL); None where the pass cannot tell.
 fn touch_critical(p: &[f64], d: &Chain, n: usize, lo: f64, hi: f64, x: f64) -> Option<f64> {
-    if !(lo >= 0.0 && lo < x && x < hi) || scale_exponent(hi, n) != 0 {
+    // (a bracket below TOL_CRITICAL would end refine_root before its step: left to it)
+    if !(lo >= 0.0 && lo < x && hi - x > TOL_CRITICAL * hi) || scale_exponent(hi, n) != 0 {
         return None;
     }
     count::madds(9 * n);
