@@ -97,6 +97,30 @@ def c_rows(driver: Path, vecs: Sequence[Vector]) -> list[list[str]]:
     return _run([str(driver), "--madds"], lines)
 
 
+class CSolve(NamedTuple):
+    """One row of c_rows, parsed: the answer and C's counted events."""
+    status: int
+    t: float
+    graze: bool
+    plain: int  # Newton steps with plain evaluation
+    precise: int  # and with compensated evaluation
+    points: int  # Taylor points
+    derivative: int  # derivative-method calls
+    bernstein: int  # Bernstein tests
+    madds: tuple[int, ...]  # multiply-adds by phase
+
+    @property
+    def path(self) -> tuple[int, int, int, int]:
+        """(status, Taylor points, derivative-method calls, Bernstein tests): which way C went."""
+        return self.status, self.points, self.derivative, self.bernstein
+
+
+def c_solves(driver: Path, vecs: Sequence[Vector]) -> list[CSolve]:
+    """c_rows, parsed."""
+    return [CSolve(int(r[0]), float.fromhex(r[1]), r[2] == "1", *(int(x) for x in r[3:8]),
+                   tuple(int(x) for x in r[8:])) for r in c_rows(driver, vecs)]
+
+
 def assert_ports_take_c_path(driver: Path, vecs: Sequence[Vector],
                              monkeypatch: pytest.MonkeyPatch) -> None:
     """Rust's answers and counters equal C's on every vector, and so do the pure-Python

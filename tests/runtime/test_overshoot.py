@@ -113,19 +113,18 @@ def test_every_runtime_against_the_oracle(runtime: str, tmp_path: Path,
 
 def test_c_certifies_the_bracket(counts_driver: Path,  # noqa: F811 (the imported fixture)
                                  monkeypatch: pytest.MonkeyPatch) -> None:
-    # STATUS T GRAZE PLAIN PRECISE POINTS DERIVATIVE BERNSTEIN MADDS0..3
     vecs = VECTORS + NEWTON
-    for i, ((c, tmax), row) in enumerate(zip(vecs, paths.c_rows(counts_driver, vecs))):
-        st, points, derivative, bernstein = int(row[0]), int(row[5]), int(row[6]), int(row[7])
+    for i, ((c, tmax), row) in enumerate(zip(vecs, paths.c_solves(counts_driver, vecs))):
         if i >= len(VECTORS):
-            assert (st, points, derivative, bernstein) == (1, 0, 0, 1), (c, tmax, row)
+            assert row.path == (1, 0, 0, 1), (c, tmax, row)
         elif i < len(CERTIFIED):
             # one Bernstein test, the polish: plain Newton first (from inside the step), then
             # the precise step(s)
-            assert (st, points, derivative, bernstein) == (1, 0, 0, 1), (c, tmax, row)
-            assert int(row[3]) >= 1 and int(row[4]) >= 1, (c, tmax, row)
+            assert row.path == (1, 0, 0, 1), (c, tmax, row)
+            assert row.plain >= 1 and row.precise >= 1, (c, tmax, row)
         else:
             # the failed certificate, then the whole window's test, and more
-            assert st == 1 and bernstein >= 2 and points + derivative > 0, (c, tmax, row)
+            assert row.status == 1 and row.bernstein >= 2 and row.points + row.derivative > 0, \
+                (c, tmax, row)
     paths.assert_ports_take_c_path(counts_driver, vecs, monkeypatch)
 

@@ -74,13 +74,10 @@ def test_every_runtime_against_the_oracle(runtime: str, tmp_path: Path,
 
 def test_c_path(counts_driver: Path,  # noqa: F811 (the imported fixture)
                 monkeypatch: pytest.MonkeyPatch) -> None:
-    # STATUS T GRAZE PLAIN PRECISE POINTS DERIVATIVE BERNSTEIN MADDS0..3
     vecs = TOUCHES + NEAR_PAIR
-    for i, ((c, tmax), row) in enumerate(zip(vecs, paths.c_rows(counts_driver, vecs))):
-        st, points, derivative, bernstein = int(row[0]), int(row[5]), int(row[6]), int(row[7])
-        if i < len(TOUCHES):
-            # the test on (0, lo], then the certificate: no Taylor point, no derivative method
-            assert (st, points, derivative, bernstein) == (1, 0, 0, 1), (c, tmax, row)
-        else:
-            assert (st, points, derivative, bernstein) == (1, 0, 1, 1), (c, tmax, row)
+    for i, ((c, tmax), row) in enumerate(zip(vecs, paths.c_solves(counts_driver, vecs))):
+        # the test on (0, lo], then the certificate: no Taylor point, no derivative method
+        # (near the pair: the derivative method)
+        expected = (1, 0, 0, 1) if i < len(TOUCHES) else (1, 0, 1, 1)
+        assert row.path == expected, (c, tmax, row)
     paths.assert_ports_take_c_path(counts_driver, vecs, monkeypatch)

@@ -53,12 +53,12 @@ TOUCHES = _touches()
 
 
 def test_c_takes_the_touch_path(counts_driver: Path) -> None:  # noqa: F811 (the imported fixture)
-    rows = paths.c_rows(counts_driver, TOUCHES)
+    rows = paths.c_solves(counts_driver, TOUCHES)
     bad, grazes, certified = [], 0, 0
     for (c, tmax), row in zip(TOUCHES, rows):
-        st, t, graze = int(row[0]), float.fromhex(row[1]), row[2] == "1"
+        st, t, graze = row.status, row.t, row.graze
         verdict = ex.judge(c, tmax, st, t, graze)
-        points, derivative, bernstein = int(row[5]), int(row[6]), int(row[7])
+        points, derivative, bernstein = row.points, row.derivative, row.bernstein
         if st != 1 or not verdict.startswith("ok"):
             bad.append(f"{verdict}: {(st, t, graze)} for c={c!r}, tmax={tmax!r}")
         elif points or derivative > 1 or bernstein != 1:
