@@ -1713,7 +1713,7 @@ impl Chain {
     /// Row m (low <= m <= n): the coefficients 0..=m of the derivative of degree m.
     #[inline(always)]
     fn row(&self, m: usize) -> &[f64] {
-        assert!(m >= 1 && (self.low..=self.n).contains(&m));
+        assert!((self.low..=self.n).contains(&m));
         // SAFETY: derivative_rows wrote entries 0..=m of every row low <= m <= n (asserted);
         // MaybeUninit<f64> has f64's layout.
         unsafe { std::slice::from_raw_parts(self.t[m].as_ptr().cast::<f64>(), m + 1) }
@@ -1730,7 +1730,7 @@ fn derivative_chain(c: &[f64], n: usize) -> Chain {
 #[inline(always)]
 fn derivative_rows(c: &[f64], n: usize, low: usize) -> Chain {
     let n = n.min(MAXN);
-    let low = low.clamp(1, n);
+    let low = low.max(1); // (not clamp: it panics for n = 0, which derivative_chain allowed)
     let mut d = Chain { t: [[MaybeUninit::uninit(); MAXN + 1]; MAXN + 1], n, low };
     for (v, &ci) in d.t[n].iter_mut().zip(&c[..=n]) {
         *v = MaybeUninit::new(ci);
