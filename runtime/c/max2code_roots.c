@@ -433,32 +433,71 @@ static int scale_exponent(double x, int m)
     return fabs(x) <= (m <= 8 ? SAFE_LOW : SAFE_HIGH) ? 0 : ilogb(x) + 1;
 }
 
-/* p(x) / 2^(k n) by Horner.  precise: with fma, one rounding per step.
- * Without -mfma, fma() is a library call per step, which would dominate the
- * solve; so only the last Newton steps of a reported root and the graze check
- * use it, everything else plain multiply-add (two roundings per step: within
- * the gamma_{2n} bound used throughout).  With k != 0 the argument and the
- * coefficients are scaled by exact powers of two, so huge x (roots near 1e154
- * and beyond) evaluate without overflow. */
-static double horner(const double c[], int n, double x, int k, int precise)
+/* Hardware fma where the build did not assume it (x86 without -mfma, the
+ * default): the precise kernels below -- fma Horner and the compensated
+ * Horner's error-free products -- are compiled twice, once for the fma
+ * instruction (target("fma")) and once plainly, and chosen per call by the
+ * CPU (__builtin_cpu_supports: one load and test).  The two give the same
+ * bits: fma is correctly rounded whether an instruction or glibc's call,
+ * and fma(s, x, -s x) and Dekker's products are both the exact error of
+ * s x.  Only speed differs: without the instruction every fma() is a
+ * library call, one after the other in a Horner chain (measured:
+ * bench/roots_ab.py --sweeps 21, aligned: see README, Runtimes).  Plain
+ * evaluation stays multiply-then-add everywhere: the answers do not depend
+ * on the CPU. */
+#if !defined(FP_FAST_FMA) && !defined(M2C_NO_FMA_DISPATCH) && defined(__GNUC__) && \
+    (defined(__x86_64__) || defined(__i386__))
+#define FMA_DISPATCH 1
+#define HW_FMA __attribute__((target("fma"), noinline))
+#define ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define FMA_DISPATCH 0
+#define ALWAYS_INLINE inline
+#endif
+
+/* p(x) / 2^(k n) by Horner: fused, with fma (one rounding per step), else
+ * multiply-then-add.  With k != 0 the argument and the coefficients are
+ * scaled by exact powers of two, so huge x (roots near 1e154 and beyond)
+ * evaluate without overflow. */
+static ALWAYS_INLINE double horner_core(const double c[], int n, double x, int k,
+                                        const int fused)
 {
-    COUNT_MADDS(n);
     double acc = c[n];
     if (k == 0) {
-        if (precise)
-            for (int i = n - 1; i >= 0; i--)
-                acc = fma(acc, x, c[i]);
-        else
-            for (int i = n - 1; i >= 0; i--)
-                acc = acc * x + c[i];
+        for (int i = n - 1; i >= 0; i--)
+            acc = fused ? fma(acc, x, c[i]) : acc * x + c[i];
         return acc;
     }
     double xs = ldexp(x, -k), f = ldexp(1.0, -k), fi = 1.0;
     for (int i = n - 1; i >= 0; i--) {
         fi *= f;
-        acc = precise ? fma(acc, xs, c[i] * fi) : acc * xs + c[i] * fi;
+        acc = fused ? fma(acc, xs, c[i] * fi) : acc * xs + c[i] * fi;
     }
     return acc;
+}
+
+#if FMA_DISPATCH
+static HW_FMA double horner_fma_hw(const double c[], int n, double x, int k)
+{
+    return horner_core(c, n, x, k, 1);
+}
+#endif
+
+/* p(x) / 2^(k n) by Horner (horner_core).  precise: with fma.  Without the
+ * fma instruction, fma() is a library call per step, which would dominate
+ * the solve; so only the last Newton steps of a reported root and the graze
+ * check use it, everything else plain multiply-add (two roundings per step:
+ * within the gamma_{2n} bound used throughout). */
+static double horner(const double c[], int n, double x, int k, int precise)
+{
+    COUNT_MADDS(n);
+    if (!precise)
+        return horner_core(c, n, x, k, 0);
+#if FMA_DISPATCH
+    if (__builtin_cpu_supports("fma"))
+        return horner_fma_hw(c, n, x, k);
+#endif
+    return horner_core(c, n, x, k, 1);
 }
 
 /* sum |c_i| |x|^i / 2^(k n): the scale of the Horner rounding error. */
@@ -631,10 +670,17 @@ static double split_point(double lo, double hi)
  * compensated Horner (Graillat, Langlois & Louvet 2005), so the root comes
  * out correct to about an ulp unless its condition number nears 1/u (plain or
  * fma Horner leave m u kappa: 1e-13 at kappa 1e3).  The error-free product
- * is fma(s, x, -s x) where fma is an instruction, else Dekker's splitting
- * (without -mfma, fma() is a library call per step).  Needs |x| and the
- * partial sums far below 2^996 (the splitting): true for |x| <= FAST_LIMIT. */
-#ifndef FP_FAST_FMA
+ * is fma(s, x, -s x) where fma is an instruction (hw: -mfma, or the CPU's
+ * at run time, FMA_DISPATCH above), else Dekker's splitting (without the
+ * instruction, fma() is a library call per step); both give the exact
+ * error, so the same bits.  Needs |x| and the partial sums far below 2^996
+ * (the splitting): true for |x| <= FAST_LIMIT. */
+#ifdef FP_FAST_FMA
+#define FMA_BUILT_IN 1
+#else
+#define FMA_BUILT_IN 0
+#endif
+
 /* Dekker's splitting: v = *hi + *lo exactly, each with at most 26 bits. */
 static inline void dekker_split(double v, double *hi, double *lo)
 {
@@ -643,59 +689,89 @@ static inline void dekker_split(double v, double *hi, double *lo)
     *hi = t - (t - v);
     *lo = v - *hi;
 }
-#endif
 
-static inline void compensated_step(double *s, double *c, double x, double xh,
-                                    double xl, double Pi)
+static ALWAYS_INLINE void compensated_step(double *s, double *c, double x, double xh,
+                                           double xl, double Pi, const int hw)
 {
-    double p = *s * x;
-#ifdef FP_FAST_FMA
-    (void)xh, (void)xl;
-    double pe = fma(*s, x, -p); /* s x = p + pe exactly */
-#else
-    double sh, sl;
-    dekker_split(*s, &sh, &sl);
-    double pe = ((sh * xh - p) + sh * xl + sl * xh) + sl * xl;
-#endif
+    double p = *s * x, pe;
+    if (hw) {
+        pe = fma(*s, x, -p); /* s x = p + pe exactly */
+    } else {
+        double sh, sl;
+        dekker_split(*s, &sh, &sl);
+        pe = ((sh * xh - p) + sh * xl + sl * xh) + sl * xl;
+    }
     double sn = p + Pi, bb = sn - p;
     double se = (p - (sn - bb)) + (Pi - bb); /* p + P_i = sn + se */
     *c = *c * x + (pe + se);
     *s = sn;
 }
 
-static double horner_compensated(const double P[], int m, double x)
+static ALWAYS_INLINE double compensated_core(const double P[], int m, double x,
+                                             const int hw)
 {
-    COUNT_MADDS(10 * m); /* about 21 flops a step */
     double xh = 0, xl = 0;
-#ifndef FP_FAST_FMA
-    dekker_split(x, &xh, &xl);
-#endif
+    if (!hw)
+        dekker_split(x, &xh, &xl);
     double s = P[m], c = 0;
     for (int i = m - 1; i >= 0; i--)
-        compensated_step(&s, &c, x, xh, xl, P[i]);
+        compensated_step(&s, &c, x, xh, xl, P[i], hw);
     return s + c;
 }
 
-/* horner_compensated(P, m, x), and *slope = D(x) (D of degree m - 1, m >= 1)
- * by plain Horner in the same loop: a Newton step's two chains side by side,
- * where one after the other they waited on each other (measured below,
+/* The same, and *slope = D(x) (D of degree m - 1, m >= 1) by plain Horner
+ * in the same loop: a Newton step's two chains side by side, where one
+ * after the other they waited on each other (measured below,
  * value_and_slope). */
+static ALWAYS_INLINE double compensated_slope_core(const double P[], const double D[],
+                                                   int m, double x, double *slope,
+                                                   const int hw)
+{
+    double xh = 0, xl = 0;
+    if (!hw)
+        dekker_split(x, &xh, &xl);
+    double s = P[m], c = 0, df = D[m - 1];
+    for (int i = m - 1; i >= 1; i--) {
+        compensated_step(&s, &c, x, xh, xl, P[i], hw);
+        df = df * x + D[i - 1];
+    }
+    compensated_step(&s, &c, x, xh, xl, P[0], hw);
+    *slope = df;
+    return s + c;
+}
+
+#if FMA_DISPATCH
+static HW_FMA double compensated_hw(const double P[], int m, double x)
+{
+    return compensated_core(P, m, x, 1);
+}
+
+static HW_FMA double compensated_slope_hw(const double P[], const double D[], int m,
+                                          double x, double *slope)
+{
+    return compensated_slope_core(P, D, m, x, slope, 1);
+}
+#endif
+
+static double horner_compensated(const double P[], int m, double x)
+{
+    COUNT_MADDS(10 * m); /* about 21 flops a step */
+#if FMA_DISPATCH
+    if (__builtin_cpu_supports("fma"))
+        return compensated_hw(P, m, x);
+#endif
+    return compensated_core(P, m, x, FMA_BUILT_IN);
+}
+
 static double compensated_with_slope(const double P[], const double D[], int m,
                                      double x, double *slope)
 {
     COUNT_MADDS(10 * m);
-    double xh = 0, xl = 0;
-#ifndef FP_FAST_FMA
-    dekker_split(x, &xh, &xl);
+#if FMA_DISPATCH
+    if (__builtin_cpu_supports("fma"))
+        return compensated_slope_hw(P, D, m, x, slope);
 #endif
-    double s = P[m], c = 0, df = D[m - 1];
-    for (int i = m - 1; i >= 1; i--) {
-        compensated_step(&s, &c, x, xh, xl, P[i]);
-        df = df * x + D[i - 1];
-    }
-    compensated_step(&s, &c, x, xh, xl, P[0]);
-    *slope = df;
-    return s + c;
+    return compensated_slope_core(P, D, m, x, slope, FMA_BUILT_IN);
 }
 
 /* P(x) / 2^(k m) (precise: compensated for k = 0, with fma otherwise) and

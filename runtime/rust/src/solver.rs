@@ -440,19 +440,25 @@ fn scale_exponent(x: f64, m: usize) -> i32 {
     }
 }
 
-fn horner(c: &[f64], n: usize, x: f64, k: i32, precise: bool) -> f64 {
-    count::madds(n);
+/// Whether the CPU has the fma instruction, where the build did not assume it (C
+/// `FMA_DISPATCH`): the precise kernels below then run their copies compiled for it
+/// (`#[target_feature(enable = "fma")]`), with the same bits -- `mul_add` is correctly rounded
+/// as an instruction or as the libm call it is otherwise, and the compensated Horner's error-free
+/// product is exact either way (`fma(s, x, -s x)` or Dekker's).  std caches the detection.
+#[cfg(all(target_arch = "x86_64", not(target_feature = "fma")))]
+#[inline(always)]
+fn hw_fma() -> bool {
+    std::arch::is_x86_feature_detected!("fma")
+}
+
+/// C `horner_core`: p(x) / 2^(k n) by Horner, fused (`mul_add`) or multiply-then-add.
+#[inline(always)]
+fn horner_core(c: &[f64], n: usize, x: f64, k: i32, fused: bool) -> f64 {
     let c = &c[..=n];
     let mut acc = c[n];
     if k == 0 {
-        if precise {
-            for &ci in c[..n].iter().rev() {
-                acc = acc.mul_add(x, ci);
-            }
-        } else {
-            for &ci in c[..n].iter().rev() {
-                acc = acc * x + ci;
-            }
+        for &ci in c[..n].iter().rev() {
+            acc = if fused { acc.mul_add(x, ci) } else { acc * x + ci };
         }
         return acc;
     }
@@ -461,9 +467,30 @@ fn horner(c: &[f64], n: usize, x: f64, k: i32, precise: bool) -> f64 {
     let mut fi = 1.0;
     for i in (0..n).rev() {
         fi *= f;
-        acc = if precise { acc.mul_add(xs, c[i] * fi) } else { acc * xs + c[i] * fi };
+        acc = if fused { acc.mul_add(xs, c[i] * fi) } else { acc * xs + c[i] * fi };
     }
     acc
+}
+
+#[cfg(all(target_arch = "x86_64", not(target_feature = "fma")))]
+#[target_feature(enable = "fma")]
+#[inline(never)]
+fn horner_fma_hw(c: &[f64], n: usize, x: f64, k: i32) -> f64 {
+    horner_core(c, n, x, k, true)
+}
+
+/// C `horner`.
+fn horner(c: &[f64], n: usize, x: f64, k: i32, precise: bool) -> f64 {
+    count::madds(n);
+    if !precise {
+        return horner_core(c, n, x, k, false);
+    }
+    #[cfg(all(target_arch = "x86_64", not(target_feature = "fma")))]
+    if hw_fma() {
+        // SAFETY: the CPU has the fma instruction (detected above)
+        return unsafe { horner_fma_hw(c, n, x, k) };
+    }
+    horner_core(c, n, x, k, true)
 }
 
 fn horner_abs(c: &[f64], n: usize, x: f64, k: i32) -> f64 {
@@ -576,42 +603,85 @@ fn dekker_split(v: f64) -> (f64, f64) {
     (hi, v - hi)
 }
 
-/// C `compensated_step`: one step of compensated Horner (s, c) <- (s x + P_i, its error).
+/// C `compensated_step`: one step of compensated Horner (s, c) <- (s x + P_i, its error);
+/// `hw`: the error-free product by the fma instruction, else Dekker's.
 #[inline(always)]
-fn compensated_step(s: f64, c: f64, x: f64, xh: f64, xl: f64, pi: f64) -> (f64, f64) {
+fn compensated_step(s: f64, c: f64, x: f64, xh: f64, xl: f64, pi: f64, hw: bool) -> (f64, f64) {
     let pr = s * x;
-    let (sh, sl) = dekker_split(s);
-    let pe = ((sh * xh - pr) + sh * xl + sl * xh) + sl * xl;
+    let pe = if hw {
+        s.mul_add(x, -pr)
+    } else {
+        let (sh, sl) = dekker_split(s);
+        ((sh * xh - pr) + sh * xl + sl * xh) + sl * xl
+    };
     let sn = pr + pi;
     let bb = sn - pr;
     let se = (pr - (sn - bb)) + (pi - bb);
     (sn, c * x + (pe + se))
 }
 
-/// C `horner_compensated`.
-fn horner_compensated(p: &[f64], m: usize, x: f64) -> f64 {
-    count::madds(10 * m);
-    let (xh, xl) = dekker_split(x);
+/// C `compensated_core`.
+#[inline(always)]
+fn compensated_core(p: &[f64], m: usize, x: f64, hw: bool) -> f64 {
+    let (xh, xl) = if hw { (0.0, 0.0) } else { dekker_split(x) };
     let (mut s, mut c) = (p[m], 0.0);
     for &pi in p[..m].iter().rev() {
-        (s, c) = compensated_step(s, c, x, xh, xl, pi);
+        (s, c) = compensated_step(s, c, x, xh, xl, pi, hw);
     }
     s + c
 }
 
-/// C `compensated_with_slope`: (`horner_compensated(p, m, x)`, d(x) by plain Horner in the same
-/// loop; d of degree m - 1, m >= 1).
+/// C `compensated_slope_core`.
 #[inline(always)]
-fn compensated_with_slope(p: &[f64], d: &[f64], m: usize, x: f64) -> (f64, f64) {
-    count::madds(10 * m);
-    let (xh, xl) = dekker_split(x);
+fn compensated_slope_core(p: &[f64], d: &[f64], m: usize, x: f64, hw: bool) -> (f64, f64) {
+    let (xh, xl) = if hw { (0.0, 0.0) } else { dekker_split(x) };
     let (mut s, mut c, mut df) = (p[m], 0.0, d[m - 1]);
     for i in (1..m).rev() {
-        (s, c) = compensated_step(s, c, x, xh, xl, p[i]);
+        (s, c) = compensated_step(s, c, x, xh, xl, p[i], hw);
         df = df * x + d[i - 1];
     }
-    (s, c) = compensated_step(s, c, x, xh, xl, p[0]);
+    (s, c) = compensated_step(s, c, x, xh, xl, p[0], hw);
     (s + c, df)
+}
+
+#[cfg(all(target_arch = "x86_64", not(target_feature = "fma")))]
+#[target_feature(enable = "fma")]
+#[inline(never)]
+fn compensated_hw(p: &[f64], m: usize, x: f64) -> f64 {
+    compensated_core(p, m, x, true)
+}
+
+#[cfg(all(target_arch = "x86_64", not(target_feature = "fma")))]
+#[target_feature(enable = "fma")]
+#[inline(never)]
+fn compensated_slope_hw(p: &[f64], d: &[f64], m: usize, x: f64) -> (f64, f64) {
+    compensated_slope_core(p, d, m, x, true)
+}
+
+/// Whether the build itself has the fma instruction (C `FMA_BUILT_IN`).
+const FMA_BUILT_IN: bool = cfg!(target_feature = "fma");
+
+/// C `horner_compensated`.
+fn horner_compensated(p: &[f64], m: usize, x: f64) -> f64 {
+    count::madds(10 * m);
+    #[cfg(all(target_arch = "x86_64", not(target_feature = "fma")))]
+    if hw_fma() {
+        // SAFETY: the CPU has the fma instruction (detected above)
+        return unsafe { compensated_hw(p, m, x) };
+    }
+    compensated_core(p, m, x, FMA_BUILT_IN)
+}
+
+/// C `compensated_with_slope`: (`horner_compensated(p, m, x)`, d(x) by plain Horner in the same
+/// loop; d of degree m - 1, m >= 1).
+fn compensated_with_slope(p: &[f64], d: &[f64], m: usize, x: f64) -> (f64, f64) {
+    count::madds(10 * m);
+    #[cfg(all(target_arch = "x86_64", not(target_feature = "fma")))]
+    if hw_fma() {
+        // SAFETY: the CPU has the fma instruction (detected above)
+        return unsafe { compensated_slope_hw(p, d, m, x) };
+    }
+    compensated_slope_core(p, d, m, x, FMA_BUILT_IN)
 }
 
 #[inline(always)]
@@ -2264,6 +2334,8 @@ mod preparation {
 #[cfg(test)]
 mod kernels {
     use super::{binomial_sums, compensated_with_slope, halves, horner_compensated, load_any, load_coefficients, taylor_shift, taylor_shift_8, taylor_table, Taylor, MAXN};
+    #[cfg(all(target_arch = "x86_64", not(target_feature = "fma")))]
+    use super::{compensated_core, compensated_hw, compensated_slope_core, compensated_slope_hw, horner, horner_core, horner_fma_hw, hw_fma};
     use std::mem::MaybeUninit;
 
     /// xorshift; values of both signs over 2^-30..2^30, one in 16 an exact zero.
@@ -2328,6 +2400,43 @@ mod kernels {
             }
             assert_eq!(v.to_bits(), horner_compensated(&p, m, x).to_bits(), "m={m}");
             assert_eq!(slope.to_bits(), want.to_bits(), "m={m}");
+        }
+    }
+
+    #[test]
+    fn fma_copies_give_the_plain_bits() {
+        // C FMA_DISPATCH: the precise kernels' copies for the fma instruction against their plain
+        // forms (Dekker's product, mul_add by libm), bit for bit; near roots too, where the
+        // compensated value is mostly its correction
+        #[cfg(all(target_arch = "x86_64", not(target_feature = "fma")))]
+        {
+            assert!(hw_fma(), "this CPU has no fma instruction: the copies cannot be compared here");
+            let mut r = Rnd(0x2545_F491_4F6C_DD1D);
+            for trial in 0..20000 {
+                let m = 1 + trial % MAXN;
+                let (p, d) = (r.array(), r.array());
+                let x0 = (1.0 + r.next().abs()) * 2f64.powi((trial % 7) as i32 - 3);
+                // a root of p near x0, by a few Newton steps: the compensated value's hard case
+                let mut x = x0;
+                for _ in 0..6 {
+                    let (v, dv) = (horner(&p, m, x, 0, false), horner(&d, m - 1, x, 0, false));
+                    if dv != 0.0 && (x - v / dv).is_finite() {
+                        x -= v / dv;
+                    }
+                }
+                for x in [x0, x] {
+                    // SAFETY: hw_fma() above
+                    let (a, b) = unsafe { (compensated_hw(&p, m, x), compensated_slope_hw(&p, &d, m, x)) };
+                    assert_eq!(a.to_bits(), compensated_core(&p, m, x, false).to_bits(), "m={m} x={x}");
+                    let want = compensated_slope_core(&p, &d, m, x, false);
+                    assert_eq!((b.0.to_bits(), b.1.to_bits()), (want.0.to_bits(), want.1.to_bits()));
+                    for k in 0..3 {
+                        // SAFETY: hw_fma() above
+                        let h = unsafe { horner_fma_hw(&p, m, x, k) };
+                        assert_eq!(h.to_bits(), horner_core(&p, m, x, k, true).to_bits(), "m={m} k={k}");
+                    }
+                }
+            }
         }
     }
 
