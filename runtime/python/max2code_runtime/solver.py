@@ -34,6 +34,8 @@ SLOW_AFTER = 16
 TOL_CRITICAL = 2.0**-36
 TOL_LEVEL = 2.0**-28
 PRECISE_FROM = 2.0**-26
+GUESS_DONE = 2.0**-14  # C GUESS_DONE, GUESS_FAST: Laguerre also stops after a step below
+GUESS_FAST = 2.0**-4  # GUESS_DONE (relative) at most GUESS_FAST of the step before
 NOISE_STEP = 32 * U
 MAX_SPLITS = 40
 SPLIT_NEWTON = 2.0
@@ -831,9 +833,9 @@ def _speculate_first_root(p: Sequence[float], n: int, T: float) -> _Guess:
         x -= s
         if not (x > 0 and x < T):
             return _Guess(None, 0.0, dip)
-        if abs(s) <= PRECISE_FROM * x:
-            return _Guess(x, 0.0, dip)
         q = _div(s, last) if it > 0 else 0.0
+        if abs(s) <= PRECISE_FROM * x or (abs(s) <= GUESS_DONE * x and q <= GUESS_FAST):
+            return _Guess(x, 0.0, dip)
         steady = steady + 1 if TOUCH_RATIO_LO <= q <= TOUCH_RATIO_HI else 0
         if steady >= TOUCH_STEADY:
             critical = 1  # linear convergence: a double root ahead

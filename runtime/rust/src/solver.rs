@@ -31,6 +31,10 @@ const SLOW_AFTER: usize = 16;
 const TOL_CRITICAL: f64 = 1.455_191_522_836_685_2e-11; // 2^-36
 const TOL_LEVEL: f64 = 3.725_290_298_461_914e-9; // 2^-28
 const PRECISE_FROM: f64 = 1.490_116_119_384_765_6e-8; // 2^-26
+/// C `GUESS_DONE`, `GUESS_FAST`: the guess's Laguerre also stops after a step below GUESS_DONE
+/// (relative) that was at most GUESS_FAST of the step before.
+const GUESS_DONE: f64 = 6.103_515_625e-5; // 2^-14
+const GUESS_FAST: f64 = 0.0625; // 2^-4
 const NOISE_STEP: f64 = 32.0 * U;
 const MAX_SPLITS: usize = 40;
 const SPLIT_NEWTON: f64 = 2.0;
@@ -1414,7 +1418,8 @@ enum Guess {
 /// way), when no step to the right exists, when x leaves (0, T), when a step from the fifth on
 /// has neither halved nor shrunk by more than the step before (far from every root Laguerre
 /// creeps, then speeds up: it gives up only while it is not slowing down), or after
-/// SPECULATE_STEPS; stops once a step is below PRECISE_FROM.  Nothing is certain about the
+/// SPECULATE_STEPS; stops once a step is below PRECISE_FROM, or below GUESS_DONE at most
+/// GUESS_FAST of the step before.  Nothing is certain about the
 /// result: the caller certifies a root by a Bernstein test.
 ///
 /// A touch ahead (a double root, or two real roots or a complex pair within the rounding noise
@@ -1523,10 +1528,10 @@ fn speculate_first_root(p: &[f64], n: usize, t_end: f64, dip: &mut f64) -> Guess
         if !(x > 0.0 && x < t_end) {
             return Guess::Nothing;
         }
-        if s.abs() <= PRECISE_FROM * x {
+        let q = if it > 0 { s / last } else { 0.0 };
+        if s.abs() <= PRECISE_FROM * x || (s.abs() <= GUESS_DONE * x && q <= GUESS_FAST) {
             return Guess::Root(x);
         }
-        let q = if it > 0 { s / last } else { 0.0 };
         steady = if (TOUCH_RATIO_LO..=TOUCH_RATIO_HI).contains(&q) { steady + 1 } else { 0 };
         if steady >= TOUCH_STEADY {
             critical = 1; // linear convergence: a double root ahead
