@@ -774,6 +774,70 @@ static double compensated_with_slope(const double P[], const double D[], int m,
     return compensated_slope_core(P, D, m, x, slope, FMA_BUILT_IN);
 }
 
+/* What scan_pieces and touch_point read on a touch's interval (lo, hi],
+ * its one critical point b from touch_critical: p(b) by fma Horner (vb),
+ * compensated (pb), sum |p_i| b^i (ab: the graze check's scale), p(hi) by
+ * fma Horner (vhi), and p'(b) compensated with p''(b) plain (dv, ddv:
+ * touch_point's Newton step) -- five evaluations' chains in one loop, side
+ * by side, where scan_pieces ran them one after the other, each behind the
+ * branch before it.  Each chain's operations are those of horner,
+ * horner_abs, horner_compensated and compensated_with_slope in the same
+ * order: the same values, bit for bit (tests/runtime/test_fma_dispatch.py
+ * checks the copies; the answers, tests/runtime/test_touch_critical.py).
+ * For b and hi that need no scaling (scale_exponent 0) only. */
+typedef struct {
+    double vb, pb, ab, vhi, dv, ddv;
+} TouchValues;
+
+static ALWAYS_INLINE void touch_values_core(const double c[], const double D1[],
+                                            const double D2[], int n, double b,
+                                            double hi, TouchValues *tv, const int hw)
+{
+    double bh = 0, bl = 0;
+    if (!hw)
+        dekker_split(b, &bh, &bl);
+    int m = n - 1; /* p' = D1, of degree m; p'' = D2 */
+    double vb = c[n], vhi = c[n], ab = fabs(c[n]), axb = fabs(b);
+    double s = c[n], e = 0, s1 = D1[m], e1 = 0, df = D2[m - 1];
+    for (int i = n - 1; i >= 0; i--) {
+        vb = fma(vb, b, c[i]);
+        vhi = fma(vhi, hi, c[i]);
+        ab = ab * axb + fabs(c[i]);
+        compensated_step(&s, &e, b, bh, bl, c[i], hw);
+        if (i < m) {
+            compensated_step(&s1, &e1, b, bh, bl, D1[i], hw);
+            if (i >= 1)
+                df = df * b + D2[i - 1];
+        }
+    }
+    tv->vb = vb;
+    tv->pb = s + e;
+    tv->ab = ab;
+    tv->vhi = vhi;
+    tv->dv = s1 + e1;
+    tv->ddv = df;
+}
+
+#if FMA_DISPATCH
+static HW_FMA void touch_values_hw(const double c[], const double D1[], const double D2[],
+                                   int n, double b, double hi, TouchValues *tv)
+{
+    touch_values_core(c, D1, D2, n, b, hi, tv, 1);
+}
+#endif
+
+static void touch_values(const double c[], const double D1[], const double D2[], int n,
+                         double b, double hi, TouchValues *tv)
+{
+#if FMA_DISPATCH
+    if (__builtin_cpu_supports("fma")) {
+        touch_values_hw(c, D1, D2, n, b, hi, tv);
+        return;
+    }
+#endif
+    touch_values_core(c, D1, D2, n, b, hi, tv, FMA_BUILT_IN);
+}
+
 /* P(x) / 2^(k m) (precise: compensated for k = 0, with fma otherwise) and
  * P'(x) / 2^(k (m-1)) = D(x) / ..., as horner() scales them (so the Newton
  * step is 2^k times their ratio); *size gets sum |P_i| |x|^i / 2^(k m), the
@@ -1367,7 +1431,7 @@ static int derivative_method(const double c[], int n, double lo, double T,
                              double x0, double skin, double *t, int *graze);
 static int scan_pieces(const double c[], double d[MAXN + 1][MAXN + 1], int n,
                        double lo, double T, const double crit[], int nc,
-                       double skin, double *t, int *graze);
+                       double skin, const TouchValues *tv, double *t, int *graze);
 static double touch_critical(const double p[], double d[MAXN + 1][MAXN + 1],
                              int n, double lo, double hi, double x);
 
@@ -1852,7 +1916,10 @@ static int isolate_first_root(const double p[], int n, double skin,
             derivative(d[n - 1], n - 1, d[n - 2]);
             double b = touch_critical(p, d, n, lo, hi, touch);
             if (b > 0) {
-                hit = scan_pieces(p, d, n, lo, hi, &b, 1, skin, t, graze);
+                /* (b < hi: no scaling at b when none at hi, touch_critical's) */
+                TouchValues tv;
+                touch_values(p, d[n - 1], d[n - 2], n, b, hi, &tv);
+                hit = scan_pieces(p, d, n, lo, hi, &b, 1, skin, &tv, t, graze);
             } else {
                 hit = derivative_method(p, n, lo, hi, touch, skin, t, graze);
             }
@@ -2109,12 +2176,20 @@ static double crossing_before_critical(const double c[],
  * bench/roots.py's grazes against the exact critical points: the touches'
  * worst relative error 3.6e-15 before this step; an exact double root at 2
  * came out at 2 + ulp before it, at 2 after. */
-static double touch_point(double d[MAXN + 1][MAXN + 1], int n, double b)
+static double touch_point(double d[MAXN + 1][MAXN + 1], int n, double b,
+                          const TouchValues *tv)
 {
     if (scale_exponent(b, n - 1) != 0)
         return b;
     COUNT(5);
-    double slope, size, v = value_and_slope(d[n - 1], d[n - 2], n - 1, b, 0, 1, &slope, &size);
+    double slope, size, v;
+    if (tv != NULL) { /* (touch_values: the same values) */
+        COUNT_MADDS(3 * (n - 1) - 1 + 10 * (n - 1));
+        v = tv->dv;
+        slope = tv->ddv;
+    } else {
+        v = value_and_slope(d[n - 1], d[n - 2], n - 1, b, 0, 1, &slope, &size);
+    }
     double x = b - v / slope;
     return fabs(x - b) <= NOISE_STEP * fabs(b) ? x : b;
 }
@@ -2122,10 +2197,12 @@ static double touch_point(double d[MAXN + 1][MAXN + 1], int n, double b)
 /* First root in (lo, T] of c (degree n >= 3, normalised, c(lo) > 0), given
  * its critical points there, crit[0..nc-1] (ascending), and d[n - 1], d[n - 2]
  * (p', p''): they split (lo, T] into monotone pieces, scanned left to right
- * with the graze check at each critical point. */
+ * with the graze check at each critical point.  tv: on a touch's interval
+ * (nc = 1, T = hi), the values the scan reads, computed in one pass
+ * (touch_values); else NULL. */
 static int scan_pieces(const double c[], double d[MAXN + 1][MAXN + 1], int n,
                        double lo, double T, const double crit[], int nc,
-                       double skin, double *t, int *graze)
+                       double skin, const TouchValues *tv, double *t, int *graze)
 {
     double a = lo;
     int sa = 1;
@@ -2135,9 +2212,16 @@ static int scan_pieces(const double c[], double d[MAXN + 1][MAXN + 1], int n,
     int kb = 0, vb_known = 0;
     for (int j = 0; j <= nc; j++) {
         double b = j < nc ? crit[j] : T;
+        /* (with tv: the critical point, then the end; no scaling at either) */
+        const TouchValues *at = tv != NULL && j == 0 ? tv : NULL;
         if (!vb_known) {
             kb = scale_exponent(b, n);
-            vb = horner(c, n, b, kb, 1);
+            if (at != NULL) {
+                COUNT_MADDS(n);
+                vb = at->vb;
+            } else {
+                vb = horner(c, n, b, kb, 1);
+            }
         }
         vb_known = 0;
         int sb = (vb > 0) - (vb < 0);
@@ -2150,7 +2234,13 @@ static int scan_pieces(const double c[], double d[MAXN + 1][MAXN + 1], int n,
          * and the sign of its fma Horner value is noise: a crossing there
          * is decided by the precise value (where b needs no scaling). */
         int precise = sb != sa && j < nc && kb == 0;
-        double pb = precise ? horner_compensated(c, n, b) : 0;
+        double pb = 0;
+        if (precise && at != NULL) {
+            COUNT_MADDS(10 * n);
+            pb = at->pb;
+        } else if (precise) {
+            pb = horner_compensated(c, n, b);
+        }
         if (precise && pb != 0 && (pb > 0) == (sa > 0))
             sb = sa; /* no crossing in (a, b]: maybe a touch at b (below) */
         if (sb != sa) {
@@ -2159,14 +2249,26 @@ static int scan_pieces(const double c[], double d[MAXN + 1][MAXN + 1], int n,
             *graze = 0;
             return 1;
         }
-        if (skin >= 0 && j < nc && noise_holds(c, n, b, kb, vb, skin)) {
+        int near = 0;
+        if (skin >= 0 && j < nc && at != NULL) {
+            COUNT_MADDS(n); /* (noise_holds' horner_abs) */
+            near = fabs(vb) <= noise_factor(n) * at->ab + skin; /* (kb = 0) */
+        } else if (skin >= 0 && j < nc) {
+            near = noise_holds(c, n, b, kb, vb, skin);
+        }
+        if (near) {
             /* touch or cross?  Look at the far end of the next piece. */
             double b2 = j + 1 < nc ? crit[j + 1] : T;
             kb = scale_exponent(b2, n);
-            vb = horner(c, n, b2, kb, 1);
+            if (at != NULL && nc == 1) {
+                COUNT_MADDS(n);
+                vb = at->vhi;
+            } else {
+                vb = horner(c, n, b2, kb, 1);
+            }
             vb_known = 1;
             if ((vb > 0) - (vb < 0) == sa) {
-                *t = touch_point(d, n, b);
+                *t = touch_point(d, n, b, at);
                 *graze = 1;
                 return 1;
             }
@@ -2187,7 +2289,7 @@ static int derivative_method(const double c[], int n, double lo, double T,
     double d[MAXN + 1][MAXN + 1], crit[MAXN];
     derivative_chain(c, n, d);
     int nc = critical_points(d, n, lo, T, x0, crit);
-    return scan_pieces(c, d, n, lo, T, crit, nc, skin, t, graze);
+    return scan_pieces(c, d, n, lo, T, crit, nc, skin, NULL, t, graze);
 }
 
 /* The critical point of p in (lo, hi) around the guess's touch x, certified

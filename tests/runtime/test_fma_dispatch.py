@@ -8,6 +8,9 @@ is the same bits either way: fma is correctly rounded as an instruction or a cal
 error-free products are exact.  So the answers cannot depend on the machine, and the Rust and
 Python ports (which do not dispatch the same way, or at all) agree with C everywhere.
 
+The touch's scan reads five evaluations computed in one loop (touch_values): checked here
+against the kernels it replaces, in both copies.
+
 A program that includes max2code_roots.c evaluates random polynomials of every degree at
 random points and at points a few ulps from their roots (where the compensated value is all
 correction, and any slip in the error terms shows), with both copies, and prints every
@@ -87,6 +90,26 @@ int main(void)
             same(s1, s2, "its slope", m, x);
             for (int k = 0; k <= 2; k++) /* k != 0: the scaled form */
                 same(horner_fma_hw(P, m, x, k), horner_core(P, m, x, k, 1), "horner_fma", m, x);
+            if (m >= 3) {
+                /* touch_values: the five evaluations of a touch's scan in one loop, against
+                 * the kernels it replaces (dispatched) and its plain copy */
+                double D2[MAXN + 1], hi = x * (1 + ldexp(uni(), -8)), sl;
+                for (int i = 0; i < m - 1; i++)
+                    D2[i] = (i + 1) * D[i + 1];
+                TouchValues tv, tp;
+                touch_values(P, D, D2, m, x, hi, &tv);
+                touch_values_core(P, D, D2, m, x, hi, &tp, 0);
+                double want[6] = {horner(P, m, x, 0, 1), horner_compensated(P, m, x),
+                                  horner_abs(P, m, x, 0), horner(P, m, hi, 0, 1),
+                                  compensated_with_slope(D, D2, m - 1, x, &sl), 0};
+                want[5] = sl;
+                double got[6] = {tv.vb, tv.pb, tv.ab, tv.vhi, tv.dv, tv.ddv};
+                double plain[6] = {tp.vb, tp.pb, tp.ab, tp.vhi, tp.dv, tp.ddv};
+                for (int i = 0; i < 6; i++) {
+                    same(got[i], want[i], "touch_values", m, x);
+                    same(plain[i], want[i], "touch_values (plain copy)", m, x);
+                }
+            }
         }
     }
     printf("%ld values compared\n%d differences\n", compared, bad);
@@ -103,4 +126,6 @@ def test_fma_copies_give_the_plain_bits(tmp_path: Path) -> None:
         pytest.skip("this CPU has no fma instruction: only the plain kernels can run here")
     out = run_c_program(PROGRAM, tmp_path, "fma_dispatch")
     compared = int(out.split("values compared")[0].split()[-1])
-    assert compared == 40000 * 4 * 6, out
+    # 6 per point, and 12 more per point from degree 3 on (touch_values and its plain copy)
+    touch = sum(1 for trial in range(40000) if 1 + trial % 16 >= 3)
+    assert compared == 40000 * 4 * 6 + touch * 4 * 12, out

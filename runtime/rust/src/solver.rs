@@ -688,6 +688,58 @@ fn compensated_with_slope(p: &[f64], d: &[f64], m: usize, x: f64) -> (f64, f64) 
     compensated_slope_core(p, d, m, x, FMA_BUILT_IN)
 }
 
+/// C `TouchValues`: what `scan_pieces` and `touch_point` read on a touch's interval, computed in
+/// one pass (`touch_values`): p(b) by fma Horner, compensated, sum |p_i| b^i, p(hi) by fma
+/// Horner, p'(b) compensated and p''(b) plain -- the same values, bit for bit.
+#[derive(Clone, Copy)]
+struct TouchValues {
+    vb: f64,
+    pb: f64,
+    ab: f64,
+    vhi: f64,
+    dv: f64,
+    ddv: f64,
+}
+
+/// C `touch_values_core`: the five evaluations' chains side by side, each in its kernel's order.
+#[inline(always)]
+fn touch_values_core(c: &[f64], d1: &[f64], d2: &[f64], n: usize, b: f64, hi: f64, hw: bool) -> TouchValues {
+    let (bh, bl) = if hw { (0.0, 0.0) } else { dekker_split(b) };
+    let m = n - 1; // p' = d1, of degree m; p'' = d2
+    let (mut vb, mut vhi, mut ab, axb) = (c[n], c[n], c[n].abs(), b.abs());
+    let (mut s, mut e, mut s1, mut e1, mut df) = (c[n], 0.0, d1[m], 0.0, d2[m - 1]);
+    for i in (0..n).rev() {
+        vb = vb.mul_add(b, c[i]);
+        vhi = vhi.mul_add(hi, c[i]);
+        ab = ab * axb + c[i].abs();
+        (s, e) = compensated_step(s, e, b, bh, bl, c[i], hw);
+        if i < m {
+            (s1, e1) = compensated_step(s1, e1, b, bh, bl, d1[i], hw);
+            if i >= 1 {
+                df = df * b + d2[i - 1];
+            }
+        }
+    }
+    TouchValues { vb, pb: s + e, ab, vhi, dv: s1 + e1, ddv: df }
+}
+
+#[cfg(all(target_arch = "x86_64", not(target_feature = "fma")))]
+#[target_feature(enable = "fma")]
+#[inline(never)]
+fn touch_values_hw(c: &[f64], d1: &[f64], d2: &[f64], n: usize, b: f64, hi: f64) -> TouchValues {
+    touch_values_core(c, d1, d2, n, b, hi, true)
+}
+
+/// C `touch_values` (for b, hi that need no scaling).
+fn touch_values(c: &[f64], d1: &[f64], d2: &[f64], n: usize, b: f64, hi: f64) -> TouchValues {
+    #[cfg(all(target_arch = "x86_64", not(target_feature = "fma")))]
+    if hw_fma() {
+        // SAFETY: the CPU has the fma instruction (detected above)
+        return unsafe { touch_values_hw(c, d1, d2, n, b, hi) };
+    }
+    touch_values_core(c, d1, d2, n, b, hi, FMA_BUILT_IN)
+}
+
 #[inline(always)]
 fn value_and_slope(p: &[f64], d: &[f64], m: usize, x: f64, k: i32, precise: bool) -> (f64, f64, f64) {
     if k != 0 {
@@ -1648,7 +1700,11 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64, failed_w: f64)
             count::phase(3);
             let d = derivative_rows(p, n, n - 2);
             let hit = match touch_critical(p, &d, n, lo, hi, touch) {
-                Some(b) => scan_pieces(p, &d, n, lo, hi, &[b], skin),
+                Some(b) => {
+                    // (b < hi: no scaling at b when none at hi, touch_critical's)
+                    let tv = touch_values(p, d.row(n - 1), d.row(n - 2), n, b, hi);
+                    scan_pieces(p, &d, n, lo, hi, &[b], skin, Some(&tv))
+                }
                 None => derivative_method(p, n, lo, hi, touch, skin),
             };
             count::phase(1);
@@ -1906,12 +1962,22 @@ fn crossing_before_critical(c: &[f64], d: &Chain, n: usize, a: f64, b: f64, sa: 
 /// C `touch_point`: where a touch is reported -- the critical point b, which plain Newton on
 /// p' leaves anywhere within p''s rounding noise, moved by one Newton step on p' evaluated
 /// precisely (compensated), kept only when that step is within the noise too (b unscaled).
-fn touch_point(d: &Chain, n: usize, b: f64) -> f64 {
+fn touch_point(d: &Chain, n: usize, b: f64, tv: Option<&TouchValues>) -> f64 {
     if scale_exponent(b, n - 1) != 0 {
         return b;
     }
     count::event(5);
-    let (v, slope, _) = value_and_slope(d.row(n - 1), d.row(n - 2), n - 1, b, 0, true);
+    let (v, slope) = match tv {
+        Some(tv) => {
+            // (touch_values: the same values)
+            count::madds(3 * (n - 1) - 1 + 10 * (n - 1));
+            (tv.dv, tv.ddv)
+        }
+        None => {
+            let (v, slope, _) = value_and_slope(d.row(n - 1), d.row(n - 2), n - 1, b, 0, true);
+            (v, slope)
+        }
+    };
     let x = b - v / slope;
     if (x - b).abs() <= NOISE_STEP * b.abs() {
         x
@@ -1927,7 +1993,7 @@ fn derivative_method(c: &[f64], n: usize, lo: f64, t_end: f64, x0: f64, skin: f6
     let d = derivative_chain(c, n);
     let mut crit = [0.0f64; MAXN];
     let nc = critical_points(&d, n, lo, t_end, x0, &mut crit);
-    scan_pieces(c, &d, n, lo, t_end, &crit[..nc], skin)
+    scan_pieces(c, &d, n, lo, t_end, &crit[..nc], skin, None)
 }
 
 /// C `touch_critical`: the critical point of p in (lo, hi) around the guess's touch x,
@@ -1978,8 +2044,11 @@ fn touch_critical(p: &[f64], d: &Chain, n: usize, lo: f64, hi: f64, x: f64) -> O
 
 /// C `scan_pieces`: the first root in (lo, t_end] of c (c(lo) > 0), given its critical points
 /// there (ascending) and p', p'' in d: monotone pieces scanned left to right, with the graze
-/// check at each critical point.
-fn scan_pieces(c: &[f64], d: &Chain, n: usize, lo: f64, t_end: f64, crit: &[f64], skin: f64) -> Option<(f64, bool)> {
+/// check at each critical point.  `tv`: on a touch's interval (one critical point, t_end = hi),
+/// the values the scan reads, computed in one pass (`touch_values`).
+#[allow(clippy::too_many_arguments)]
+fn scan_pieces(c: &[f64], d: &Chain, n: usize, lo: f64, t_end: f64, crit: &[f64], skin: f64,
+               tv: Option<&TouchValues>) -> Option<(f64, bool)> {
     let nc = crit.len();
     let mut a = lo;
     let sa = 1;
@@ -1990,9 +2059,17 @@ fn scan_pieces(c: &[f64], d: &Chain, n: usize, lo: f64, t_end: f64, crit: &[f64]
     let mut vb_known = false;
     for j in 0..=nc {
         let b = if j < nc { crit[j] } else { t_end };
+        // (with tv: the critical point, then the end; no scaling at either)
+        let at = if j == 0 { tv } else { None };
         if !vb_known {
             kb = scale_exponent(b, n);
-            vb = horner(c, n, b, kb, true);
+            vb = match at {
+                Some(at) => {
+                    count::madds(n);
+                    at.vb
+                }
+                None => horner(c, n, b, kb, true),
+            };
         }
         vb_known = false;
         let mut sb = i32::from(vb > 0.0) - i32::from(vb < 0.0);
@@ -2002,7 +2079,14 @@ fn scan_pieces(c: &[f64], d: &Chain, n: usize, lo: f64, t_end: f64, crit: &[f64]
         // at a critical point the fma sign may be noise (a touch): the precise value decides
         // whether p crosses in (a, b] (where b needs no scaling)
         let precise = sb != sa && j < nc && kb == 0;
-        let pb = if precise { horner_compensated(c, n, b) } else { 0.0 };
+        let pb = match (precise, at) {
+            (false, _) => 0.0,
+            (true, Some(at)) => {
+                count::madds(10 * n);
+                at.pb
+            }
+            (true, None) => horner_compensated(c, n, b),
+        };
         if precise && pb != 0.0 && (pb > 0.0) == (sa > 0) {
             sb = sa; // no crossing in (a, b]: maybe a touch at b (below)
         }
@@ -2014,13 +2098,28 @@ fn scan_pieces(c: &[f64], d: &Chain, n: usize, lo: f64, t_end: f64, crit: &[f64]
             };
             return Some((t, false));
         }
-        if skin >= 0.0 && j < nc && noise_holds(c, n, b, kb, vb, skin) {
+        let near = skin >= 0.0
+            && j < nc
+            && match at {
+                Some(at) => {
+                    count::madds(n); // (noise_holds' horner_abs)
+                    vb.abs() <= noise_factor(n) * at.ab + skin // (kb = 0)
+                }
+                None => noise_holds(c, n, b, kb, vb, skin),
+            };
+        if near {
             let b2 = if j + 1 < nc { crit[j + 1] } else { t_end };
             kb = scale_exponent(b2, n);
-            vb = horner(c, n, b2, kb, true);
+            vb = match at {
+                Some(at) if nc == 1 => {
+                    count::madds(n);
+                    at.vhi
+                }
+                _ => horner(c, n, b2, kb, true),
+            };
             vb_known = true;
             if i32::from(vb > 0.0) - i32::from(vb < 0.0) == sa {
-                return Some((touch_point(d, n, b), true));
+                return Some((touch_point(d, n, b, at), true));
             }
         }
         a = b;
@@ -2338,9 +2437,9 @@ mod preparation {
 /// checks C's written-out forms).
 #[cfg(test)]
 mod kernels {
-    use super::{binomial_sums, compensated_with_slope, halves, horner_compensated, load_any, load_coefficients, taylor_shift, taylor_shift_8, taylor_table, Taylor, MAXN};
+    use super::{binomial_sums, compensated_with_slope, halves, horner, horner_abs, horner_compensated, load_any, load_coefficients, taylor_shift, taylor_shift_8, taylor_table, touch_values, touch_values_core, Taylor, MAXN};
     #[cfg(all(target_arch = "x86_64", not(target_feature = "fma")))]
-    use super::{compensated_core, compensated_hw, compensated_slope_core, compensated_slope_hw, horner, horner_core, horner_fma_hw, hw_fma};
+    use super::{compensated_core, compensated_hw, compensated_slope_core, compensated_slope_hw, horner_core, horner_fma_hw, hw_fma};
     use std::mem::MaybeUninit;
 
     /// xorshift; values of both signs over 2^-30..2^30, one in 16 an exact zero.
@@ -2440,6 +2539,36 @@ mod kernels {
                         let h = unsafe { horner_fma_hw(&p, m, x, k) };
                         assert_eq!(h.to_bits(), horner_core(&p, m, x, k, true).to_bits(), "m={m} k={k}");
                     }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn touch_values_are_the_kernels() {
+        // C touch_values: the five evaluations of a touch's scan in one loop, against the
+        // kernels they replace, bit for bit (dispatched and plain copy)
+        let mut r = Rnd(0x6A09_E667_F3BC_C909);
+        for trial in 0..20000 {
+            let n = 3 + trial % (MAXN - 2);
+            let p = r.array();
+            let mut d1 = [0.0f64; MAXN + 1];
+            let mut d2 = [0.0f64; MAXN + 1];
+            for i in 0..n {
+                d1[i] = (i + 1) as f64 * p[i + 1];
+            }
+            for i in 0..n - 1 {
+                d2[i] = (i + 1) as f64 * d1[i + 1];
+            }
+            let x = (1.0 + r.next().abs()) * 2f64.powi((trial % 7) as i32 - 3);
+            let hi = x * (1.0 + 2f64.powi(-9));
+            let (dv, ddv) = compensated_with_slope(&d1, &d2, n - 1, x);
+            let want = [horner(&p, n, x, 0, true), horner_compensated(&p, n, x), horner_abs(&p, n, x, 0),
+                        horner(&p, n, hi, 0, true), dv, ddv];
+            for tv in [touch_values(&p, &d1, &d2, n, x, hi), touch_values_core(&p, &d1, &d2, n, x, hi, false)] {
+                let got = [tv.vb, tv.pb, tv.ab, tv.vhi, tv.dv, tv.ddv];
+                for (g, w) in got.iter().zip(want) {
+                    assert_eq!(g.to_bits(), w.to_bits(), "n={n} x={x}");
                 }
             }
         }
