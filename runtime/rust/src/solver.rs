@@ -680,6 +680,12 @@ fn horner_compensated(p: &[f64], m: usize, x: f64) -> f64 {
 /// loop; d of degree m - 1, m >= 1).
 fn compensated_with_slope(p: &[f64], d: &[f64], m: usize, x: f64) -> (f64, f64) {
     count::madds(10 * m);
+    compensated_slope_ahead(p, d, m, x)
+}
+
+/// C `compensated_slope_ahead`: the same, uncounted (an evaluation done ahead of its use,
+/// counted there).
+fn compensated_slope_ahead(p: &[f64], d: &[f64], m: usize, x: f64) -> (f64, f64) {
     #[cfg(all(target_arch = "x86_64", not(target_feature = "fma")))]
     if hw_fma() {
         // SAFETY: the CPU has the fma instruction (detected above)
@@ -773,7 +779,15 @@ fn value_and_slope(p: &[f64], d: &[f64], m: usize, x: f64, k: i32, precise: bool
 const PRECISE_NOW: f64 = -1.0;
 
 #[allow(clippy::too_many_arguments)]
-fn refine_root(p: &[f64], d: &[f64], m: usize, mut lo: f64, mut hi: f64, slo: i32, tol: f64, x0: f64) -> f64 {
+fn refine_root(p: &[f64], d: &[f64], m: usize, lo: f64, hi: f64, slo: i32, tol: f64, x0: f64) -> f64 {
+    refine_root_from(p, d, m, lo, hi, slo, tol, x0, None)
+}
+
+/// C `refine_root_from`: `refine_root`, with (P(x0), P'(x0)) as `value_and_slope` gives them
+/// precisely (k = 0) computed ahead by the caller for the first step.
+#[allow(clippy::too_many_arguments)]
+fn refine_root_from(p: &[f64], d: &[f64], m: usize, mut lo: f64, mut hi: f64, slo: i32, tol: f64, x0: f64,
+                    first: Option<(f64, f64)>) -> f64 {
     let mut x = x0;
     let mut step = hi - lo;
     let mut step_old = step;
@@ -789,7 +803,13 @@ fn refine_root(p: &[f64], d: &[f64], m: usize, mut lo: f64, mut hi: f64, slo: i3
     for it in 0..MAX_ITER {
         count::event(if precise { 5 } else { 4 });
         let k = scale_exponent(x, m);
-        let (f, df, size) = value_and_slope(p, d, m, x, k, precise);
+        let (f, df, size) = match first {
+            Some((f, df)) if it == 0 => {
+                count::madds(3 * m - 1 + 10 * m); // (value_and_slope's, precise, k = 0)
+                (f, df, 0.0)
+            }
+            _ => value_and_slope(p, d, m, x, k, precise),
+        };
         if tol == 0.0 && !precise && f.abs() <= noise_factor(m) * size {
             precise = true;
             stop = 2.0 * U;
@@ -1671,11 +1691,18 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64, failed_w: f64)
     if let Some((end, start, tol)) = certify {
         let w = end + end * SPECULATE_MARGIN;
         let w = if w < t_end { w } else { t_end };
+        // the polish's first step ahead of the certificate, its chain beside the Bernstein
+        // sums (see the C source); counted where the polish uses it
+        let dp = derivative(p, n);
+        let first = if tol < 0.0 && scale_exponent(start, n) == 0 {
+            Some(compensated_slope_ahead(p, &dp, n, start))
+        } else {
+            None
+        };
         count::phase(1);
         if let Bernstein::One(_) = bernstein_test(a, n, w, None) {
-            let dp = derivative(p, n);
             count::phase(2);
-            return Isolation::Isolated(refine_root(p, &dp, n, 0.0, w, 1, tol, start), false);
+            return Isolation::Isolated(refine_root_from(p, &dp, n, 0.0, w, 1, tol, start, first), false);
         }
     }
     count::phase(1);
