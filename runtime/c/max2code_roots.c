@@ -442,7 +442,7 @@ static int scale_exponent(double x, int m)
  * and fma(s, x, -s x) and Dekker's products are both the exact error of
  * s x.  Only speed differs: without the instruction every fma() is a
  * library call, one after the other in a Horner chain (measured:
- * bench/roots_ab.py --sweeps 21, aligned: see README, Runtimes).  Plain
+ * bench/roots_ab.py --sweeps 21, aligned: see README, Benchmarks).  Plain
  * evaluation stays multiply-then-add everywhere: the answers do not depend
  * on the CPU. */
 #if !defined(FP_FAST_FMA) && !defined(M2C_NO_FMA_DISPATCH) && defined(__GNUC__) && \

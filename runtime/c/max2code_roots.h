@@ -93,7 +93,8 @@
  *           to the right (for real roots it converges monotonically to the
  *           first root after its start, cubically near it; complex roots in
  *           the way, a double root or no step to the right end the guess);
- *           once it converges to r, Descartes' rule in the Bernstein basis
+ *           once it converges to r (a step below 2^-26, or below 2^-14
+ *           and 1/16 of the step before), Descartes' rule in the Bernstein basis
  *           on (0, r (1 + 2^-20)] (the sign changes of the Bernstein
  *           coefficients of p and q there, from the Taylor coefficients at
  *           0 by n rounds of running sums, each sign trusted only beyond an
@@ -170,7 +171,8 @@
  *     spans decades -- whenever Newton leaves the bracket or stalls) with
  *     plain Horner down to a step of 2^-26, then one or two steps with
  *     compensated Horner (Graillat, Langlois & Louvet; error-free products
- *     by fma where it is an instruction, else Dekker's splitting): the root
+ *     by fma where it is an instruction -- on x86-64 chosen at run time by
+ *     the CPU, with the same bits -- else Dekker's splitting): the root
  *     is then correct to about an ulp unless its condition number nears
  *     1/u -- also roots near 1e-12, and moderately ill-conditioned ones
  *     (plain or FMA Horner would leave n u kappa).  Beyond 2^100 FMA Horner
