@@ -12,9 +12,14 @@
  * the same polynomial by the same build).  The ratio of the two is what a
  * single run can show; absolute times on a shared machine cannot.
  *
- * Output: "# horner8_ns H empty_ns E differ D", then per polynomial
+ * Output: "# horner8_ns H empty_ns E differ D warm W", then per polynomial
  * "FAMILY NS_A NS_B" (medians over the sweeps, the empty region's cost
  * subtracted), then per differing polynomial "# differ INDEX ...".
+ *
+ * "roots_ab SWEEPS WARM": B's timed call follows WARM untimed solves of the
+ * same polynomial by B (its predictors and caches trained on it, as a solve
+ * repeated in a loop finds them); with A and B the same code, B / A is what
+ * the stream's cold state costs (bench/roots_ab.py --warm).
  *
  * "roots_ab work A|B|H REPS" (run under valgrind by roots_ab.py
  * --instructions) only reads the polynomials and solves each REPS times by
@@ -52,6 +57,11 @@ int main(int argc, char **argv)
         return 2;
     }
     int sweeps = work ? 1 : argc > 1 ? atoi(argv[1]) : 15;
+    int warm = !work && argc > 2 ? atoi(argv[2]) : 0; /* B's untimed solves before its timed one */
+    if (warm < 0 || warm > 100) {
+        fprintf(stderr, "roots_ab: warm must be 0..100\n");
+        return 2;
+    }
     if (sweeps < 1 || sweeps > MAXSWEEPS) {
         fprintf(stderr, "roots_ab: sweeps must be 1..%d\n", MAXSWEEPS);
         return 2;
@@ -126,6 +136,8 @@ int main(int argc, char **argv)
                 int b = (w + (int)k + s) % 2;
                 double t = 0;
                 int g = 0;
+                for (int r = 0; b && r < warm; r++)
+                    sink = B_ex(p->c, p->degree, p->tmax, &t, 0, &g);
                 double t0 = now_ns();
                 int st = b ? B_ex(p->c, p->degree, p->tmax, &t, 0, &g)
                            : A_ex(p->c, p->degree, p->tmax, &t, 0, &g);
@@ -147,7 +159,8 @@ int main(int argc, char **argv)
         sink = v;
         hns[r] = (t1 - t0 - overhead) / 16;
     }
-    printf("# horner8_ns %.2f empty_ns %.2f differ %zu\n", median(hns, 2001), overhead, differ);
+    printf("# horner8_ns %.2f empty_ns %.2f differ %zu warm %d\n", median(hns, 2001), overhead,
+           differ, warm);
     for (size_t i = 0; i < n; i++)
         printf("%s %.2f %.2f\n", ps[i].family, median(&na[i * (size_t)sweeps], sweeps),
                median(&nb[i * (size_t)sweeps], sweeps));

@@ -2,6 +2,7 @@
 
     python bench/roots_ab.py BASE [--count N] [--sweeps S] [--families f,g,...]
     python bench/roots_ab.py BASE --instructions [--reps R] [--count N] [--families f,g,...]
+    python bench/roots_ab.py HEAD --warm K      # (working tree = HEAD) warm solves over cold ones
 
 BASE is a git revision (its runtime/c/max2code_roots.c and .h) or a path to a runtime .c
 file; B is the working tree's runtime.  Both are built with gcc -O2 into one harness
@@ -31,6 +32,12 @@ instructions, a few % in mispredicts: the simulated predictor sees the code's ad
 are not time (the Bernstein sums and Taylor shifts run many
 independent chains at once, a Newton step waits on one), so a change that trades instructions
 for latency needs the timed comparison too.
+
+With --warm K, B's timed solve follows K untimed solves of the same polynomial by B: its
+branch predictors and caches trained on that polynomial, as in a loop that solves one
+polynomial over and over (bench/roots_kernels.py), where the benchmark's stream, shuffled
+across families and degrees, leaves them cold.  With BASE the working tree's own code, B / A
+is the warm solve's time over the cold one's: what the stream's cold state costs.
 """
 
 from __future__ import annotations
@@ -106,24 +113,28 @@ def input_lines(polys: list[tuple[str, tuple[float, ...], float]]) -> list[str]:
     return [" ".join([f, t.hex(), str(len(c) - 1), *(x.hex() for x in c)]) for f, c, t in polys]
 
 
-def run(exe: Path, polys: list[tuple[str, tuple[float, ...], float]], sweeps: int
-        ) -> tuple[float, list[str], list[tuple[str, float, float]]]:
-    """(Horner unit in ns, the differing-answer lines, per polynomial (family, ns A, ns B))."""
+def run(exe: Path, polys: list[tuple[str, tuple[float, ...], float]], sweeps: int, warm: int = 0
+        ) -> tuple[float, list[str], list[tuple[str, float, float]], int]:
+    """(Horner unit in ns, the differing-answer lines, per polynomial (family, ns A, ns B), the
+    untimed solves before each of B's as the harness did them); with warm, B's timed solve
+    follows that many untimed solves of the same polynomial."""
     lines = input_lines(polys)
-    r = subprocess.run([str(exe), str(sweeps)], input="\n".join(lines) + "\n",
+    r = subprocess.run([str(exe), str(sweeps), str(warm)], input="\n".join(lines) + "\n",
                        capture_output=True, text=True)
     if r.returncode != 0:
         sys.exit(f"roots_ab: the harness failed ({r.returncode}): {r.stderr.strip()}")
-    unit, differ, rows = float("nan"), [], []
+    unit, differ, rows, done = float("nan"), [], [], 0
     for line in r.stdout.splitlines():
         if line.startswith("# differ "):
             differ.append(line[2:])
         elif line.startswith("# horner8_ns"):
-            unit = float(line.split()[2])
+            words = line.split()
+            unit = float(words[2])
+            done = int(words[words.index("warm") + 1])
         else:
             fam, a, b = line.split()
             rows.append((fam, float(a), float(b)))
-    return unit, differ, rows
+    return unit, differ, rows, done
 
 
 def valgrind_counts(valgrind: str, exe: Path, lines: list[str], which: str, reps: int
@@ -182,9 +193,11 @@ def instructions_report(base: str, command: str, unit: float,
 
 
 def report(base: str, command: str, unit: float, differ: list[str],
-           rows: list[tuple[str, float, float]], polys: list) -> str:
+           rows: list[tuple[str, float, float]], polys: list, warm: int = 0) -> str:
+    trained = (f" B's solves each timed after {warm} untimed solves of the same polynomial "
+               "(warm), A's in the cold stream." if warm else "")
     out = [f"A = {base}, B = the working tree; command: `{command}`; one degree-8 Horner "
-           f"evaluation = {unit:.1f} ns in this run.", "",
+           f"evaluation = {unit:.1f} ns in this run.{trained}", "",
            "| family | A median (evaluations) | B median (evaluations) | B / A median | "
            "B / A mean |", "|---|---:|---:|---:|---:|"]
     for fam in dict.fromkeys(f for f, _, _ in rows):
@@ -213,13 +226,17 @@ def main(argv: list[str] | None = None) -> int:
                          "out of the comparison)")
     ap.add_argument("--reps", type=int, default=4,
                     help="solves of each polynomial counted with --instructions (default 4)")
+    ap.add_argument("--warm", type=int, default=0,
+                    help="B's timed solve follows this many untimed solves of the same polynomial "
+                         "(predictors and caches trained on it); with BASE the working tree's "
+                         "code, B / A is the warm solve's time over the cold one's (default 0)")
     args = ap.parse_args(argv)
     fams = [f for f in args.families.split(",") if f]
     unknown = [f for f in fams if f not in roots.MAKERS]
     if unknown:
         ap.error(f"unknown families {unknown}; known: {', '.join(roots.MAKERS)}")
-    if not 1 <= args.sweeps <= 101 or args.count < 1 or args.reps < 1:
-        ap.error("--sweeps must be 1..101, --count and --reps positive")
+    if not 1 <= args.sweeps <= 101 or args.count < 1 or args.reps < 1 or not 0 <= args.warm <= 100:
+        ap.error("--sweeps must be 1..101, --count and --reps positive, --warm 0..100")
     polys = [p for p in roots.polynomials(args.count) if p[0] in fams]
     valgrind = shutil.which("valgrind")
     if args.instructions and valgrind is None:
@@ -232,8 +249,8 @@ def main(argv: list[str] | None = None) -> int:
             iunit, counts = instructions(valgrind, exe, polys, args.reps)
             print(instructions_report(args.base, command, iunit, counts))
             return 0
-        unit, differ, rows = run(exe, polys, args.sweeps)
-    print(report(args.base, command, unit, differ, rows, polys))
+        unit, differ, rows, warm = run(exe, polys, args.sweeps, args.warm)
+    print(report(args.base, command, unit, differ, rows, polys, warm))
     return 0
 
 

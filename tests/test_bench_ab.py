@@ -42,6 +42,19 @@ def test_the_runtime_against_itself_differs_nowhere() -> None:
     assert all(a > 0 and b > 0 for a, b, _, _ in rows.values()), r.stdout
 
 
+def test_warm_solves_reach_the_harness_and_change_no_answer() -> None:
+    """--warm K: the harness itself reports the untimed solves it ran before each of B's timed
+    ones (the report's words come from its output), and the answers are still compared."""
+    r = _run(str(C_SRC), "--count", "4", "--sweeps", "2", "--warm", "2", "--families", FAMILIES)
+    assert r.returncode == 0, r.stderr
+    assert "timed after 2 untimed solves" in r.stdout and "0 of 16 differ" in r.stdout
+    assert sorted(_rows(r.stdout)) == sorted(FAMILIES.split(","))
+    cold = _run(str(C_SRC), "--count", "4", "--sweeps", "1", "--families", FAMILIES)
+    assert cold.returncode == 0 and "untimed" not in cold.stdout
+    bad = _run(str(C_SRC), "--count", "1", "--warm", "101", "--families", "generic8")
+    assert bad.returncode == 2 and "--warm" in bad.stderr
+
+
 def test_a_root_moved_by_an_ulp_is_reported_where_a_root_is_found(tmp_path: Path) -> None:
     src = C_SRC.read_text()
     marker = "    *t = root;\n"
