@@ -2987,19 +2987,44 @@ static int outweighed(const double c[], int n)
     double K = (1 + e) / (1 - e) * (1 + 16 * UNIT_ROUNDOFF);
     if (!(s * c[n] > 0))
         return 0;
-    for (int i = 1; i < n; i++) {
+    /* The signs of s c_i as bit masks (bit i), then the pattern in one
+     * test -- every negative coefficient's two neighbours positive (not a
+     * zero, not two negatives side by side) -- and the comparison of each
+     * negative one, visited by its bit, with no exit at a failure: the
+     * same conditions as a loop over every i with a branch on each sign and
+     * an exit at the first failure, without those branches, whose outcomes
+     * are data (measured against that loop, bench/roots_ab.py --sweeps 21
+     * aligned, three runs: the 20 "tmax = inf" solves this settles 0.89-1.00
+     * of the time at their median, the family's median 0.88-0.93; the other
+     * families within 1-2 %; the family's mean 1.02-1.03, as a window it
+     * does not settle now reads every sign first; the same answers).
+     * (s c_0 > 0 and s c_n > 0: no negative at either end, so each has both
+     * neighbours.) */
+    uint32_t neg = 0, pos = 0;
+    for (int i = 0; i <= n; i++) {
         double v = s * c[i];
-        if (!(v < 0))
-            continue;
-        double a = s * c[i - 1], b = s * c[i + 1];
-        if (!(a > 0 && b > 0))
-            return 0; /* a zero, or two negatives side by side */
-        a *= i >= 2 && s * c[i - 2] < 0 ? 0.5 : 1; /* a lends to i - 2 too */
-        b *= i + 2 <= n && s * c[i + 2] < 0 ? 0.5 : 1;
-        if (!(-v * K < 2 * (sqrt(a) * sqrt(b))))
-            return 0;
+        neg |= (uint32_t)(v < 0) << i;
+        pos |= (uint32_t)(v > 0) << i;
     }
-    return 1;
+    if (((neg << 1) | (neg >> 1)) & ~pos)
+        return 0; /* a zero, or two negatives side by side */
+    int ok = 1;
+    for (uint32_t m = neg; m != 0; m &= m - 1) {
+#if defined(__GNUC__)
+        int i = __builtin_ctz(m); /* the lowest negative left */
+#else
+        int i = 0;
+        while (!((m >> i) & 1))
+            i++;
+#endif
+        double v = s * c[i];
+        double a = s * c[i - 1], b = s * c[i + 1];
+        /* a lends to i - 2 too when that is negative, b to i + 2 */
+        a *= 1 - 0.5 * (double)(((neg << 2) >> i) & 1);
+        b *= 1 - 0.5 * (double)((neg >> (i + 2)) & 1);
+        ok &= -v * K < 2 * (sqrt(a) * sqrt(b));
+    }
+    return ok;
 }
 
 /* Step 0b (see header): no root in (0, tmax] by the bounds of

@@ -387,22 +387,31 @@ pub(crate) fn outweighed(c: &Coeffs, n: usize) -> bool {
     if !(s * c[n] > 0.0) {
         return false;
     }
-    for i in 1..n {
-        let v = s * c[i];
-        if !(v < 0.0) {
-            continue;
-        }
-        let (mut a, mut b) = (s * c[i - 1], s * c[i + 1]);
-        if !(a > 0.0 && b > 0.0) {
-            return false; // a zero, or two negatives side by side
-        }
-        a *= if i >= 2 && s * c[i - 2] < 0.0 { 0.5 } else { 1.0 }; // a lends to i - 2 too
-        b *= if i + 2 <= n && s * c[i + 2] < 0.0 { 0.5 } else { 1.0 };
-        if !(-v * k < 2.0 * (a.sqrt() * b.sqrt())) {
-            return false;
-        }
+    // C's order: the signs as bit masks, the pattern in one test (every negative's two
+    // neighbours positive), then each negative's comparison by its bit, no exit at a failure
+    // (the branches on the signs are data; see the C comment)
+    let (mut neg, mut pos) = (0u32, 0u32);
+    for (i, &ci) in c.iter().enumerate().take(n + 1) {
+        let v = s * ci;
+        neg |= u32::from(v < 0.0) << i;
+        pos |= u32::from(v > 0.0) << i;
     }
-    true
+    if ((neg << 1) | (neg >> 1)) & !pos != 0 {
+        return false; // a zero, or two negatives side by side
+    }
+    let mut ok = true;
+    let mut m = neg;
+    while m != 0 {
+        let i = m.trailing_zeros() as usize; // the lowest negative left (1 <= i < n)
+        m &= m - 1;
+        let v = s * c[i];
+        let (mut a, mut b) = (s * c[i - 1], s * c[i + 1]);
+        // a lends to i - 2 too when that is negative, b to i + 2
+        a *= 1.0 - 0.5 * f64::from(((neg << 2) >> i) & 1);
+        b *= 1.0 - 0.5 * f64::from((neg >> (i + 2)) & 1);
+        ok &= -v * k < 2.0 * (a.sqrt() * b.sqrt());
+    }
+    ok
 }
 
 /// C `cleared_at_once`, step 0b of `solve` (see the C header): no root in (0, tmax] by the

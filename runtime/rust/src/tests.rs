@@ -422,3 +422,63 @@ fn spread_quartic_roots() {
         }
     }
 }
+
+/// `outweighed` reads the signs as bit masks and makes every comparison without an exit: on
+/// 100,000 random vectors (degrees 3-16, alternating signs or any, zeros, negatives within
+/// 1e-3 and 1e-14 of their AM-GM bound) it decides as its definition, the loop with a branch
+/// on each sign and an exit at the first failure (written out here), and both answers occur.
+#[test]
+fn outweighed_decides_as_its_definition() {
+    #[allow(clippy::neg_cmp_op_on_partial_ord)] // (the definition, as C writes it)
+    fn reference(c: &Coeffs, n: usize) -> bool {
+        let s = if c[0] < 0.0 { -1.0 } else { 1.0 };
+        let e = 2.0 * solver::noise_factor(n);
+        let k = (1.0 + e) / (1.0 - e) * (1.0 + 16.0 * (f64::EPSILON / 2.0));
+        if !(s * c[n] > 0.0) {
+            return false;
+        }
+        for i in 1..n {
+            let v = s * c[i];
+            if !(v < 0.0) {
+                continue;
+            }
+            let (mut a, mut b) = (s * c[i - 1], s * c[i + 1]);
+            if !(a > 0.0 && b > 0.0) {
+                return false;
+            }
+            a *= if i >= 2 && s * c[i - 2] < 0.0 { 0.5 } else { 1.0 };
+            b *= if i + 2 <= n && s * c[i + 2] < 0.0 { 0.5 } else { 1.0 };
+            if !(-v * k < 2.0 * (a.sqrt() * b.sqrt())) {
+                return false;
+            }
+        }
+        true
+    }
+    let mut rng = Rng(0x2545_f491_4f6c_dd1d);
+    let (mut yes, total) = (0, 100_000);
+    for _ in 0..total {
+        let n = 3 + (rng.unif() * 14.0) as usize;
+        let s = if rng.unif() < 0.5 { -1.0 } else { 1.0 };
+        let alt = rng.unif() < 0.7;
+        let mut c: Coeffs = [0.0; MAXN + 1];
+        for (i, ci) in c.iter_mut().enumerate().take(n + 1) {
+            let r = rng.unif();
+            let sg = if i == 0 { 1.0 } else if alt { if i % 2 == 1 && r < 0.6 { -1.0 } else { 1.0 } } else if r < 0.35 { -1.0 } else { 1.0 };
+            let mag = (1.0 + rng.unif()) * 2f64.powi((rng.unif() * 40.0) as i32 - 20);
+            *ci = if i > 0 && rng.unif() < 0.03 { 0.0 } else { s * sg * mag };
+        }
+        for i in 1..n {
+            if !(s * c[i] < 0.0 && s * c[i - 1] > 0.0 && s * c[i + 1] > 0.0) {
+                continue;
+            }
+            let a = s * c[i - 1] * if i >= 2 && s * c[i - 2] < 0.0 { 0.5 } else { 1.0 };
+            let b = s * c[i + 1] * if i + 2 <= n && s * c[i + 2] < 0.0 { 0.5 } else { 1.0 };
+            let d = (rng.unif() - 0.5) * if rng.unif() < 0.5 { 1e-3 } else { 1e-14 };
+            c[i] = -s * 2.0 * a.sqrt() * b.sqrt() * (1.0 - 2e-15 * n as f64 + d);
+        }
+        let want = reference(&c, n);
+        assert_eq!(solver::outweighed(&c, n), want, "n = {n}, c = {:?}", &c[..=n]);
+        yes += usize::from(want);
+    }
+    assert!(yes > total / 20 && yes < total * 19 / 20, "{yes} of {total}");
+}
