@@ -2993,11 +2993,11 @@ static int outweighed(const double c[], int n)
      * negative one, visited by its bit, with no exit at a failure: the
      * same conditions as a loop over every i with a branch on each sign and
      * an exit at the first failure, without those branches, whose outcomes
-     * are data (measured against that loop, bench/roots_ab.py --sweeps 21
-     * aligned, three runs: the 20 "tmax = inf" solves this settles 0.89-1.00
-     * of the time at their median, the family's median 0.88-0.93; the other
-     * families within 1-2 %; the family's mean 1.02-1.03, as a window it
-     * does not settle now reads every sign first; the same answers).
+     * are data (measured against that loop, bench/roots_ab.py dc8ae46
+     * --sweeps 21, aligned, two runs: "tmax = inf" 0.86 and 0.95 of the time
+     * at the median, 1.01 in the mean, as a window it does not settle now
+     * reads every sign first; generic octics 1.02; --instructions 1.005-1.012
+     * on the families that reach it; the same answers: README, Benchmarks).
      * (s c_0 > 0 and s c_n > 0: no negative at either end, so each has both
      * neighbours.) */
     uint32_t neg = 0, pos = 0;

@@ -10,9 +10,10 @@ from conftest import require
 C_DIR = Path(__file__).resolve().parents[2] / "runtime" / "c"
 
 
-def run_c_program(program: str, tmp_path: Path, name: str) -> str:
-    """Compiles `program` (gcc -O2, no GSL, the runtime's folder on the include path), runs it,
-    and returns what it printed, asserting that it ran to the end with no difference."""
+def run_c_program(program: str, tmp_path: Path, name: str, stdin: str = "") -> str:
+    """Compiles `program` (gcc -O2, no GSL, the runtime's folder on the include path), runs it
+    on `stdin`, and returns what it printed, asserting that it ran to the end with no
+    difference."""
     gcc = require("gcc")
     src = tmp_path / f"{name}.c"
     src.write_text(program)
@@ -20,7 +21,7 @@ def run_c_program(program: str, tmp_path: Path, name: str) -> str:
     r = subprocess.run([gcc, "-O2", "-std=c11", "-DM2C_NO_GSL", "-I", str(C_DIR), str(src), "-o",
                         str(exe), "-lm"], capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
-    run = subprocess.run([str(exe)], capture_output=True, text=True, timeout=300)
+    run = subprocess.run([str(exe)], input=stdin, capture_output=True, text=True, timeout=300)
     last = run.stdout.strip().split("\n")[-1].split()
     assert run.returncode == 0 and last[-2:] == ["0", "differences"], run.stdout
     return run.stdout
