@@ -598,8 +598,8 @@ static int quad_roots(double a, double b, double c, double r[2], double *disc)
 
 /* First root in (lo, tmax] of c0 + c1 t + c2 t^2 (c2 != 0; lo >= 0: 0 but
  * for first_root_sliced). */
-static int first_root_quadratic(const double c[3], double lo, double tmax,
-                                double skin, double *t, int *graze)
+NOINLINE static int first_root_quadratic(const double c[3], double lo, double tmax,
+                                         double skin, double *t, int *graze)
 {
     double r[2], disc;
     if (quad_roots(c[2], c[1], c[0], r, &disc) == 2) {
@@ -2317,8 +2317,8 @@ static int scan_pieces(const double c[], double d[MAXN + 1][MAXN + 1], int n,
 /* First root in (lo, T] of c (degree n >= 3, normalised, c(lo) > 0): the
  * critical points, then scan_pieces.  x0: a critical point known to within
  * rounding (the guess's touch), or 0. */
-static int derivative_method(const double c[], int n, double lo, double T,
-                             double x0, double skin, double *t, int *graze)
+NOINLINE static int derivative_method(const double c[], int n, double lo, double T,
+                                      double x0, double skin, double *t, int *graze)
 {
     PHASE(3);
     COUNT(7);
@@ -2405,6 +2405,68 @@ static int first_root_interval(const double p[], int n, double T,
     return derivative_method(p, n, lo, T, 0, skin, t, graze);
 }
 
+/* Degree-specialised copies of the solve for degrees 4 and 8 -- the
+ * contact polynomials of two circles without and with orbits, which the
+ * shipped equations give most -- made by the compiler: a wrapper that
+ * calls the common code with n a constant and inlines every call below it
+ * (flatten), so the copy's loops over the degree have fixed bounds and its
+ * calls are gone.  The same operations in the same order: the same bits
+ * (tests/runtime/test_build_variants.py builds with -DM2C_NO_DEGREE_CLONES
+ * and compares).  The rare paths stay out of the copies (NOINLINE: the
+ * derivative method, the sliced, GSL, closed and quadratic solvers), which
+ * are 40 KiB each for the interval part, 4.5 KiB for the preparation.
+ * Measured against the code without them (bench/roots_ab.py BASE --sweeps
+ * 21 --cflags=-falign-functions=64, median of 5-7 runs of the ratio:
+ * README, Benchmarks): quartics 0.91, generic octics 0.94, collision
+ * polynomials 0.91, grazes 0.93, no root in the window 0.90; degrees 12
+ * and 16, copied alike, counted 0.91-0.93 of the instructions but ran no
+ * faster (1.01-1.04): not copied.  Also the preparation of solve() below
+ * (solve_fixed). */
+#if !defined(M2C_NO_DEGREE_CLONES) && defined(__has_attribute)
+#if __has_attribute(flatten)
+#define DEGREE_CLONES 1
+#endif
+#endif
+#ifndef DEGREE_CLONES
+#define DEGREE_CLONES 0
+#endif
+
+#if DEGREE_CLONES
+#define INTERVAL_CLONE(N)                                                                \
+    NOINLINE __attribute__((flatten)) static int first_root_interval_##N(               \
+        const double p[], double T, double skin, double failed_w, double *t, int *graze) \
+    {                                                                                    \
+        return first_root_interval(p, N, T, skin, failed_w, t, graze);                  \
+    }
+INTERVAL_CLONE(4)
+INTERVAL_CLONE(8)
+#undef INTERVAL_CLONE
+
+/* (out of line: the callers below are flattened, and the generic path must
+ * not be copied into them) */
+NOINLINE static int first_root_interval_any(const double p[], int n, double T,
+                                            double skin, double failed_w, double *t,
+                                            int *graze)
+{
+    return first_root_interval(p, n, T, skin, failed_w, t, graze);
+}
+#endif
+
+/* first_root_interval, by its copy for the degree where there is one. */
+static int first_root_interval_fixed(const double p[], int n, double T, double skin,
+                                     double failed_w, double *t, int *graze)
+{
+#if DEGREE_CLONES
+    if (n == 8)
+        return first_root_interval_8(p, T, skin, failed_w, t, graze);
+    if (n == 4)
+        return first_root_interval_4(p, T, skin, failed_w, t, graze);
+    return first_root_interval_any(p, n, T, skin, failed_w, t, graze);
+#else
+    return first_root_interval(p, n, T, skin, failed_w, t, graze);
+#endif
+}
+
 /* ------------------------------------------------------------------ */
 /* Extreme spreads                                                      */
 /* ------------------------------------------------------------------ */
@@ -2450,8 +2512,8 @@ static int dominant_term(const int e[], const int nz[], int n, int d)
 
 /* First root in (0, tmax] of c (degree n >= 1, c[0] != 0, unnormalised,
  * spread beyond MAX_SPREAD); skin as in solve() but in the units of c. */
-static int first_root_sliced(const double c[], int n, double tmax, double eps,
-                             int nograze, double *t, int *graze)
+NOINLINE static int first_root_sliced(const double c[], int n, double tmax, double eps,
+                                      int nograze, double *t, int *graze)
 {
     int e[MAXN + 1], nz[MAXN + 1], emax;
     exponents(c, n, e, nz, &emax);
@@ -2542,8 +2604,8 @@ static int pick_first_real(const double zr[], const double zi[], int m,
 /* ------------------------------------------------------------------ */
 
 #ifndef M2C_NO_GSL
-static int first_root_gsl(const double c[], int n, double tmax, double *t,
-                          int *graze)
+NOINLINE static int first_root_gsl(const double c[], int n, double tmax, double *t,
+                                   int *graze)
 {
     double z[2 * MAXN], zr[MAXN], zi[MAXN];
     gsl_poly_complex_workspace *w = gsl_poly_complex_workspace_alloc((size_t)n + 1);
@@ -2564,8 +2626,8 @@ static int first_root_gsl(const double c[], int n, double tmax, double *t,
 }
 #else
 /* Built without GSL: solve() refuses the method (-1) before this. */
-static int first_root_gsl(const double c[], int n, double tmax, double *t,
-                          int *graze)
+NOINLINE static int first_root_gsl(const double c[], int n, double tmax, double *t,
+                                   int *graze)
 {
     (void)c; (void)n; (void)tmax; (void)t; (void)graze;
     return 0;
@@ -2943,8 +3005,8 @@ static void quartic_roots(const double cf[5], double zr[4], double zi[4])
 }
 
 /* Closed method for degree 3..4 (cubic as t * p(t), see header). */
-static int first_root_closed(const double c[], int n, double tmax, double *t,
-                             int *graze)
+NOINLINE static int first_root_closed(const double c[], int n, double tmax, double *t,
+                                      int *graze)
 {
     double q[5], zr[4], zi[4];
     if (n == 3) {
@@ -3086,13 +3148,13 @@ static int solve_normalised(double c[], const int e[], const int nz[], int n,
      * need not be near a positive root) */
     double B = root_bound(e, nz, skin > 0 ? NULL : c, n); /* (the exponents before scaling: the same) */
     double T = tu < B ? tu : B;      /* (fmin is a library call) */
-    return T > 0 && first_root_interval(c, n, T, skin, failed_w, root, g);
+    return T > 0 && first_root_interval_fixed(c, n, T, skin, failed_w, root, g);
 }
 
 /* The common path of every entry point: eps is the contact skin (>= 0, in
  * the units of c_in), ignored without the graze check. */
-static int solve(const double c_in[], int degree, double tmax, int method,
-                 double eps, double *t, int *graze)
+static ALWAYS_INLINE int solve_core(const double c_in[], int degree, double tmax,
+                                    int method, double eps, double *t, int *graze)
 {
     if (!input_is_valid(c_in, degree, tmax, t))
         return -1;
@@ -3159,6 +3221,33 @@ static int solve(const double c_in[], int degree, double tmax, int method,
     if (graze != NULL)
         *graze = g;
     return 1;
+}
+
+/* solve_core, by its copy for the degree where there is one (see
+ * first_root_interval_fixed; measured with it). */
+#if DEGREE_CLONES
+#define SOLVE_CLONE(N)                                                               \
+    NOINLINE __attribute__((flatten)) static int solve_##N(                         \
+        const double c_in[], double tmax, int method, double eps, double *t,         \
+        int *graze)                                                                  \
+    {                                                                                \
+        return solve_core(c_in, N, tmax, method, eps, t, graze);                     \
+    }
+SOLVE_CLONE(4)
+SOLVE_CLONE(8)
+#undef SOLVE_CLONE
+#endif
+
+static int solve(const double c_in[], int degree, double tmax, int method,
+                 double eps, double *t, int *graze)
+{
+#if DEGREE_CLONES
+    if (degree == 8)
+        return solve_8(c_in, tmax, method, eps, t, graze);
+    if (degree == 4)
+        return solve_4(c_in, tmax, method, eps, t, graze);
+#endif
+    return solve_core(c_in, degree, tmax, method, eps, t, graze);
 }
 
 int m2c_first_root_ex(const double c[], int degree, double tmax, double *t,

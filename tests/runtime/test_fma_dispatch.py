@@ -15,30 +15,17 @@ A program that includes max2code_roots.c evaluates random polynomials of every d
 random points and at points a few ulps from their roots (where the compensated value is all
 correction, and any slip in the error terms shows), with both copies, and prints every
 difference.  Where the CPU has no fma instruction the copies cannot both run: skipped locally
-with that reason.  And the whole runtime built with -DM2C_NO_FMA_DISPATCH (the plain kernels
-only) answers as the default build on the benchmark's families and adversarial vectors.
+with that reason.  (The whole runtime built with -DM2C_NO_FMA_DISPATCH, the plain kernels only,
+answers as the default build: tests/runtime/test_build_variants.py.)
 """
 from __future__ import annotations
 
-import math
 import platform
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 
-from conftest import require
-
-from . import fuzz
 from .c_program import run_c_program
-
-ROOT = Path(__file__).resolve().parents[2]
-C_DIR = ROOT / "runtime" / "c"
-
-
-def _num(x: float) -> str:
-    return float(x).hex() if math.isfinite(x) else repr(float(x))
 
 PROGRAM = r"""
 #include "max2code_roots.c"
@@ -143,35 +130,3 @@ def test_fma_copies_give_the_plain_bits(tmp_path: Path) -> None:
     # 6 per point, and 12 more per point from degree 3 on (touch_values and its plain copy)
     touch = sum(1 for trial in range(40000) if 1 + trial % 16 >= 3)
     assert compared == 40000 * 4 * 6 + touch * 4 * 12, out
-
-
-def _build(out: Path, extra: list[str]) -> Path:
-    gcc = require("gcc")
-    cmd = [gcc, "-O2", "-std=c11", "-Wall", "-Wextra", "-Werror", "-pedantic", *extra, "-I",
-           str(C_DIR), str(C_DIR / "max2code_roots.c"), str(C_DIR / "max2code_roots_driver.c"),
-           "-o", str(out), "-lgsl", "-lgslcblas", "-lm"]
-    r = subprocess.run(cmd, capture_output=True, text=True)
-    assert r.returncode == 0, f"{' '.join(cmd)}\n{r.stderr}"
-    return out
-
-
-def test_builds_without_dispatch_answer_alike(tmp_path: Path) -> None:
-    """The runtime built with -DM2C_NO_FMA_DISPATCH (the plain kernels only, as on a CPU without
-    the instruction) answers as the default build, bit for bit, on the benchmark's families
-    (touches, clusters, near roots: where the precise kernels decide) and adversarial vectors."""
-    sys.path.insert(0, str(ROOT / "bench"))
-    import roots  # noqa: E402  (bench/roots.py's families)
-
-    vecs = [(c, t) for _, c, t in roots.polynomials(60)] + fuzz.vectors(2000, seed=29)
-    lines = [" ".join([m, _num(t), str(len(c) - 1), *(_num(x) for x in c)])
-             for c, t in vecs for m in ("0", "1", "0:1e-9")]
-    out = []
-    for name, extra in (("default", []), ("plain", ["-DM2C_NO_FMA_DISPATCH"])):
-        exe = _build(tmp_path / name, extra)
-        r = subprocess.run([str(exe)], input="\n".join(lines) + "\n", capture_output=True,
-                           text=True, timeout=600)
-        assert r.returncode == 0, r.stderr
-        out.append(r.stdout.splitlines())
-    assert len(out[0]) == len(lines) and sum(ln.startswith("1 ") for ln in out[0]) > 500
-    differ = [f"{ln}: {a} / {b}" for ln, a, b in zip(lines, *out) if a != b]
-    assert not differ, "\n".join(differ[:20])

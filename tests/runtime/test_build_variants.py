@@ -1,0 +1,65 @@
+"""The C runtime's build variants answer alike, bit for bit.
+
+Two of the runtime's speed-ups are copies of code that the compiler chooses between, each
+promised to compute the same operations in the same order:
+
+- the precise kernels compiled for the fma instruction beside their plain builds, picked per call
+  by the CPU (FMA_DISPATCH; off with -DM2C_NO_FMA_DISPATCH, as on a CPU without it);
+- the solve copied for degrees 4 and 8 with the degree a constant and every hot call inlined
+  (DEGREE_CLONES; off with -DM2C_NO_DEGREE_CLONES).
+
+Each variant is built as the tests' line driver and run on the benchmark's families (touches,
+clusters, complex pairs near the window: where the precise kernels and the certified tests
+decide) and on adversarial vectors, with and without the contact skin; every answer (status,
+root, graze flag) must match the default build's.  The counts of degree-4 and degree-8 lines
+show that the copies were reached.
+"""
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from . import fuzz
+from . import test_fuzz_runtimes as tf
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+@pytest.fixture(scope="module")
+def lines() -> list[str]:
+    sys.path.insert(0, str(ROOT / "bench"))
+    import roots  # noqa: E402  (bench/roots.py's families)
+
+    vecs = [(c, t) for _, c, t in roots.polynomials(60)] + fuzz.vectors(2000, seed=29)
+    return [tf.c_line(m, c, t) for c, t in vecs for m in ("0", "1", "0:1e-9")]
+
+
+def _answers(exe: Path, lines: list[str]) -> list[str]:
+    r = subprocess.run([str(exe)], input="\n".join(lines) + "\n", capture_output=True,
+                       text=True, timeout=600)
+    assert r.returncode == 0, r.stderr
+    out = r.stdout.splitlines()
+    assert len(out) == len(lines)
+    return out
+
+
+@pytest.fixture(scope="module")
+def default_answers(lines: list[str], tmp_path_factory: pytest.TempPathFactory) -> list[str]:
+    exe = tf.build_driver(tmp_path_factory.mktemp("default") / "roots_driver")
+    return _answers(exe, lines)
+
+
+@pytest.mark.parametrize("define", ["M2C_NO_FMA_DISPATCH", "M2C_NO_DEGREE_CLONES"])
+def test_variant_answers_as_the_default_build(define: str, lines: list[str],
+                                              default_answers: list[str],
+                                              tmp_path: Path) -> None:
+    exe = tf.build_driver(tmp_path / "roots_driver", defines=[define])
+    out = _answers(exe, lines)
+    degrees = [ln.split()[2] for ln in lines]
+    found = [ln for ln in default_answers if ln.startswith("1 ")]
+    assert len(found) > 500 and degrees.count("4") > 300 and degrees.count("8") > 2000
+    differ = [f"{ln}: {a} / {b}" for ln, a, b in zip(lines, default_answers, out) if a != b]
+    assert not differ, f"{len(differ)} answers differ with -D{define}:\n" + "\n".join(differ[:20])
