@@ -2415,13 +2415,15 @@ static int first_root_interval(const double p[], int n, double T,
  * and compares).  The rare paths stay out of the copies (NOINLINE: the
  * derivative method, the sliced, GSL, closed and quadratic solvers), which
  * are 40 KiB each for the interval part, 4.5 KiB for the preparation.
- * Measured against the code without them (bench/roots_ab.py BASE --sweeps
- * 21 --cflags=-falign-functions=64, median of 5-7 runs of the ratio:
- * README, Benchmarks): quartics 0.91, generic octics 0.94, collision
- * polynomials 0.91, grazes 0.93, no root in the window 0.90; degrees 12
- * and 16, copied alike, counted 0.91-0.93 of the instructions but ran no
- * faster (1.01-1.04): not copied.  Also the preparation of solve() below
- * (solve_fixed). */
+ * Measured against the code without them (bench/roots_ab.py 837cda4
+ * --sweeps 21 --cflags=-falign-functions=64, the median of 7 runs' ratios
+ * of the medians: README, Benchmarks): quartics 0.92, generic octics 0.93,
+ * grazes 0.92, collision polynomials 0.89, no root in the window 0.83,
+ * tmax = inf 0.93, complex roots near the window 0.98; --instructions
+ * 0.86-0.96.  Degrees 12 and 16, copied alike, counted 0.91-0.93 of the
+ * instructions but ran no faster (1.00-1.04): not copied.  The
+ * preparation in solve() is copied the same way (solve_4, solve_8: a
+ * further 0.94-0.98 of the time, measured with these). */
 #if !defined(M2C_NO_DEGREE_CLONES) && defined(__has_attribute)
 #if __has_attribute(flatten)
 #define DEGREE_CLONES 1
