@@ -19,6 +19,34 @@
 
 #define MAXN M2C_MAX_DEGREE
 
+/* Every a * x + b stays a multiply, then an add, wherever the compiler
+ * could fuse it (the fma-instruction copies below included): the answers
+ * are the same bits as the other runtimes'.  Clang fuses within an
+ * expression by default and honours the standard pragma; GCC ignores the
+ * pragma, and fuses only in GNU mode with -mfma / -march (README: Building,
+ * -ffp-contract=off). */
+#if defined(__clang__)
+#pragma STDC FP_CONTRACT OFF
+#endif
+
+/* x + i y with no arithmetic on the parts (x + I y would turn an infinite
+ * y into a NaN real part).  C11's CMPLX, which glibc's <complex.h> leaves
+ * undefined for Clang (it asks for GCC 4.7): there, the parts are copied
+ * into place (C11 6.2.5: a complex has the representation of an array of
+ * its two parts). */
+#ifdef CMPLX
+#define COMPLEX_OF(x, y) CMPLX(x, y)
+#else
+static double complex complex_of(double x, double y)
+{
+    double parts[2] = {x, y};
+    double complex z;
+    memcpy(&z, parts, sizeof z);
+    return z;
+}
+#define COMPLEX_OF(x, y) complex_of(x, y)
+#endif
+
 /* Rare paths kept out of the hot function's frame and registers. */
 #if defined(__GNUC__)
 #define NOINLINE __attribute__((noinline))
@@ -2948,8 +2976,8 @@ static void quartic_roots(const double cf[5], double zr[4], double zi[4])
         kind = 1;
     } else if (d2 > 0) {
         double gamma = sqrt(d2);
-        cp = CMPLX(l1, gamma);
-        cq = CMPLX(l3, gamma * l2);
+        cp = COMPLEX_OF(l1, gamma);
+        cq = COMPLEX_OF(l3, gamma * l2);
         kind = 0;
     } else {
         kind = -1;
@@ -2975,7 +3003,7 @@ static void quartic_roots(const double cf[5], double zr[4], double zi[4])
                 kind = 1;
             }
         } else {
-            double complex p1 = l1, q1 = CMPLX(l3, sqrt(d3));
+            double complex p1 = l1, q1 = COMPLEX_OF(l3, sqrt(d3));
             double err1 = cfactor_error(a, b, c, d, p1, q1, conj(p1), conj(q1));
             if (kind == -1 || err1 < err0) {
                 cp = p1;

@@ -60,10 +60,11 @@ def c_lines(vecs: Sequence[fuzz.Vector]) -> list[str]:
     return [c_line(m, c, t) for c, t in vecs for m in (0, 1, 2, 3, f"0:{SKIN!r}")]
 
 
-def build_driver(out: Path, sanitize: bool = False, defines: Sequence[str] = ()) -> Path:
-    """The line driver on the C runtime (gcc, warnings as errors); `defines` are -D flags that
-    select a build variant (tests/runtime/test_build_variants.py)."""
-    gcc = require("gcc")
+def build_driver(out: Path, sanitize: bool = False, defines: Sequence[str] = (),
+                 cc: str = "gcc") -> Path:
+    """The line driver on the C runtime (warnings as errors); `defines` are -D flags that select
+    a build variant, `cc` the compiler (tests/runtime/test_build_variants.py)."""
+    gcc = require(cc)
     flags = ["-std=c11", "-Wall", "-Wextra", "-Werror", "-pedantic", *(f"-D{d}" for d in defines)]
     if sanitize:
         flags += ["-O1", "-g", "-fsanitize=address,undefined", "-fno-sanitize-recover=all",
