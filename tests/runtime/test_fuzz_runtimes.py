@@ -60,18 +60,18 @@ def c_lines(vecs: Sequence[fuzz.Vector]) -> list[str]:
     return [c_line(m, c, t) for c, t in vecs for m in (0, 1, 2, 3, f"0:{SKIN!r}")]
 
 
-def build_driver(out: Path, sanitize: bool = False, defines: Sequence[str] = (),
+def build_driver(out: Path, sanitize: bool = False, extra: Sequence[str] = (),
                  cc: str = "gcc") -> Path:
-    """The line driver on the C runtime (warnings as errors); `defines` are -D flags that select
-    a build variant, `cc` the compiler (tests/runtime/test_build_variants.py)."""
+    """The line driver on the C runtime (C11, warnings as errors); `extra` flags come last (a
+    -std there wins), `cc` is the compiler (tests/runtime/test_build_variants.py)."""
     gcc = require(cc)
-    flags = ["-std=c11", "-Wall", "-Wextra", "-Werror", "-pedantic", *(f"-D{d}" for d in defines)]
+    flags = ["-std=c11", "-Wall", "-Wextra", "-Werror", "-pedantic"]
     if sanitize:
         flags += ["-O1", "-g", "-fsanitize=address,undefined", "-fno-sanitize-recover=all",
                   "-fno-omit-frame-pointer"]
     else:
         flags += ["-O2"]
-    cmd = [gcc, *flags, "-I", str(C_DIR), str(C_DIR / "max2code_roots.c"),
+    cmd = [gcc, *flags, *extra, "-I", str(C_DIR), str(C_DIR / "max2code_roots.c"),
            str(C_DIR / "max2code_roots_driver.c"), "-o", str(out), "-lgsl", "-lgslcblas", "-lm"]
     r = subprocess.run(cmd, capture_output=True, text=True)
     assert r.returncode == 0, f"{' '.join(cmd)}\n{r.stderr}"
