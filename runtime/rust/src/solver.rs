@@ -565,8 +565,16 @@ fn sign_at(c: &[f64], n: usize, x: f64, precise: bool) -> i32 {
 /// C `quad_roots`: ascending real roots and the discriminant, or None when it is negative.
 pub(crate) fn quad_roots(a: f64, b: f64, c: f64) -> (Option<[f64; 2]>, f64) {
     let m = a.abs().max(b.abs().max(c.abs()));
-    let e = -i64::from(ilogb(m));
-    let (a, b, c) = (ldexp(a, e), ldexp(b, e), ldexp(c, e));
+    let e = -ilogb(m);
+    // as C: the scaling by an exact power of two, which rounds as ldexp does (ldexp, a call,
+    // only where that power is not a normal number)
+    let (a, b, c) = if (-1022..=1023).contains(&e) {
+        let f = pow2(e);
+        (a * f, b * f, c * f)
+    } else {
+        let e = i64::from(e);
+        (ldexp(a, e), ldexp(b, e), ldexp(c, e))
+    };
     let h = -0.5 * b;
     let (p, q) = (h * h, a * c);
     let dp = h.mul_add(h, -p);

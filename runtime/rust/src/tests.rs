@@ -482,3 +482,54 @@ fn outweighed_decides_as_its_definition() {
     }
     assert!(yes > total / 20 && yes < total * 19 / 20, "{yes} of {total}");
 }
+
+/// `quad_roots` scales by multiplying with an exact power of two where that power is a normal
+/// number (ldexp elsewhere): the same scaled coefficients as ldexp's, so the same roots and
+/// discriminant, bit for bit, as its definition with ldexp (written out here) -- on random
+/// coefficients over the whole exponent range, subnormals and the two ends of the fallback
+/// (the largest coefficient subnormal, or at 2^1023) included.
+#[test]
+fn quad_roots_scales_as_ldexp() {
+    fn reference(a: f64, b: f64, c: f64) -> (Option<[f64; 2]>, f64) {
+        let m = a.abs().max(b.abs().max(c.abs()));
+        let e = -i64::from(fp::ilogb(m));
+        let (a, b, c) = (fp::ldexp(a, e), fp::ldexp(b, e), fp::ldexp(c, e));
+        let h = -0.5 * b;
+        let (p, q) = (h * h, a * c);
+        let d = (p - q) + (h.mul_add(h, -p) - a.mul_add(c, -q));
+        if d < 0.0 {
+            return (None, d);
+        }
+        let w = h + d.sqrt().copysign(h);
+        let (r1, r2) = if w == 0.0 { (0.0, 0.0) } else { (w / a, c / w) };
+        (Some([r1.min(r2), r1.max(r2)]), d)
+    }
+    let mut rng = Rng(0x5eed_2026_1203);
+    let coefficient = |rng: &mut Rng| -> f64 {
+        let k = rng.unif();
+        let x = if k < 0.05 {
+            0.0
+        } else if k < 0.12 {
+            f64::from_bits(1 + (rng.next() >> 12)) // subnormal
+        } else if k < 0.2 {
+            (1.0 + rng.unif()) * 2f64.powi(1000 + (rng.unif() * 24.0) as i32)
+        } else {
+            (1.0 + rng.unif()) * 2f64.powi((rng.unif() * 2093.0) as i32 - 1070)
+        };
+        if rng.unif() < 0.5 { -x } else { x }
+    };
+    let (mut real, mut fallback, mut total) = (0, 0, 0);
+    while total < 100_000 {
+        let (a, b, c) = (coefficient(&mut rng), coefficient(&mut rng), coefficient(&mut rng));
+        if a == 0.0 || !(a.is_finite() && b.is_finite() && c.is_finite()) {
+            continue;
+        }
+        total += 1;
+        let m = a.abs().max(b.abs().max(c.abs()));
+        fallback += usize::from(m < f64::MIN_POSITIVE || m >= 2f64.powi(1023));
+        let (got, want) = (solver::quad_roots(a, b, c), reference(a, b, c));
+        real += usize::from(want.0.is_some());
+        assert!(got.1 == want.1 && got.0 == want.0, "{a:e} {b:e} {c:e}: {got:?} against {want:?}");
+    }
+    assert!(real > 30_000 && real < 90_000 && fallback > 500, "{real} {fallback}");
+}
