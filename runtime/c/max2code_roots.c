@@ -27,11 +27,17 @@
  * wherever the target has the instruction -- in the fma copies even
  * without -mfma: a plain gcc -O2 build differed in 36 of the 11,360
  * answers of tests/runtime/test_build_variants.py -- and its own pragma
- * turns that off for this file (the same code as -ffp-contract=off,
- * compared instruction for instruction; in C11 mode, the same as before). */
+ * turns that off for this file (GCC 12, -O2 and above: the same code as
+ * -ffp-contract=off, compared instruction for instruction; in C11 mode,
+ * the same as before; at -O1 it changes an inlining decision, not an
+ * answer).  The manual calls the optimize pragma unfit for production in
+ * general; this one sets the single option that keeps the answers the
+ * other runtimes'.  Both end with the file (pushed, popped below).  A
+ * user's -ffp-contract=fast still overrides Clang's pragma. */
 #if defined(__clang__)
 #pragma STDC FP_CONTRACT OFF
 #elif defined(__GNUC__)
+#pragma GCC push_options
 #pragma GCC optimize("fp-contract=off")
 #endif
 
@@ -2462,7 +2468,7 @@ static int first_root_interval(const double p[], int n, double T,
  * (tests/runtime/test_build_variants.py builds with -DM2C_NO_DEGREE_CLONES
  * and compares).  The rare paths stay out of the copies (NOINLINE: the
  * derivative method, the sliced, GSL, closed and quadratic solvers), which
- * are 40 KiB each for the interval part, 4.5 KiB for the preparation.
+ * are 40 kB each for the interval part, 4.5 kB for the preparation.
  * Measured against the code without them (bench/roots_ab.py 837cda4
  * --sweeps 21 --cflags=-falign-functions=64, the median of 7 runs' ratios
  * of the medians: README, Benchmarks): quartics 0.92, generic octics 0.93,
@@ -3346,3 +3352,10 @@ int m2c_first_roots(const double c[], int m, int degree, double tmax,
     }
     return found;
 }
+
+/* (the contraction setting above ends with this file) */
+#if defined(__clang__)
+#pragma STDC FP_CONTRACT DEFAULT
+#elif defined(__GNUC__)
+#pragma GCC pop_options
+#endif

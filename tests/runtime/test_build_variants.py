@@ -20,8 +20,10 @@ Each variant is built as the tests' line driver and run on the benchmark's famil
 clusters, complex pairs near the window: where the precise kernels and the certified tests
 decide) and on adversarial vectors, by the default method with and without the contact skin,
 the no-graze one and the closed form (degrees 3 and 4; the others: the default); every answer (status,
-root, graze flag) must match the default build's.  The counts of degree-2, 4 and 8 lines
-show that the copies were reached; the default build is gcc's.
+root, graze flag) must match the default build's (gcc's, C11); the input has hundreds of
+degree-2, 4 and 8 lines.  And the default builds of both compilers hold the copies (their
+symbols): were they silently off, the comparison with -DM2C_NO_DEGREE_CLONES would compare the
+generic code with itself.
 """
 from __future__ import annotations
 
@@ -30,6 +32,8 @@ import sys
 from pathlib import Path
 
 import pytest
+
+from conftest import require
 
 from . import fuzz
 from . import test_fuzz_runtimes as tf
@@ -82,3 +86,16 @@ def test_variant_answers_as_the_default_build(cc: str, extra: list[str], lines: 
     differ = [f"{ln}: {a} / {b}" for ln, a, b in zip(lines, default_answers, out) if a != b]
     what = " ".join([cc, *extra])
     assert not differ, f"{len(differ)} answers differ with {what}:\n" + "\n".join(differ[:20])
+
+
+@pytest.mark.parametrize("cc", ["gcc", "clang"])
+def test_default_build_has_the_degree_copies(cc: str, tmp_path: Path) -> None:
+    nm = require("nm")
+    obj = tmp_path / "roots.o"
+    r = subprocess.run([require(cc), "-O2", "-std=c11", "-c", str(tf.C_DIR / "max2code_roots.c"),
+                        "-o", str(obj)], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    names = set(subprocess.run([nm, str(obj)], capture_output=True, text=True,
+                               check=True).stdout.split())
+    copies = {"solve_2", "solve_4", "solve_8", "first_root_interval_4", "first_root_interval_8"}
+    assert copies <= names, sorted(copies - names)

@@ -1,4 +1,4 @@
-"""The quadratic kernel (quad_roots) of the C runtime against the pure-Python port's, bit for bit.
+"""The quadratic kernel (quad_roots) of the C runtime against the pure-Python port's: the same numbers.
 
 quad_roots scales a x^2 + b x + c by the power of two that brings the largest coefficient into
 [1, 2), then forms the discriminant with error-free products.  The C runtime reads the exponent
@@ -6,7 +6,7 @@ from the bits and scales by multiplying with an exact power of two (no ilogb, ld
 fmin: library calls that were a fifth of a quadratic solve's instructions); the Python port
 keeps ilogb and ldexp.  Multiplying by an exact power of two rounds as ldexp does, also where
 the result is subnormal; where the power itself is not a normal number (the largest coefficient
-subnormal, or at 2^1023) C falls back to ldexp.  So every root and discriminant must be the
+below 2^-1023, or at 2^1023) C falls back to ldexp.  So every root and discriminant must be the
 same number as Python's -- checked on random coefficients over the whole exponent range,
 subnormals, zeros, signs, double roots and the two ends of that fallback.  (Zeros may differ in
 sign: which of +0 and -0 comes first does not matter, a root must be above 0.)
@@ -39,6 +39,7 @@ int main(void)
         printf("%d %a %a %a\n", k, disc, r[0], r[1]);
         total++;
     }
+    /* (run_c_program wants the last line; the comparison is Python's) */
     printf("%ld quadratics\n0 differences\n", total);
     return 0;
 }
@@ -105,7 +106,7 @@ def test_quad_roots_as_the_python_port(tmp_path: Path) -> None:
         want = (2 if roots is not None else 0, d) + (tuple(roots) if roots is not None else ())
         real += roots is not None
         top = max(abs(a), abs(b), abs(c))
-        fallback += top < 2.0**-1022 or top >= 2.0**1023
+        fallback += top < 2.0**-1023 or top >= 2.0**1023
         if len(got) != len(want) or not all(_same(x, y) for x, y in zip(got, want)):
             differ.append(f"{a.hex()} {b.hex()} {c.hex()}: C {got}, Python {want}")
     assert not differ, f"{len(differ)} differ:\n" + "\n".join(differ[:10])
