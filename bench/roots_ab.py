@@ -37,7 +37,12 @@ With --warm K, B's timed solve follows K untimed solves of the same polynomial b
 branch predictors and caches trained on that polynomial, as in a loop that solves one
 polynomial over and over (bench/roots_kernels.py), where the benchmark's stream, shuffled
 across families and degrees, leaves them cold.  With BASE the working tree's own code, B / A
-is the warm solve's time over the cold one's: what the stream's cold state costs.
+is the warm solve's time over the cold one's: what the stream's cold state costs -- and part of
+what it shows is this harness's own: A and B are two copies of the code, and each evicts the
+other's from the instruction cache and the branch-target buffer.  A's cold solve costs more the
+more of B's solves come between (measured: quartics 16.0 evaluations with one, 25.1 with four,
+K = 3; generic octics 21.7 and 32.8), while bench/roots.py times one build alone (quartics
+18.0).  Read --warm's ratios as an upper bound on what the stream's cold state costs.
 """
 
 from __future__ import annotations
