@@ -92,6 +92,37 @@ def test_sequence_kinds(backend: str) -> None:
     assert rt.first_root_status((x for x in c), 10.0)[0] == -1  # no length
 
 
+def _first_root_or_error(c: object, tmax: float, eps: float = 0.0) -> object:
+    try:
+        return rt.first_root(c, tmax, eps)  # type: ignore[arg-type]
+    except ValueError:
+        return "invalid"
+
+
+def test_first_root_is_first_root_status(backend: str) -> None:
+    """first_root's straight call into C (lists and tuples, no skin) says what first_root_status
+    says: the root of a crossing, the touch's time (not -t), None, and ValueError for invalid
+    input -- on the shared cases (grazes among them), as a list and as a tuple, and on input
+    that only the full path can report."""
+    calls: list[tuple[object, float, float]] = []
+    for case in ALL:
+        for tmax in (case.tmax, math.inf):
+            calls += [(list(case.coeffs), tmax, 0.0), (tuple(case.coeffs), tmax, 0.0)]
+    calls += [([1.0, math.nan], 1.0, 0.0), ((1.0, math.inf), 1.0, 0.0), ([1.0] * 18, 1.0, 0.0),
+              ([], 1.0, 0.0), ((), 1.0, 0.0), (["x"], 1.0, 0.0), ([None, 1.0], 1.0, 0.0),
+              ([-1.0, 1.0], 0.0, 0.0), ([-1.0, 1.0], math.nan, 0.0), ([-1.0, 1.0], "2", 0.0),
+              ([-1.0, 1.0], 1.0, math.nan), ([-1.0, 1.0], 2.0, 1e-3), ([-1, 1], 2, 0),
+              ([1e308, -1e308, 1e308], 10.0, 0.0)]
+    touches = 0
+    for c, tmax, eps in calls:
+        st, t, g = rt.first_root_status(c, tmax, eps=eps)  # type: ignore[arg-type]
+        want = "invalid" if st == -1 else t if st == 1 else None
+        got = _first_root_or_error(c, tmax, eps)
+        assert got == want or (got is want), (c, tmax, eps, got, want)
+        touches += st == 1 and g
+    assert touches > 0  # the touches' sign was read back
+
+
 def test_graze_flag_and_nograze(backend: str) -> None:
     """A touch is reported flagged; without the check it is skipped."""
     c = cases.poly_from_roots(["1", "1", "5"], [("0", "1")])
