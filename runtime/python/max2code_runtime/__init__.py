@@ -47,7 +47,6 @@ def _load_c() -> Any:
 
 _C = _load_c()
 BACKEND = "c" if _C is not None else "python"
-_MAX_COEFFS = MAX_DEGREE + 1
 
 
 # ---------------------------------------------------------------------------
@@ -192,19 +191,14 @@ def first_root(c: Sequence[float], tmax: float = math.inf, eps: float = 0.0) -> 
     near-miss whose minimum is within eps counts as contact at the time of closest approach.
     Raises ValueError for invalid input (NaN/Inf coefficient, no or more than 17
     coefficients, tmax NaN or <= 0, eps NaN, negative or infinite)."""
-    # The call a generated module makes, a list or tuple without a skin, straight to the C
-    # solve's packed result (t, -t for a touch, 0 for none; NaN, or a cffi error, for input
-    # that the full path below then reports): three Python frames fewer, 0.86 of the time of
-    # a degree-8 call and 0.81 of one that ends at once (timeit, the old and new package
-    # alternated: 911 -> 786 and 672 -> 542 ns); tests/runtime/test_python_runtime.py
-    # compares it with first_root_status on valid and invalid input.
-    kind, cb = type(c), _C
-    if cb is not None and eps == 0.0 and (kind is list or kind is tuple):
-        n = len(c)
-        try:
-            v = cb._packed(c, n - 1, tmax, 0, 0.0) if 0 < n <= _MAX_COEFFS else math.nan
-        except (TypeError, ValueError, OverflowError):
-            v = math.nan
+    # The call a generated module makes, without a skin, straight to the C solve's packed
+    # result (t, -t for a touch, 0 for none; NaN for input that the full path below then
+    # reports): two Python frames fewer than through first_root_status (timeit, the old and new
+    # package alternated: see README, Runtimes); tests/runtime/test_python_runtime.py compares
+    # it with first_root_status on valid and invalid input.
+    cb = _C
+    if cb is not None and eps == 0.0:
+        v = cb.packed_default(c, tmax)
         if v > 0:
             return v
         if v < 0:

@@ -49,22 +49,27 @@ def solve(cc: list[float], tmax: float, method: int, eps: float) -> tuple[int, f
     return unpack(_packed(cc, len(cc) - 1, tmax, method, eps))
 
 
-def solve_default(c: Any, tmax: float) -> tuple[int, float, bool]:
-    """The default method on unvalidated input, the common call: the C runtime validates
-    (NaN/Inf, tmax, degree); only what cffi cannot pass is checked here.  -1 for input that
-    is not a sequence of 1 to 17 numbers.  A list or tuple goes to cffi as it is (cffi fills
-    a temporary array from it, as it would a kept buffer); any other sized sequence (a numpy
-    row) is made a list first.  Something without a length (a generator) is -1."""
+def packed_default(c: Any, tmax: float) -> float:
+    """The default method on unvalidated input, the common call, as m2c_first_root_packed's one
+    double (NaN for invalid input): the C runtime validates (NaN/Inf, tmax, degree); only what
+    cffi cannot pass is checked here.  NaN for input that is not a sequence of 1 to 17 numbers.
+    A list or tuple goes to cffi as it is (cffi fills a temporary array from it, as it would a
+    kept buffer); any other sized sequence (a numpy row) is made a list first.  Something
+    without a length (a generator) is NaN."""
     try:
         n = len(c)
         if not 0 < n <= MAX_COEFFS:
-            return INVALID
+            return math.nan
         if type(c) is not list and type(c) is not tuple:
             c = list(c)
-        v = _packed(c, n - 1, tmax, 0, 0.0)
+        return _packed(c, n - 1, tmax, 0, 0.0)
     except (TypeError, ValueError, OverflowError):
-        return INVALID
-    return unpack(v)
+        return math.nan
+
+
+def solve_default(c: Any, tmax: float) -> tuple[int, float, bool]:
+    """packed_default's answer as (status, t, graze)."""
+    return unpack(packed_default(c, tmax))
 
 
 def solve_batch(rows: list[list[float]], tmax: float, eps: float) -> list[float]:
