@@ -40,8 +40,9 @@ across families and degrees, leaves them cold.  With BASE the working tree's own
 is the warm solve's time over the cold one's: what the stream's cold state costs -- and part of
 what it shows is this harness's own: A and B are two copies of the code, and each evicts the
 other's from the instruction cache and the branch-target buffer.  A's cold solve costs more the
-more of B's solves come between (measured: quartics 16.0 evaluations with one, 25.1 with four,
-K = 3; generic octics 21.7 and 32.8), while bench/roots.py times one build alone (quartics
+more of B's solves come between (measured with --families generic4,generic8,collision8,
+--sweeps 15 and -falign-functions=64, column A: quartics 16.0 evaluations with one, 25.1 with
+four, --warm 3; generic octics 21.7 and 32.8), while bench/roots.py times one build alone (quartics
 18.0).  Read --warm's ratios as an upper bound on what the stream's cold state costs.
 """
 
