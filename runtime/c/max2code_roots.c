@@ -482,7 +482,7 @@ static int scale_exponent(double x, int m)
  * and fma(s, x, -s x) and Dekker's products are both the exact error of
  * s x.  Only speed differs: without the instruction every fma() is a
  * library call, one after the other in a Horner chain (measured:
- * bench/roots_ab.py --sweeps 21, aligned: see README, Benchmarks).  Plain
+ * bench/roots_ab.py --sweeps 21, aligned: see docs/performance-log.md).  Plain
  * evaluation stays multiply-then-add everywhere: the answers do not depend
  * on the CPU. */
 #if !defined(FP_FAST_FMA) && !defined(M2C_NO_FMA_DISPATCH) && defined(__GNUC__) && \
@@ -2471,7 +2471,7 @@ static int first_root_interval(const double p[], int n, double T,
  * are 40 kB each for the interval part, 4.5 kB for the preparation.
  * Measured against the code without them (bench/roots_ab.py 837cda4
  * --sweeps 21 --cflags=-falign-functions=64, the median of 7 runs' ratios
- * of the medians: README, Benchmarks): quartics 0.92, generic octics 0.93,
+ * of the medians: docs/performance-log.md): quartics 0.92, generic octics 0.93,
  * grazes 0.92, collision polynomials 0.89, no root in the window 0.83,
  * tmax = inf 0.93, complex roots near the window 0.98; --instructions
  * 0.86-0.96.  Degrees 12 and 16, copied alike, counted 0.91-0.93 of the
@@ -3117,7 +3117,7 @@ static int outweighed(const double c[], int n)
      * --sweeps 21, aligned, two runs: "tmax = inf" 0.86 and 0.95 of the time
      * at the median, 1.01 in the mean, as a window it does not settle now
      * reads every sign first; generic octics 1.02; --instructions 1.005-1.012
-     * on the families that reach it; the same answers: README, Benchmarks).
+     * on the families that reach it; the same answers: docs/performance-log.md).
      * (s c_0 > 0 and s c_n > 0: no negative at either end, so each has both
      * neighbours.) */
     uint32_t neg = 0, pos = 0;
