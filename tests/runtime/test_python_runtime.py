@@ -72,8 +72,8 @@ def test_first_root_contract(backend: str) -> None:
 
 
 def test_sequence_kinds(backend: str) -> None:
-    """Any sized sequence of numbers is coefficients (the C backend hands lists and tuples to
-    cffi as they are and makes a list of anything else); something without a length is
+    """Any sized sequence of numbers is coefficients (the C backend unpacks it into the
+    arguments of its binding for that many coefficients); something without a length is
     invalid input, on both backends."""
     import array
 
@@ -90,6 +90,40 @@ def test_sequence_kinds(backend: str) -> None:
         assert rt.first_root_status(seq, 10.0) == want, type(seq)
     assert rt.first_root_status(range(0), 10.0)[0] == -1  # no coefficients
     assert rt.first_root_status((x for x in c), 10.0)[0] == -1  # no length
+
+
+def test_bindings_by_length_are_the_array_call() -> None:
+    """The C backend's binding for k coefficients (k double arguments, the common call) gives,
+    bit for bit, what its array binding gives on the same coefficients, for every k from 1 to
+    17: random polynomials, windows finite and infinite, and invalid input the C runtime
+    reports (NaN, infinities, tmax <= 0).  Each takes exactly k + 1 arguments."""
+    import random
+    import struct
+
+    if C_BACKEND is None:
+        why = "the cffi backend is not built (python -m max2code_runtime.build; needs cffi)"
+        if os.environ.get("CI"):
+            pytest.fail(why + " -- required in CI")
+        pytest.skip(why)
+    bits = lambda v: struct.pack("<d", v)  # noqa: E731 - NaN == NaN by its bits
+    rng = random.Random(20261203)
+    roots = nones = 0
+    for k in range(1, 18):
+        by_len = C_BACKEND.BY_LEN[k]
+        for i in range(300):
+            c = [rng.uniform(-1, 1) * 10 ** rng.uniform(-3, 3) for _ in range(k)]
+            tmax = (math.inf, 10 ** rng.uniform(-2, 2), 0.0, -1.0, math.nan)[i % 5 if i < 50 else i % 2]
+            if i % 37 == 3:
+                c[rng.randrange(k)] = rng.choice((math.nan, math.inf, -math.inf))
+            want = C_BACKEND._packed(c, k - 1, tmax, 0, 0.0)
+            got = by_len(*c, tmax)
+            assert bits(got) == bits(want), (k, c, tmax, got, want)
+            roots += got != 0 and not math.isnan(got)
+            nones += got == 0
+        with pytest.raises(TypeError):
+            by_len(*([1.0] * (k + 1)), 1.0)  # one coefficient too many
+    assert C_BACKEND.BY_LEN[0] is None
+    assert roots > 1000 and nones > 1000  # both answers were compared, not only NaN
 
 
 def _first_root_or_error(c: object, tmax: float, eps: float = 0.0) -> object:

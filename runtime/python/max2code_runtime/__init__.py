@@ -198,7 +198,11 @@ def first_root(c: Sequence[float], tmax: float = math.inf, eps: float = 0.0) -> 
     # it with first_root_status on valid and invalid input.
     cb = _C
     if cb is not None and eps == 0.0:
-        v = cb.packed_default(c, tmax)
+        # (_C.solve_default's call, without its frame and tuple: NaN for what it refuses)
+        try:
+            v = cb.BY_LEN[len(c)](*c, tmax)
+        except cb.CALL_ERRORS:
+            v = math.nan
         if v > 0:
             return v
         if v < 0:

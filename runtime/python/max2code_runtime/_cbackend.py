@@ -10,6 +10,7 @@ import math
 from typing import Any, Sequence
 
 from ._roots_c import ffi, lib  # type: ignore[import-not-found]
+from ._source import MAX_COEFFS
 
 
 def _check_fresh() -> None:
@@ -28,9 +29,17 @@ def _check_fresh() -> None:
 
 _check_fresh()
 
-MAX_COEFFS = 17
 INVALID = (-1, math.nan, False)
 _packed = lib.m2c_first_root_packed
+# m2c_packed_k by k, the number of coefficients (_source.BINDING_C): the coefficients as k
+# double arguments, which cffi converts each as it does a list's items, but without building a
+# temporary array from a list (timeit, a stub that only sums them, three runs: 9 floats as
+# arguments 179-197 ns a call, as a list 290-345 ns).  BY_LEN[len(c)](*c, tmax) is the default solve of
+# any sized sequence c; it raises one of CALL_ERRORS for anything that is not 1 to 17 numbers
+# (BY_LEN[0] is None: not callable; past 17, an IndexError; a string or an object cffi cannot
+# convert, a TypeError; items fewer or more than len() says, a TypeError).
+BY_LEN = (None, *(getattr(lib, f"m2c_packed_{k}") for k in range(1, MAX_COEFFS + 1)))
+CALL_ERRORS = (TypeError, ValueError, OverflowError, IndexError)
 
 
 def unpack(v: float) -> tuple[int, float, bool]:
@@ -49,27 +58,17 @@ def solve(cc: list[float], tmax: float, method: int, eps: float) -> tuple[int, f
     return unpack(_packed(cc, len(cc) - 1, tmax, method, eps))
 
 
-def packed_default(c: Any, tmax: float) -> float:
-    """The default method on unvalidated input, the common call, as m2c_first_root_packed's one
-    double (NaN for invalid input): the C runtime validates (NaN/Inf, tmax, degree); only what
-    cffi cannot pass is checked here.  NaN for input that is not a sequence of 1 to 17 numbers.
-    A list or tuple goes to cffi as it is (cffi fills a temporary array from it, as it would a
-    kept buffer); any other sized sequence (a numpy row) is made a list first.  Something
-    without a length (a generator) is NaN."""
-    try:
-        n = len(c)
-        if not 0 < n <= MAX_COEFFS:
-            return math.nan
-        if type(c) is not list and type(c) is not tuple:
-            c = list(c)
-        return _packed(c, n - 1, tmax, 0, 0.0)
-    except (TypeError, ValueError, OverflowError):
-        return math.nan
-
-
 def solve_default(c: Any, tmax: float) -> tuple[int, float, bool]:
-    """packed_default's answer as (status, t, graze)."""
-    return unpack(packed_default(c, tmax))
+    """The default method on unvalidated input, the common call, as (status, t, graze): the C
+    runtime validates (NaN/Inf, tmax, degree); only what cffi cannot pass is caught here, as
+    invalid input: anything but a sized sequence of 1 to 17 numbers (a generator has no length).
+    The coefficients go to C as that many arguments (BY_LEN): any sized sequence (a list, a
+    tuple, a numpy row) unpacked, each item converted by cffi as a double.  (first_root makes
+    the same call itself, one frame fewer, and reads the packed double.)"""
+    try:
+        return unpack(BY_LEN[len(c)](*c, tmax))
+    except CALL_ERRORS:
+        return INVALID
 
 
 def solve_batch(rows: list[list[float]], tmax: float, eps: float) -> list[float]:

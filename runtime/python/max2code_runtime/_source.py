@@ -12,13 +12,18 @@ STAMP = Path(__file__).resolve().parent / "_roots_c.stamp"
 # the coefficient list straight into a temporary array (measured with python -m timeit on
 # c = [1.0] * 9, a solve that ends at once: 0.36 us a call, against 0.54 us for copying into a
 # kept buffer and calling m2c_first_root_ex with two out-pointers; bench/roots.py's Python
-# (C backend) column went from 2.9-19.6x C to 2.4-14.7x).
+# (C backend) column went from 2.9-19.6x C to 2.4-14.7x).  m2c_packed_1 .. m2c_packed_17 are
+# its default method for that many coefficients, passed as double arguments: cffi converts a
+# list into a temporary array at about twice the cost of converting the same numbers as
+# arguments (_cbackend.BY_LEN).
+MAX_COEFFS = 17
 CDEF = """
 int m2c_first_root_ex(const double c[], int degree, double tmax, double *t, int method, int *graze);
 int m2c_first_root_skin(const double c[], int degree, double tmax, double eps, double *t, int *graze);
 int m2c_first_roots(const double c[], int m, int degree, double tmax, double eps, double t[], int status[]);
 double m2c_first_root_packed(const double c[], int degree, double tmax, int method, double eps);
-"""
+""" + "".join(f"double m2c_packed_{k}({', '.join(['double'] * (k + 1))});\n"
+              for k in range(1, MAX_COEFFS + 1))
 
 # m2c_first_root_ex (eps = 0) or m2c_first_root_skin (eps != 0, the default method only), its
 # three results in one double: the root t (> 0) for a crossing, -t for a touch, +0.0 for no
@@ -35,7 +40,11 @@ double m2c_first_root_packed(const double c[], int degree, double tmax, int meth
                                                       : -1;
     return st == 1 ? (g ? -t : t) : st == 0 ? 0.0 : NAN;
 }
-"""
+""" + "".join(
+    f"double m2c_packed_{k}({', '.join(f'double c{i}' for i in range(k))}, double tmax)\n"
+    f"{{\n    const double c[{k}] = {{{', '.join(f'c{i}' for i in range(k))}}};\n"
+    f"    return m2c_first_root_packed(c, {k - 1}, tmax, M2C_METHOD_INTERVAL, 0.0);\n}}\n"
+    for k in range(1, MAX_COEFFS + 1))
 
 
 def source_digest(src: Path) -> str:
