@@ -126,6 +126,28 @@ def test_bindings_by_length_are_the_array_call() -> None:
     assert roots > 1000 and nones > 1000  # both answers were compared, not only NaN
 
 
+def test_extension_without_the_bindings_falls_back(monkeypatch: pytest.MonkeyPatch) -> None:
+    """An extension module built from older sources (pip leaves the old one behind on an
+    upgrade of an installed copy, where no stamp is checked) lacks the per-count bindings: the
+    package then falls back to the pure-Python port instead of failing to import."""
+    import types
+
+    class OldLib:
+        m2c_first_root_packed = staticmethod(lambda *a: 0.0)  # only what the old build had
+
+    old = types.ModuleType("max2code_runtime._roots_c")
+    old.ffi, old.lib = object(), OldLib()  # type: ignore[attr-defined]
+    monkeypatch.setitem(sys.modules, "max2code_runtime._roots_c", old)
+    monkeypatch.delitem(sys.modules, "max2code_runtime._cbackend", raising=False)
+    monkeypatch.setattr(rt, "_cbackend", None, raising=False)
+    monkeypatch.delenv("MAX2CODE_PURE_PYTHON", raising=False)
+    monkeypatch.setattr("max2code_runtime._source.STAMP", Path("/nonexistent/stamp"))
+    monkeypatch.setattr("max2code_runtime._source.source_digest", lambda src: "")
+    with pytest.raises(ImportError, match="stale"):
+        import max2code_runtime._cbackend  # noqa: F401
+    assert rt._load_c() is None
+
+
 def _first_root_or_error(c: object, tmax: float, eps: float = 0.0) -> object:
     try:
         return rt.first_root(c, tmax, eps)  # type: ignore[arg-type]

@@ -2,7 +2,8 @@
 
 Kept apart from ``__init__`` so that a missing or stale extension is one ImportError, and the
 pure-Python fallback takes over.  No state is kept between calls (the coefficients go to cffi
-as a list, the results come back in one double), so threads need nothing of their own.
+as arguments or as a list, the results come back in one double), so threads need nothing of
+their own.
 """
 from __future__ import annotations
 
@@ -30,15 +31,23 @@ def _check_fresh() -> None:
 _check_fresh()
 
 INVALID = (-1, math.nan, False)
-_packed = lib.m2c_first_root_packed
 # m2c_packed_k by k, the number of coefficients (_source.BINDING_C): the coefficients as k
 # double arguments, which cffi converts each as it does a list's items, but without building a
 # temporary array from a list (timeit, a stub that only sums them, three runs: 9 floats as
-# arguments 179-197 ns a call, as a list 290-345 ns).  BY_LEN[len(c)](*c, tmax) is the default solve of
-# any sized sequence c; it raises one of CALL_ERRORS for anything that is not 1 to 17 numbers
-# (BY_LEN[0] is None: not callable; past 17, an IndexError; a string or an object cffi cannot
-# convert, a TypeError; items fewer or more than len() says, a TypeError).
-BY_LEN = (None, *(getattr(lib, f"m2c_packed_{k}") for k in range(1, MAX_COEFFS + 1)))
+# arguments 179-197 ns a call, as a list 290-345 ns).  BY_LEN[len(c)](*c, tmax) is the default
+# solve of any sized sequence c; it raises one of CALL_ERRORS for anything that is not 1 to 17
+# numbers, all invalid input: BY_LEN[0] is None, not callable; past 17, an IndexError; a
+# string or an object cffi cannot convert, a TypeError; items fewer or more than len() says, a
+# TypeError (where the array binding read past the items given or ignored the extra ones: the
+# pure-Python port solves on the items it iterates); and a TypeError or IndexError that the
+# sequence's own iteration raises.  An extension built from older sources, without these
+# bindings, is stale: an ImportError, so that the package falls back to the pure-Python port.
+try:
+    _packed = lib.m2c_first_root_packed
+    BY_LEN = (None, *(getattr(lib, f"m2c_packed_{k}") for k in range(1, MAX_COEFFS + 1)))
+except AttributeError as exc:
+    raise ImportError(f"max2code_runtime._roots_c is stale ({exc}): run python -m "
+                      "max2code_runtime.build") from exc
 CALL_ERRORS = (TypeError, ValueError, OverflowError, IndexError)
 
 

@@ -8,14 +8,14 @@ from pathlib import Path
 STAMP = Path(__file__).resolve().parent / "_roots_c.stamp"
 
 # The declarations cffi binds.  m2c_first_root_packed is the binding's own (BINDING_C): one
-# call, no out-parameters, so that the common Python call needs no buffers and cffi converts
-# the coefficient list straight into a temporary array (measured with python -m timeit on
+# call, no out-parameters, so that a Python call needs no buffers and cffi converts the
+# coefficient list straight into a temporary array (measured with python -m timeit on
 # c = [1.0] * 9, a solve that ends at once: 0.36 us a call, against 0.54 us for copying into a
 # kept buffer and calling m2c_first_root_ex with two out-pointers; bench/roots.py's Python
-# (C backend) column went from 2.9-19.6x C to 2.4-14.7x).  m2c_packed_1 .. m2c_packed_17 are
-# its default method for that many coefficients, passed as double arguments: cffi converts a
-# list into a temporary array at about twice the cost of converting the same numbers as
-# arguments (_cbackend.BY_LEN).
+# (C backend) column went from 2.9-19.6x C to 2.4-14.7x); the other methods and the skin take
+# it.  The common call (the default method, no skin) takes m2c_packed_1 .. m2c_packed_17: the
+# same for that many coefficients, passed as double arguments, which cffi converts at 0.5-0.7
+# of the cost of the same numbers as a list (_cbackend.BY_LEN).
 MAX_COEFFS = 17
 CDEF = """
 int m2c_first_root_ex(const double c[], int degree, double tmax, double *t, int method, int *graze);
@@ -41,7 +41,7 @@ double m2c_first_root_packed(const double c[], int degree, double tmax, int meth
     return st == 1 ? (g ? -t : t) : st == 0 ? 0.0 : NAN;
 }
 """ + "".join(
-    f"double m2c_packed_{k}({', '.join(f'double c{i}' for i in range(k))}, double tmax)\n"
+    f"static double m2c_packed_{k}({', '.join(f'double c{i}' for i in range(k))}, double tmax)\n"
     f"{{\n    const double c[{k}] = {{{', '.join(f'c{i}' for i in range(k))}}};\n"
     f"    return m2c_first_root_packed(c, {k - 1}, tmax, M2C_METHOD_INTERVAL, 0.0);\n}}\n"
     for k in range(1, MAX_COEFFS + 1))
