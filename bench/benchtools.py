@@ -1,13 +1,17 @@
 """What the benchmark scripts that drive a C harness share: compiling it (gcc found once; a
 failure stops the tool with the command and gcc's own message -- a harness that does not build
-has nothing to measure) and publishing a result (the folder made, the file replaced whole,
-never half-written, and the text echoed)."""
+has nothing to measure), running a kernel harness's self-check before its timing (a harness
+that prices a different computation has nothing to say), the command line a result quotes,
+and publishing a result (the folder made, the file replaced whole, never half-written, and the
+text echoed)."""
 
 from __future__ import annotations
 
+import argparse
 import shutil
 import subprocess
 import sys
+import tempfile
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
@@ -29,6 +33,35 @@ def compile_c(tool: str, what: str, args: list[str]) -> None:
     r = subprocess.run(cmd, capture_output=True, text=True)
     if r.returncode != 0:
         sys.exit(f"{tool}: {what} failed:\n{' '.join(cmd)}\n{r.stderr}")
+
+
+def kernel_harness(tool: str, source: Path, stdin: str, arg: str, off: str) -> str:
+    """Builds `source` (a harness that includes the C runtime's source: gcc -O2, without GSL),
+    runs it with "check" -- on anything but output starting "ok" the tool stops with
+    `tool: OFF: ` and what the check said -- then with `arg`; returns that run's stdout."""
+    root = Path(__file__).resolve().parent.parent
+    with tempfile.TemporaryDirectory() as tmp:
+        exe = Path(tmp) / tool
+        compile_c(tool, "compiling", [
+            "-O2", "-std=c11", "-Wall", "-Wextra", "-DM2C_NO_GSL", "-I",
+            str(root / "runtime" / "c"), str(source), "-lm", "-o", str(exe)])
+        check = subprocess.run([str(exe), "check"], input=stdin, capture_output=True, text=True,
+                               timeout=120)
+        if check.returncode != 0 or not check.stdout.startswith("ok"):
+            sys.exit(f"{tool}: {off}: {(check.stdout + check.stderr).strip()}")
+        r = subprocess.run([str(exe), arg], input=stdin, capture_output=True, text=True,
+                           timeout=1200)
+        if r.returncode != 0:
+            sys.exit(f"{tool}: the harness failed: {r.stderr.strip()}")
+        return r.stdout
+
+
+def command_line(script: str, args: argparse.Namespace, defaults: dict[str, object]) -> str:
+    """`python SCRIPT` and the options among `defaults` that differ from their defaults: the
+    command a result quotes, so that it can be run again as it was."""
+    extra = "".join(f" --{k} {getattr(args, k)}" for k, v in defaults.items()
+                    if getattr(args, k) != v)
+    return f"python {script}{extra}"
 
 
 def publish(out: Path, name: str, text: str) -> Path:

@@ -21,9 +21,7 @@ import argparse
 import datetime
 import os
 import platform
-import subprocess
 import sys
-import tempfile
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent  # (roots_kernels.c and timing.h beside it)
@@ -33,16 +31,8 @@ sys.path.insert(0, str(ROOT / "bench"))
 sys.path.insert(0, str(HERE))
 
 import roots  # noqa: E402  (the benchmark's polynomial families)
-from benchtools import compile_c, publish  # noqa: E402
+from benchtools import command_line, kernel_harness, publish  # noqa: E402
 from roots_ab import input_lines  # noqa: E402  (the harnesses' input format)
-
-
-def build(into: Path) -> Path:
-    exe = into / "roots_kernels"
-    compile_c("roots_kernels", "compiling", [
-        "-O2", "-std=c11", "-Wall", "-Wextra", "-DM2C_NO_GSL", "-I", str(ROOT / "runtime" / "c"),
-        str(HERE / "roots_kernels.c"), "-lm", "-o", str(exe)])
-    return exe
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -57,20 +47,10 @@ def main(argv: list[str] | None = None) -> int:
         sys.exit("roots_kernels: --regions must be 1..100001 and --count positive")
     polys = [p for p in roots.polynomials(args.count) if p[0] == args.family]
     stdin = "\n".join(input_lines(polys)) + "\n"
-    with tempfile.TemporaryDirectory() as tmp:
-        exe = build(Path(tmp))
-        check = subprocess.run([str(exe), "check"], input=stdin, capture_output=True, text=True,
-                               timeout=120)
-        if check.returncode != 0 or not check.stdout.startswith("ok"):
-            sys.exit(f"roots_kernels: the replica of the solver's path is off: "
-                     f"{(check.stdout + check.stderr).strip()}")
-        r = subprocess.run([str(exe), str(args.regions)], input=stdin, capture_output=True,
-                           text=True, timeout=1200)
-        if r.returncode != 0:
-            sys.exit(f"roots_kernels: the harness failed: {r.stderr.strip()}")
-    defaults = {"family": "generic8", "count": 250, "regions": 201}
-    extra = "".join(f" --{k} {getattr(args, k)}" for k, v in defaults.items() if getattr(args, k) != v)
-    command = "python bench/roots_kernels.py" + extra
+    out = kernel_harness("roots_kernels", HERE / "roots_kernels.c", stdin, str(args.regions),
+                         "the replica of the solver's path is off")
+    command = command_line("bench/roots_kernels.py", args,
+                           {"family": "generic8", "count": 250, "regions": 201})
     text = "\n".join([
         f"# Where a certified solve's time goes: {args.family} ({datetime.date.today().isoformat()})",
         "",
@@ -79,7 +59,7 @@ def main(argv: list[str] | None = None) -> int:
         "call waits for the last call's result, as a solve's kernels wait for each other; the "
         "unit is bench/timing.h's degree-8 Horner evaluation. Only the polynomials whose default "
         "solve the certified guess settles (the others go on to Taylor points and bisection).",
-        "", r.stdout.strip(), ""])
+        "", out.strip(), ""])
     publish(args.out, f"roots_kernels_{args.family}.md", text)
     return 0
 

@@ -1,7 +1,9 @@
 """bench/roots_kernels.py: its replica of the solver's path must give the public solve's roots
 bit for bit (else its table prices a different computation), and its table must have a row per
-kernel.  The timings themselves are not asserted (speed lives in the benchmark's output, not in
-tests)."""
+kernel.  bench/near_window.py: its exact count of certifying pieces and its minima must be
+right on polynomials whose answers are known by hand, and its oracle certificate must agree
+with the solver.  The timings themselves are not asserted (speed lives in the benchmark's
+output, not in tests)."""
 
 from __future__ import annotations
 
@@ -9,6 +11,9 @@ import re
 import subprocess
 import sys
 from pathlib import Path
+
+import numpy
+import pytest
 
 from conftest import ROOT, require
 
@@ -49,7 +54,8 @@ def test_a_replica_off_the_solver_path_is_refused(tmp_path: Path) -> None:
     bench = tmp_path / "bench"
     bench.mkdir()
     (bench / "roots_kernels.c").write_text(src.replace(marker, marker.replace("if (", "if (0 && ")))
-    (bench / "timing.h").write_text((ROOT / "bench" / "timing.h").read_text())
+    for header in ("timing.h", "solve_steps.h"):
+        (bench / header).write_text((ROOT / "bench" / header).read_text())
     script = bench / "roots_kernels.py"
     # the copy builds the .c beside it; the runtime and the polynomial families: the checkout's
     code = SCRIPT.read_text()
@@ -59,3 +65,59 @@ def test_a_replica_off_the_solver_path_is_refused(tmp_path: Path) -> None:
     assert r.returncode != 0
     assert "the replica of the solver's path is off: differ" in r.stderr, r.stderr
     assert not (tmp_path / "out").exists()
+
+
+NEAR = ROOT / "bench" / "near_window.py"
+NEAR_ROWS = ("the runtime's solve today (m2c_first_root_ex)",
+             "before any test of the window: validation, the preparation, the tests at 0",
+             "those, and the Bernstein test on the whole window",
+             "those, and the splits at the dips, given for free (the oracle certificate)")
+
+
+def _near_module():
+    sys.path.insert(0, str(ROOT / "bench"))
+    try:
+        import near_window
+    finally:
+        sys.path.remove(str(ROOT / "bench"))
+    return near_window
+
+
+def test_fewest_pieces_by_hand() -> None:
+    """(t - 1/2)^2 + e^2 on [0, 1]: the Bernstein coefficients are 1/4 + e^2, e^2 - 1/4,
+    1/4 + e^2 (one negative), and on [0, 1/2] and [1/2, 1] 1/4 + e^2, e^2, e^2 (mirrored): two
+    pieces, as few as there can be.  Without the dip one piece; with a root, no certificate."""
+    nw = _near_module()
+    e2 = 2.0 ** -20
+    assert nw.fewest_pieces((0.25 + e2, -1.0, 1.0), 1.0) == 2
+    assert nw.fewest_pieces((1.0, 0.5, 0.25), 1.0) == 1
+    with pytest.raises(ValueError):
+        nw.fewest_pieces((0.25 - e2, -1.0, 1.0), 1.0)  # roots at 1/2 -+ 2^-10
+
+
+def test_minima_by_hand() -> None:
+    """(t - 0.3)^2 (t - 0.7)^2 + 0.01: minima at 0.3 and 0.7, a maximum at 0.5 (not a minimum);
+    negated, the same minima of |p|; a window of (0, 0.5) holds only the first."""
+    nw = _near_module()
+    c = [float(x) for x in numpy.polynomial.polynomial.polyfromroots([0.3, 0.3, 0.7, 0.7])]
+    c[0] += 0.01
+    got = nw.minima(tuple(c), 1.0)
+    assert len(got) == 2 and abs(got[0] - 0.3) < 1e-9 and abs(got[1] - 0.7) < 1e-9, got
+    assert nw.minima(tuple(-x for x in c), 1.0) == got
+    assert len(nw.minima(tuple(c), 0.5)) == 1
+
+
+def test_near_window_table_and_oracle(tmp_path: Path) -> None:
+    r = _run(NEAR, "--count", "40", "--sweeps", "2", "-o", str(tmp_path))
+    assert r.returncode == 0, r.stderr
+    text = (tmp_path / "near_window.md").read_text()
+    rows = dict(re.findall(r"^\| (.+?) \| -?\d+ \| (-?[\d.]+) \| -?[\d.]+ \|$", text, re.M))
+    assert list(rows) == list(NEAR_ROWS), text
+    assert all(float(v) > 0 for v in rows.values()), text
+    reached, total, kept = map(int, re.search(
+        r"^(\d+) of (\d+) windows reach the whole-window test with an even count, (\d+) of them",
+        text, re.M).groups())
+    assert total == 40 and 0 < kept <= reached <= total, text
+    pieces = re.search(r"median (\d+), mean [\d.]+, at least (\d+) ", text)
+    assert pieces and int(pieces.group(2)) >= 2, text  # every window of the family dips
+    assert "python bench/near_window.py --count 40 --sweeps 2" in text
