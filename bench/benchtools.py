@@ -35,22 +35,26 @@ def compile_c(tool: str, what: str, args: list[str]) -> None:
         sys.exit(f"{tool}: {what} failed:\n{' '.join(cmd)}\n{r.stderr}")
 
 
-def kernel_harness(tool: str, source: Path, stdin: str, arg: str, off: str) -> str:
+def kernel_harness(tool: str, source: Path, stdin: str, arg: str, on_mismatch: str) -> str:
     """Builds `source` (a harness that includes the C runtime's source: gcc -O2, without GSL),
     runs it with "check" -- on anything but output starting "ok" the tool stops with
-    `tool: OFF: ` and what the check said -- then with `arg`; returns that run's stdout."""
+    `tool: ON_MISMATCH: ` and what the check said -- then with `arg`; returns that run's
+    stdout.  A run past its time limit stops the tool too, with its message."""
     root = Path(__file__).resolve().parent.parent
     with tempfile.TemporaryDirectory() as tmp:
         exe = Path(tmp) / tool
         compile_c(tool, "compiling", [
             "-O2", "-std=c11", "-Wall", "-Wextra", "-DM2C_NO_GSL", "-I",
             str(root / "runtime" / "c"), str(source), "-lm", "-o", str(exe)])
-        check = subprocess.run([str(exe), "check"], input=stdin, capture_output=True, text=True,
-                               timeout=120)
-        if check.returncode != 0 or not check.stdout.startswith("ok"):
-            sys.exit(f"{tool}: {off}: {(check.stdout + check.stderr).strip()}")
-        r = subprocess.run([str(exe), arg], input=stdin, capture_output=True, text=True,
-                           timeout=1200)
+        try:
+            check = subprocess.run([str(exe), "check"], input=stdin, capture_output=True,
+                                   text=True, timeout=120)
+            if check.returncode != 0 or not check.stdout.startswith("ok"):
+                sys.exit(f"{tool}: {on_mismatch}: {(check.stdout + check.stderr).strip()}")
+            r = subprocess.run([str(exe), arg], input=stdin, capture_output=True, text=True,
+                               timeout=1200)
+        except subprocess.TimeoutExpired as e:
+            sys.exit(f"{tool}: the harness ran past {e.timeout:.0f} s ({' '.join(e.cmd)})")
         if r.returncode != 0:
             sys.exit(f"{tool}: the harness failed: {r.stderr.strip()}")
         return r.stdout

@@ -124,12 +124,7 @@ int main(int argc, char **argv)
         order[i] = i;
     double overhead = empty_region_ns();
     for (int s = 0; s < sweeps; s++) {
-        for (size_t i = n; i > 1; i--) {
-            size_t j = (size_t)(xorshift() % i);
-            size_t tmp = order[i - 1];
-            order[i - 1] = order[j];
-            order[j] = tmp;
-        }
+        shuffle(order, n);
         for (size_t k = 0; k < n; k++) {
             const Poly *p = &ps[order[k]];
             for (int w = 0; w < 2; w++) {

@@ -45,7 +45,6 @@
 #include "timing.h"
 
 #define NMETHODS 4
-#define HORNER_BATCH 16
 #define MAXSWEEPS 31
 
 typedef struct {
@@ -125,26 +124,11 @@ int main(int argc, char **argv)
     size_t nh = 0;
 
     for (int s = 0; s < sweeps; s++) {
-        for (size_t i = n; i > 1; i--) { /* Fisher-Yates */
-            size_t j = (size_t)(xorshift() % i);
-            size_t tmp = order[i - 1];
-            order[i - 1] = order[j];
-            order[j] = tmp;
-        }
+        shuffle(order, n);
         for (size_t k = 0; k < n; k++) {
             size_t i = order[k];
             const Poly *q = &ps[i];
-            {
-                double v = 0;
-                double t0 = now_ns();
-                for (size_t h = 0; h < HORNER_BATCH; h++) {
-                    size_t j = (i + h) % n; /* each waits for the last: latency */
-                    v = horner8(c8[j], x8[j] + v * 0.0);
-                }
-                double t1 = now_ns();
-                sink = v;
-                hns[nh++] = (t1 - t0 - overhead) / HORNER_BATCH;
-            }
+            hns[nh++] = unit_region_ns((const double (*)[9])c8, x8, n, i, overhead);
             for (int mm = 0; mm < nmethods; mm++) {
                 int m = (mm + (int)k) % nmethods;
                 double t = NAN;

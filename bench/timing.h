@@ -1,5 +1,7 @@
-/* What the benchmark harnesses (roots_harness.c, roots_ab.c) share: the clock, a median, the
- * shuffle's generator and the unit of cost.  Static, for one translation unit each. */
+/* What the benchmark harnesses (roots_harness.c, roots_ab.c, roots_kernels.c, near_window.c,
+ * horner_points.c) share: the clock, a median, the shuffle and its generator, and the unit of
+ * cost.  Static, for one translation unit each (a harness that does not use a helper may warn
+ * that it is unused). */
 #ifndef BENCH_TIMING_H
 #define BENCH_TIMING_H
 
@@ -48,6 +50,18 @@ static unsigned long long xorshift(void)
     return rng_state;
 }
 
+/* order[0 .. n-1] shuffled in place (Fisher-Yates): a new visiting order each sweep, so that a
+ * solve never follows the same neighbours twice. */
+static void shuffle(size_t order[], size_t n)
+{
+    for (size_t i = n; i > 1; i--) {
+        size_t j = (size_t)(xorshift() % i);
+        size_t tmp = order[i - 1];
+        order[i - 1] = order[j];
+        order[j] = tmp;
+    }
+}
+
 /* Results go here, so that the compiler cannot drop the timed calls. */
 static volatile double sink;
 
@@ -83,6 +97,28 @@ __attribute__((noinline)) static double horner8(const double c[9], double x)
     for (int i = 7; i >= 0; i--)
         acc = acc * x + c[i];
     return acc;
+}
+
+/* Horner evaluations per timed region of the unit (one evaluation is about as long as reading
+ * the clock: a batch keeps the clock's jitter from dominating). */
+#define HORNER_BATCH 16
+
+/* The unit as the harnesses that time solves one call at a time measure it: HORNER_BATCH
+ * evaluations of polynomials i, i + 1, ... (mod n) of c8 at their points x8, each waiting for
+ * the last (as the evaluations in a solve do); ns per evaluation, the empty region's cost
+ * (overhead) subtracted. */
+static double unit_region_ns(const double (*c8)[9], const double x8[], size_t n, size_t i,
+                             double overhead)
+{
+    double v = 0;
+    double t0 = now_ns();
+    for (size_t h = 0; h < HORNER_BATCH; h++) {
+        size_t j = (i + h) % n;
+        v = horner8(c8[j], x8[j] + v * 0.0);
+    }
+    double t1 = now_ns();
+    sink = v;
+    return (t1 - t0 - overhead) / HORNER_BATCH;
 }
 
 #endif

@@ -7,6 +7,7 @@ output, not in tests)."""
 
 from __future__ import annotations
 
+import importlib.util
 import re
 import subprocess
 import sys
@@ -71,16 +72,22 @@ NEAR = ROOT / "bench" / "near_window.py"
 NEAR_ROWS = ("the runtime's solve today (m2c_first_root_ex)",
              "before any test of the window: validation, the preparation, the tests at 0",
              "those, and the Bernstein test on the whole window",
-             "those, and the splits at the dips, given for free (the oracle certificate)")
+             "those, and the splits at the minima, given for free (the oracle certificate)",
+             "the certificate alone, from prepared coefficients: the point 0, the whole-window "
+             "test, the splits")
 
 
 def _near_module():
-    sys.path.insert(0, str(ROOT / "bench"))
+    """bench/near_window.py as a module (it puts bench/ on sys.path, as a script does): sys.path
+    as it was afterwards."""
+    saved = list(sys.path)
     try:
-        import near_window
+        spec = importlib.util.spec_from_file_location("near_window_under_test", NEAR)
+        module = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(module)
     finally:
-        sys.path.remove(str(ROOT / "bench"))
-    return near_window
+        sys.path[:] = saved
+    return module
 
 
 def test_fewest_pieces_by_hand() -> None:
@@ -89,8 +96,8 @@ def test_fewest_pieces_by_hand() -> None:
     pieces, as few as there can be.  Without the dip one piece; with a root, no certificate."""
     nw = _near_module()
     e2 = 2.0 ** -20
-    assert nw.fewest_pieces((0.25 + e2, -1.0, 1.0), 1.0) == 2
-    assert nw.fewest_pieces((1.0, 0.5, 0.25), 1.0) == 1
+    assert nw.fewest_pieces((0.25 + e2, -1.0, 1.0), 1.0) == (2, 2)
+    assert nw.fewest_pieces((1.0, 0.5, 0.25), 1.0) == (1, 1)
     with pytest.raises(ValueError):
         nw.fewest_pieces((0.25 - e2, -1.0, 1.0), 1.0)  # roots at 1/2 -+ 2^-10
 
@@ -118,6 +125,32 @@ def test_near_window_table_and_oracle(tmp_path: Path) -> None:
         r"^(\d+) of (\d+) windows reach the whole-window test with an even count, (\d+) of them",
         text, re.M).groups())
     assert total == 40 and 0 < kept <= reached <= total, text
-    pieces = re.search(r"median (\d+), mean [\d.]+, at least (\d+) ", text)
-    assert pieces and int(pieces.group(2)) >= 2, text  # every window of the family dips
+    pieces = re.search(r"on (\d+) of 40 windows, else its upper bound\): median (\d+), mean "
+                       r"[\d.]+, at least (\d+) ", text)
+    assert pieces and int(pieces.group(3)) >= 2, text  # every window of the family dips
+    assert int(pieces.group(1)) > 0, text
     assert "python bench/near_window.py --count 40 --sweeps 2" in text
+
+
+def test_an_oracle_that_clears_everything_is_refused(tmp_path: Path) -> None:
+    """An oracle whose pieces always pass would clear every window of this family (none has a
+    root) and so agree with the solve; its negative controls -- each window moved to cross 0 at
+    its deepest minimum -- must catch it, and the script must stop with its message and write
+    nothing."""
+    src = (ROOT / "bench" / "near_window.c").read_text()
+    marker = "static int piece_clear(const double b[], double err, int n, int *halved)\n{\n"
+    assert src.count(marker) == 1, "the oracle changed: adapt the test"
+    bench = tmp_path / "bench"
+    bench.mkdir()
+    (bench / "near_window.c").write_text(src.replace(marker, marker + "    return 1;\n"))
+    for header in ("timing.h", "solve_steps.h"):
+        (bench / header).write_text((ROOT / "bench" / header).read_text())
+    code = NEAR.read_text()
+    assert code.count("ROOT = HERE.parent\n") == 1, "the script's paths changed: adapt the test"
+    script = bench / "near_window.py"
+    script.write_text(code.replace("ROOT = HERE.parent\n", f"ROOT = Path({str(ROOT)!r})\n"))
+    r = _run(script, "--count", "40", "--sweeps", "1", "-o", str(tmp_path / "out"))
+    assert r.returncode != 0
+    assert "the oracle certificate and the solve disagree: differ" in r.stderr, r.stderr
+    assert "negative control" in r.stderr, r.stderr
+    assert not (tmp_path / "out").exists()

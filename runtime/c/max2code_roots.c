@@ -1631,6 +1631,14 @@ static void split_at(const double in[], int n, double t, double left[], double r
  * and in the mean; the other families within noise; the same answers).  A
  * split at t rounds three times per entry (split_at): 4 n u M, twice. */
 #define CLEAR_DEPTH 12
+/* What a split adds to the error bound of its pieces' coefficients, M the parent's largest
+ * magnitude: 2 n u M for halves, 8 n u M for split_at (see bernstein_clear, whose bound
+ * this is; bench/near_window.c prices its certificate with the same one). */
+static inline double split_rounding(int at, int n, double M)
+{
+    return (at ? 8 : 2) * n * UNIT_ROUNDOFF * M;
+}
+
 /* A dip counts for a first split when it is at least this fraction of the
  * interval from either end (bernstein_clear, isolate_first_root). */
 #define DIP_INSIDE 0.0625
@@ -1675,7 +1683,7 @@ NOINLINE static int bernstein_clear(const BernQ *qb, int n, double t0)
             split_at(whole, n, t0, st[top + 1], b);
         else
             halves(whole, n, st[top + 1], b);
-        double ec = e + (at ? 8 : 2) * n * UNIT_ROUNDOFF * M + DBL_MIN;
+        double ec = e + split_rounding(at, n, M) + DBL_MIN;
         err[top] = err[top + 1] = ec;
         depth[top] = depth[top + 1] = d + 1;
         top += 2;
