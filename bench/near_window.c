@@ -258,9 +258,7 @@ static int control_holds(const Near *k, int *status)
     Near ctl = *k;
     double deepest = INFINITY;
     for (int i = 0; i < k->ndips; i++) {
-        double v = k->c[k->degree];
-        for (int j = k->degree - 1; j >= 0; j--)
-            v = v * k->dips[i] + k->c[j];
+        double v = horner(k->c, k->degree, k->dips[i], 0, 0);
         deepest = fabs(v) < fabs(deepest) ? v : deepest;
     }
     if (!(fabs(deepest) < INFINITY))
