@@ -59,6 +59,21 @@ static double complex complex_of(double x, double y)
 #define COMPLEX_OF(x, y) complex_of(x, y)
 #endif
 
+/* Is n a constant of at most k where this code is compiled?  In the
+ * degree-specialised copies (DEGREE_CLONES, below) every call is inlined
+ * with n a constant, and a written-out form for low degrees pays there;
+ * elsewhere it is 0 at compile time, and the general code stays as it was
+ * (the same forms chosen by a test on n at run time cost degrees 12 and 16
+ * 8 % of their time, by where they moved its code).  Each use is decided on
+ * its own -- Clang decided two uses in one copy differently -- so no use
+ * may count on another's answer: taylor_table hands its choice to point_at
+ * in the table. */
+#if defined(__GNUC__)
+#define CONSTANT_AT_MOST(n, k) (__builtin_constant_p(n) && (n) <= (k))
+#else
+#define CONSTANT_AT_MOST(n, k) 0
+#endif
+
 /* Rare paths kept out of the hot function's frame and registers. */
 #if defined(__GNUC__)
 #define NOINLINE __attribute__((noinline))
@@ -1133,6 +1148,7 @@ typedef struct {
     double tk[MAXN + 1][MAXN + 1], ta[MAXN + 1][MAXN + 1];
     double e;    /* envelope factor: 2 gamma_{2n} with the graze check, else 0 */
     double skin; /* contact skin (normalised units), subtracted from q_0 */
+    int top;     /* the degree up to which the tables are filled: 4 or 8 */
 } Taylor;
 
 /* BINOM[k][j] = C(j + k, k) */
@@ -1165,8 +1181,14 @@ static void taylor_table(const double p[], int n, double e, double skin,
             tb->ta[k][j] = fabs(tb->tk[k][j]);
         }
     }
-    for (int k = 0; k <= 8; k++) /* (zeros up to degree 8: point_at) */
-        for (int j = n + 1 - k > 0 ? n + 1 - k : 0; j + k <= 8; j++)
+    /* zeros up to degree 8, which point_at's written-out form reads; in
+     * the quartics' copy up to degree 4, and point_at's form for degree 4
+     * reads no more (told by top: whether n is a constant here is the
+     * compiler's to decide at each place, and Clang's answers differ
+     * between two places of one copy) */
+    tb->top = CONSTANT_AT_MOST(n, 4) ? 4 : 8;
+    for (int k = 0; k <= tb->top; k++)
+        for (int j = n + 1 - k > 0 ? n + 1 - k : 0; j + k <= tb->top; j++)
             tb->tk[k][j] = tb->ta[k][j] = 0;
     tb->e = e;
     tb->skin = skin;
@@ -1221,16 +1243,28 @@ static int point_at(const Taylor *tb, int n, double x, Point *pt)
     COUNT(6);
     COUNT_MADDS((n + 1) * (n + 2)); /* two triangles of n(n+1)/2 + (n+1) */
     double a[MAXN + 1] = {0}, s[MAXN + 1] = {0};
-    if (n <= 8) {
+#define TS(k, d)                               \
+    a##k = a##k * x + tb->tk[k][d];            \
+    s##k = s##k * x + tb->ta[k][d]
+    if (n <= 8 && tb->top == 4) {
+        /* the same for degree 4 in the quartics' copy (taylor_table): a
+         * third of degree 8's products */
+        double a0 = 0, a1 = 0, a2 = 0, a3 = 0, a4 = 0;
+        double s0 = 0, s1 = 0, s2 = 0, s3 = 0, s4 = 0;
+        TS(0, 4);
+        TS(0, 3); TS(1, 3);
+        TS(0, 2); TS(1, 2); TS(2, 2);
+        TS(0, 1); TS(1, 1); TS(2, 1); TS(3, 1);
+        TS(0, 0); TS(1, 0); TS(2, 0); TS(3, 0); TS(4, 0);
+        a[0] = a0; a[1] = a1; a[2] = a2; a[3] = a3; a[4] = a4;
+        s[0] = s0; s[1] = s1; s[2] = s2; s[3] = s3; s[4] = s4;
+    } else if (n <= 8) {
         /* written out for degree 8 (the table is 0 above degree n, and 0 x +
          * 0 = 0 for x > 0: the same values as the loop below, bit for bit):
          * the loop's bounds vary with n, and its control and memory traffic
          * cost more than the arithmetic */
         double a0 = 0, a1 = 0, a2 = 0, a3 = 0, a4 = 0, a5 = 0, a6 = 0, a7 = 0, a8 = 0;
         double s0 = 0, s1 = 0, s2 = 0, s3 = 0, s4 = 0, s5 = 0, s6 = 0, s7 = 0, s8 = 0;
-#define TS(k, d)                               \
-    a##k = a##k * x + tb->tk[k][d];            \
-    s##k = s##k * x + tb->ta[k][d]
         TS(0, 8);
         TS(0, 7); TS(1, 7);
         TS(0, 6); TS(1, 6); TS(2, 6);
@@ -1241,7 +1275,6 @@ static int point_at(const Taylor *tb, int n, double x, Point *pt)
         TS(0, 1); TS(1, 1); TS(2, 1); TS(3, 1); TS(4, 1); TS(5, 1); TS(6, 1); TS(7, 1);
         TS(0, 0); TS(1, 0); TS(2, 0); TS(3, 0); TS(4, 0); TS(5, 0); TS(6, 0); TS(7, 0);
         TS(8, 0);
-#undef TS
         a[0] = a0; a[1] = a1; a[2] = a2; a[3] = a3; a[4] = a4; a[5] = a5; a[6] = a6;
         a[7] = a7; a[8] = a8;
         s[0] = s0; s[1] = s1; s[2] = s2; s[3] = s3; s[4] = s4; s[5] = s5; s[6] = s6;
@@ -1254,6 +1287,7 @@ static int point_at(const Taylor *tb, int n, double x, Point *pt)
             }
         }
     }
+#undef TS
     double rel = 8.0 * (n + 1) * UNIT_ROUNDOFF;
     /* underflow adds at most 2^-1075 per operation: far below DBL_MIN (a
      * normal number: arithmetic on subnormals is slow) */
@@ -1370,6 +1404,28 @@ typedef struct {
  * the way, measured 5 times slower. */
 static void binomial_sums(double a[], int n)
 {
+    if (CONSTANT_AT_MOST(n, 4)) {
+        /* the same for 5 entries in the quartics' copy: 10 sums, not 36 */
+        double b0 = a[0], b1 = a[1], b2 = a[2], b3 = a[3], b4 = a[4];
+#define ROUND(from)                                                        \
+    do {                                                                   \
+        if (4 >= from) b4 += b3;                                           \
+        if (3 >= from) b3 += b2;                                           \
+        if (2 >= from) b2 += b1;                                           \
+        if (1 >= from) b1 += b0;                                           \
+    } while (0)
+        ROUND(1);
+        ROUND(2);
+        ROUND(3);
+        ROUND(4);
+#undef ROUND
+        a[0] = b0;
+        a[1] = b1;
+        a[2] = b2;
+        a[3] = b3;
+        a[4] = b4;
+        return;
+    }
     if (n <= 8) {
         double b0 = a[0], b1 = a[1], b2 = a[2], b3 = a[3], b4 = a[4], b5 = a[5],
                b6 = a[6], b7 = a[7], b8 = a[8];
@@ -1443,7 +1499,7 @@ static int bernstein_test(const Point *pt, int n, double w, double *pend,
     COUNT_MADDS(n * (n + 1) / 2 + 4 * n); /* the sums and the scaling */
     double ap[MAXN + 1], aq[MAXN + 1];
     for (int k = n + 1; k <= 8; k++)
-        ap[k] = aq[k] = 0; /* (binomial_sums reads 9) */
+        ap[k] = aq[k] = 0; /* (binomial_sums reads 9, or 5) */
     double rel = 4.0 * (2 * n + 4) * UNIT_ROUNDOFF;
     double wk = 1, g = 0;
     for (int k = 0; k <= n; k++) {
