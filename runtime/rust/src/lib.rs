@@ -157,8 +157,28 @@ pub fn first_roots(c: &[f64], degree: usize, tmax: f64, eps: f64, out: &mut [f64
     Ok(found)
 }
 
-/// The C runtime's `solve`.
+/// The C runtime's `solve`: by its copy for the degree where there is one (C's `SOLVE_CLONE`:
+/// degrees 2, 4 and 8, where the length of `coef` is a constant in the copy, so that the
+/// loading and the early tests are compiled for it), else `solve_core`.
 fn solve(coef: &[f64], tmax: f64, method: Method, eps: f64) -> Status {
+    match coef.len() {
+        9 => solve_degree::<9>(coef, tmax, method, eps),
+        5 => solve_degree::<5>(coef, tmax, method, eps),
+        3 => solve_degree::<3>(coef, tmax, method, eps),
+        _ => solve_core(coef, tmax, method, eps),
+    }
+}
+
+/// `solve_core` for `L` coefficients (`coef.len() == L`), out of line as C's clones.
+#[inline(never)]
+fn solve_degree<const L: usize>(coef: &[f64], tmax: f64, method: Method, eps: f64) -> Status {
+    let fixed: &[f64; L] = coef.try_into().expect("solve dispatches by length");
+    solve_core(fixed, tmax, method, eps)
+}
+
+/// The common path (C `solve_core`).
+#[inline(always)]
+fn solve_core(coef: &[f64], tmax: f64, method: Method, eps: f64) -> Status {
     if coef.is_empty() || coef.len() > MAX_DEGREE + 1 || tmax.is_nan() || tmax <= 0.0 || !(0.0..f64::INFINITY).contains(&eps) {
         return Status::Invalid;
     }

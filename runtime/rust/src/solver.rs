@@ -701,7 +701,8 @@ fn compensated_with_slope(p: &[f64], d: &[f64], m: usize, x: f64) -> (f64, f64) 
 }
 
 /// C `compensated_slope_ahead`: the same, uncounted (an evaluation done ahead of its use,
-/// counted there).
+/// counted there).  Inlined (C's flattened degree copies inline it too).
+#[inline(always)]
 fn compensated_slope_ahead(p: &[f64], d: &[f64], m: usize, x: f64) -> (f64, f64) {
     #[cfg(all(target_arch = "x86_64", not(target_feature = "fma")))]
     if hw_fma() {
@@ -796,13 +797,17 @@ fn value_and_slope(p: &[f64], d: &[f64], m: usize, x: f64, k: i32, precise: bool
 const PRECISE_NOW: f64 = -1.0;
 
 #[allow(clippy::too_many_arguments)]
+#[inline(never)]
 fn refine_root(p: &[f64], d: &[f64], m: usize, lo: f64, hi: f64, slo: i32, tol: f64, x0: f64) -> f64 {
     refine_root_from(p, d, m, lo, hi, slo, tol, x0, None)
 }
 
 /// C `refine_root_from`: `refine_root`, with (P(x0), P'(x0)) as `value_and_slope` gives them
 /// precisely (k = 0) computed ahead by the caller for the first step.
+/// Inlined into its two callers: `refine_root` (out of line, for every other) and the
+/// degree copies of `first_root_interval` (as C's flattened copies).
 #[allow(clippy::too_many_arguments)]
+#[inline(always)]
 fn refine_root_from(p: &[f64], d: &[f64], m: usize, mut lo: f64, mut hi: f64, slo: i32, tol: f64, x0: f64,
                     first: Option<(f64, f64)>) -> f64 {
     let mut x = x0;
@@ -1028,7 +1033,7 @@ impl Point {
     }
 }
 
-#[inline]
+#[inline(always)]
 /// C `point_at_zero`, written in place into a slot (building a `Point` and returning it cost a
 /// memset and a 300-byte memcpy per solve: a tenth of a "no root" solve).
 fn point_at_zero<'a>(p: &[f64], n: usize, e: f64, skin: f64, slot: &'a mut MaybeUninit<Point>) -> &'a mut Point {
@@ -1384,7 +1389,10 @@ const DIP_INSIDE: f64 = 0.0625;
 /// (constant sizes: no memcpy or memset calls, and half the stack to zero).
 #[inline(never)]
 fn bernstein_clear(q: &[f64; MAXN + 1], err0: f64, n: usize, t0: f64) -> bool {
-    if n <= 8 {
+    if n == 8 {
+        // degree 8 a constant, its loops' bounds fixed (C's bernstein_clear_8)
+        clear_pieces::<9>(std::array::from_fn(|j| q[j]), err0, 8, t0)
+    } else if n <= 8 {
         clear_pieces::<9>(std::array::from_fn(|j| q[j]), err0, n, t0)
     } else {
         clear_pieces::<{ MAXN + 1 }>(*q, err0, n, t0)
@@ -1394,7 +1402,18 @@ fn bernstein_clear(q: &[f64; MAXN + 1], err0: f64, n: usize, t0: f64) -> bool {
 /// C `split_at`: the Bernstein coefficients of [0, t] and [t, 1] of the interval (de
 /// Casteljau at t in (0, 1): n rounds of w_j + t (w_{j+1} - w_j); left[k] the first entry
 /// after round k, right[n - k] the last), from entries 0..=n of `inp`.
+/// At degree 8 with the degree a constant, as `halves` (C writes it out).
+#[inline(always)]
 fn split_at<const W: usize>(inp: &[f64; W], n: usize, t: f64) -> ([f64; W], [f64; W]) {
+    if W == 9 && n == 8 {
+        split_at_of_degree(inp, 8, t)
+    } else {
+        split_at_of_degree(inp, n, t)
+    }
+}
+
+#[inline(always)]
+fn split_at_of_degree<const W: usize>(inp: &[f64; W], n: usize, t: f64) -> ([f64; W], [f64; W]) {
     let mut w = *inp;
     let (mut left, mut right) = ([0.0f64; W], [0.0f64; W]);
     left[0] = w[0];
@@ -1647,6 +1666,7 @@ fn isolation_split(a: f64, b: f64) -> f64 {
 }
 
 /// C `derivative`: the coefficients of p' (p of degree n) in dp[0..n].
+#[inline(always)]
 fn derivative(p: &[f64], n: usize) -> [f64; MAXN] {
     let mut dp = [0.0f64; MAXN];
     for i in 0..n {
@@ -1676,6 +1696,7 @@ enum Isolation {
 /// C `isolate_first_root`: the first event in (0, T] for p (T <= FAST_LIMIT, p(0) > 0) by
 /// Budan-Fourier bisection.  `failed_w`: the window on which `cleared_at_once` has already
 /// run the first exclusion test at 0 and failed (0: none), so that it is not run again.
+#[inline(always)]
 fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64, failed_w: f64) -> Isolation {
     count::phase(1);
     let e = if skin >= 0.0 { noise_factor(n) } else { 0.0 };
@@ -2172,8 +2193,32 @@ fn scan_pieces(c: &[f64], d: &Chain, n: usize, lo: f64, t_end: f64, crit: &[f64]
 }
 
 /// First root in (0, T] of p (degree n >= 3, normalised, p[0] > 0).
-/// `failed_w`: see `isolate_first_root`.
+/// `failed_w`: see `isolate_first_root`.  By its copy for the degree where there is one (C's
+/// `first_root_interval_fixed` and `INTERVAL_CLONE`: degrees 4 and 8, compiled with n a
+/// constant; the same operations in the same order).
 pub(crate) fn first_root_interval(p: &Coeffs, n: usize, t_end: f64, skin: f64, failed_w: f64) -> Option<(f64, bool)> {
+    match n {
+        8 => first_root_interval_of::<8>(p, t_end, skin, failed_w),
+        4 => first_root_interval_of::<4>(p, t_end, skin, failed_w),
+        _ => first_root_interval_any(p, n, t_end, skin, failed_w),
+    }
+}
+
+/// `first_root_interval_core` for degree `N` (C `first_root_interval_N`).
+#[inline(never)]
+fn first_root_interval_of<const N: usize>(p: &Coeffs, t_end: f64, skin: f64, failed_w: f64) -> Option<(f64, bool)> {
+    first_root_interval_core(p, N, t_end, skin, failed_w)
+}
+
+/// `first_root_interval_core` for any degree (C `first_root_interval_any`).
+#[inline(never)]
+fn first_root_interval_any(p: &Coeffs, n: usize, t_end: f64, skin: f64, failed_w: f64) -> Option<(f64, bool)> {
+    first_root_interval_core(p, n, t_end, skin, failed_w)
+}
+
+/// C `first_root_interval`.
+#[inline(always)]
+fn first_root_interval_core(p: &Coeffs, n: usize, t_end: f64, skin: f64, failed_w: f64) -> Option<(f64, bool)> {
     debug_assert!(p[0] > 0.0);
     let mut lo = 0.0;
     if t_end <= if n <= 8 { FAST_LIMIT_LOW } else { FAST_LIMIT_HIGH } {
