@@ -59,15 +59,18 @@ static double complex complex_of(double x, double y)
 #define COMPLEX_OF(x, y) complex_of(x, y)
 #endif
 
-/* Is n a constant of at most k where this code is compiled?  In the
+/* Is n a constant of at most k where this code is compiled?  In GCC's
  * degree-specialised copies (DEGREE_CLONES, below) every call is inlined
  * with n a constant, and a written-out form for low degrees pays there;
- * elsewhere it is 0 at compile time, and the general code stays as it was
- * (the same forms chosen by a test on n at run time cost degrees 12 and 16
- * 8 % of their time, by where they moved its code).  Each use is decided on
- * its own -- Clang decided two uses in one copy differently -- so no use
- * may count on another's answer: taylor_table hands its choice to point_at
- * in the table. */
+ * elsewhere it is mostly 0 at compile time, and the general code keeps its
+ * loops (the same forms chosen by a test on n at run time cost degrees 12
+ * and 16 8 % of their time, by where they moved its code).  Each use is
+ * decided on its own: Clang's flatten inlines only a copy's direct
+ * callees, so n is a constant in taylor_table there but not in point_at or
+ * binomial_sums (whose form for degree 4 runs under GCC only), and GCC may
+ * fold it to 1 outside the copies too.  So a use only chooses between forms
+ * that are right for any n, and no use counts on another's answer:
+ * taylor_table hands its choice to point_at in the table. */
 #if defined(__GNUC__)
 #define CONSTANT_AT_MOST(n, k) (__builtin_constant_p(n) && (n) <= (k))
 #else
@@ -508,6 +511,14 @@ static int scale_exponent(double x, int m)
 #else
 #define FMA_DISPATCH 0
 #define ALWAYS_INLINE inline
+#endif
+/* Inlined in every build where the compiler can be told (ALWAYS_INLINE is
+ * a hint where the fma copies do not need it): a body that must become a
+ * copy with the degree a constant (bernstein_clear_8). */
+#if defined(__GNUC__)
+#define FORCE_INLINE inline __attribute__((always_inline))
+#else
+#define FORCE_INLINE inline
 #endif
 
 /* p(x) / 2^(k n) by Horner: fused, with fma (one rounding per step), else
@@ -1246,7 +1257,7 @@ static int point_at(const Taylor *tb, int n, double x, Point *pt)
 #define TS(k, d)                               \
     a##k = a##k * x + tb->tk[k][d];            \
     s##k = s##k * x + tb->ta[k][d]
-    if (n <= 8 && tb->top == 4) {
+    if (n <= 4 && tb->top == 4) {
         /* the same for degree 4 in the quartics' copy (taylor_table): a
          * third of degree 8's products */
         double a0 = 0, a1 = 0, a2 = 0, a3 = 0, a4 = 0;
@@ -1653,8 +1664,9 @@ static void halves(const double in[], int n, double left[], double right[])
 static void split_at(const double in[], int n, double t, double left[], double right[])
 {
     if (n == 8) {
-        /* written out for degree 8, as halves (the loop's operations in its
-         * order: the same bits) */
+        /* written out for degree 8, as halves and for its reason (the
+         * loop's operations in its order: the same bits); the first split
+         * of most windows near complex roots (bernstein_clear) */
         double w0 = in[0], w1 = in[1], w2 = in[2], w3 = in[3], w4 = in[4], w5 = in[5],
                w6 = in[6], w7 = in[7], w8 = in[8];
         left[0] = w0;
@@ -1733,7 +1745,7 @@ static inline double split_rounding(int at, int n, double M)
 /* A dip counts for a first split when it is at least this fraction of the
  * interval from either end (bernstein_clear, isolate_first_root). */
 #define DIP_INSIDE 0.0625
-static ALWAYS_INLINE int bernstein_clear_core(const BernQ *qb, int n, double t0)
+static FORCE_INLINE int bernstein_clear_core(const BernQ *qb, int n, double t0)
 {
     double st[CLEAR_DEPTH + 2][MAXN + 1], err[CLEAR_DEPTH + 2];
     int depth[CLEAR_DEPTH + 2];
@@ -1756,7 +1768,9 @@ static ALWAYS_INLINE int bernstein_clear_core(const BernQ *qb, int n, double t0)
     amin = fabs(b[j]) < amin ? fabs(b[j]) : amin
         if (n == 8) {
             /* written out for degree 8, in the loop's order (the same
-             * values, NaN ignored alike) */
+             * values, NaN ignored alike): with the degree a constant
+             * (bernstein_clear_8) the loop's control cost more than its
+             * work, on the 25 pieces a window near complex roots takes */
             SCAN(1); SCAN(2); SCAN(3); SCAN(4); SCAN(5); SCAN(6); SCAN(7); SCAN(8);
         } else {
             for (int j = 1; j <= n; j++) {
@@ -1798,8 +1812,9 @@ static ALWAYS_INLINE int bernstein_clear_core(const BernQ *qb, int n, double t0)
  * near the window 0.74 of the time at the median and 0.80 in the mean, no
  * root in the window 0.91 and tmax = inf 0.87 in the mean, the rest within
  * noise; 0.88 of the instructions near the window; the same answers);
- * without this copy, the same written-out code took 1.30 times as long near
- * the window, for the same instructions within 1 %. */
+ * without this copy (bernstein_clear out of line for any n, as before), the
+ * same written-out code took 1.30 times as long near the window as the
+ * loops before it, for 0.99 of their instructions. */
 NOINLINE static int bernstein_clear_8(const BernQ *qb, double t0)
 {
     return bernstein_clear_core(qb, 8, t0);
@@ -1812,7 +1827,7 @@ NOINLINE static int bernstein_clear_any(const BernQ *qb, int n, double t0)
 
 static int bernstein_clear(const BernQ *qb, int n, double t0)
 {
-    if (CONSTANT_AT_MOST(n, 8) && n == 8)
+    if (n == 8)
         return bernstein_clear_8(qb, t0);
     return bernstein_clear_any(qb, n, t0);
 }

@@ -160,20 +160,23 @@ pub fn first_roots(c: &[f64], degree: usize, tmax: f64, eps: f64, out: &mut [f64
 /// The C runtime's `solve`: by its copy for the degree where there is one (C's `SOLVE_CLONE`:
 /// degrees 2, 4 and 8, where the length of `coef` is a constant in the copy, so that the
 /// loading and the early tests are compiled for it), else `solve_core`.
+/// (The conversions to arrays cannot fail after the length is read, and take no panic path.)
 fn solve(coef: &[f64], tmax: f64, method: Method, eps: f64) -> Status {
-    match coef.len() {
-        9 => solve_degree::<9>(coef, tmax, method, eps),
-        5 => solve_degree::<5>(coef, tmax, method, eps),
-        3 => solve_degree::<3>(coef, tmax, method, eps),
-        _ => solve_core(coef, tmax, method, eps),
+    if let Ok(a) = <&[f64; 9]>::try_from(coef) {
+        solve_degree(a, tmax, method, eps)
+    } else if let Ok(a) = <&[f64; 5]>::try_from(coef) {
+        solve_degree(a, tmax, method, eps)
+    } else if let Ok(a) = <&[f64; 3]>::try_from(coef) {
+        solve_degree(a, tmax, method, eps)
+    } else {
+        solve_core(coef, tmax, method, eps)
     }
 }
 
-/// `solve_core` for `L` coefficients (`coef.len() == L`), out of line as C's clones.
+/// `solve_core` for `L` coefficients, out of line as C's clones.
 #[inline(never)]
-fn solve_degree<const L: usize>(coef: &[f64], tmax: f64, method: Method, eps: f64) -> Status {
-    let fixed: &[f64; L] = coef.try_into().expect("solve dispatches by length");
-    solve_core(fixed, tmax, method, eps)
+fn solve_degree<const L: usize>(coef: &[f64; L], tmax: f64, method: Method, eps: f64) -> Status {
+    solve_core(coef, tmax, method, eps)
 }
 
 /// The common path (C `solve_core`).
