@@ -1601,6 +1601,40 @@ static double polish_isolated(const double p[], int n, double a, double b,
     return refine_root(p, dp, n, a, b, 1, 0, x0);
 }
 
+/* de Casteljau's n rounds written out for degree 8, on w0..w8 (the
+ * coefficients), into left[] and right[] (halves, split_at): STEP(j, k)
+ * sets w_j from w_j and w_k, j ascending within a round, as the loops do --
+ * the same operations in the same order. */
+#define CASTELJAU_8(STEP) \
+    do { \
+        left[0] = w0; \
+        right[8] = w8; \
+        STEP(0, 1); STEP(1, 2); STEP(2, 3); STEP(3, 4); STEP(4, 5); STEP(5, 6); STEP(6, 7); STEP(7, 8); \
+        left[1] = w0; \
+        right[7] = w7; \
+        STEP(0, 1); STEP(1, 2); STEP(2, 3); STEP(3, 4); STEP(4, 5); STEP(5, 6); STEP(6, 7); \
+        left[2] = w0; \
+        right[6] = w6; \
+        STEP(0, 1); STEP(1, 2); STEP(2, 3); STEP(3, 4); STEP(4, 5); STEP(5, 6); \
+        left[3] = w0; \
+        right[5] = w5; \
+        STEP(0, 1); STEP(1, 2); STEP(2, 3); STEP(3, 4); STEP(4, 5); \
+        left[4] = w0; \
+        right[4] = w4; \
+        STEP(0, 1); STEP(1, 2); STEP(2, 3); STEP(3, 4); \
+        left[5] = w0; \
+        right[3] = w3; \
+        STEP(0, 1); STEP(1, 2); STEP(2, 3); \
+        left[6] = w0; \
+        right[2] = w2; \
+        STEP(0, 1); STEP(1, 2); \
+        left[7] = w0; \
+        right[1] = w1; \
+        STEP(0, 1); \
+        left[8] = w0; \
+        right[0] = w0; \
+    } while (0)
+
 /* The Bernstein coefficients of both halves of the interval (de Casteljau
  * at 1/2: n rounds of averages of neighbours, one triangle): left[k] is the
  * first entry after round k, right[n - k] the last.  (Each half used to be
@@ -1614,33 +1648,8 @@ static void halves(const double in[], int n, double left[], double right[])
     if (n == 8) {
         double w0 = in[0], w1 = in[1], w2 = in[2], w3 = in[3], w4 = in[4], w5 = in[5],
                w6 = in[6], w7 = in[7], w8 = in[8];
-        left[0] = w0;
-        right[8] = w8;
 #define AVG(j, k) w##j = (w##j + w##k) * 0.5
-        AVG(0, 1); AVG(1, 2); AVG(2, 3); AVG(3, 4); AVG(4, 5); AVG(5, 6); AVG(6, 7); AVG(7, 8);
-        left[1] = w0;
-        right[7] = w7;
-        AVG(0, 1); AVG(1, 2); AVG(2, 3); AVG(3, 4); AVG(4, 5); AVG(5, 6); AVG(6, 7);
-        left[2] = w0;
-        right[6] = w6;
-        AVG(0, 1); AVG(1, 2); AVG(2, 3); AVG(3, 4); AVG(4, 5); AVG(5, 6);
-        left[3] = w0;
-        right[5] = w5;
-        AVG(0, 1); AVG(1, 2); AVG(2, 3); AVG(3, 4); AVG(4, 5);
-        left[4] = w0;
-        right[4] = w4;
-        AVG(0, 1); AVG(1, 2); AVG(2, 3); AVG(3, 4);
-        left[5] = w0;
-        right[3] = w3;
-        AVG(0, 1); AVG(1, 2); AVG(2, 3);
-        left[6] = w0;
-        right[2] = w2;
-        AVG(0, 1); AVG(1, 2);
-        left[7] = w0;
-        right[1] = w1;
-        AVG(0, 1);
-        left[8] = w0;
-        right[0] = w0;
+        CASTELJAU_8(AVG);
 #undef AVG
         return;
     }
@@ -1669,33 +1678,8 @@ static void split_at(const double in[], int n, double t, double left[], double r
          * of most windows near complex roots (bernstein_clear) */
         double w0 = in[0], w1 = in[1], w2 = in[2], w3 = in[3], w4 = in[4], w5 = in[5],
                w6 = in[6], w7 = in[7], w8 = in[8];
-        left[0] = w0;
-        right[8] = w8;
 #define LERP(j, k) w##j = w##j + t * (w##k - w##j)
-        LERP(0, 1); LERP(1, 2); LERP(2, 3); LERP(3, 4); LERP(4, 5); LERP(5, 6); LERP(6, 7); LERP(7, 8);
-        left[1] = w0;
-        right[7] = w7;
-        LERP(0, 1); LERP(1, 2); LERP(2, 3); LERP(3, 4); LERP(4, 5); LERP(5, 6); LERP(6, 7);
-        left[2] = w0;
-        right[6] = w6;
-        LERP(0, 1); LERP(1, 2); LERP(2, 3); LERP(3, 4); LERP(4, 5); LERP(5, 6);
-        left[3] = w0;
-        right[5] = w5;
-        LERP(0, 1); LERP(1, 2); LERP(2, 3); LERP(3, 4); LERP(4, 5);
-        left[4] = w0;
-        right[4] = w4;
-        LERP(0, 1); LERP(1, 2); LERP(2, 3); LERP(3, 4);
-        left[5] = w0;
-        right[3] = w3;
-        LERP(0, 1); LERP(1, 2); LERP(2, 3);
-        left[6] = w0;
-        right[2] = w2;
-        LERP(0, 1); LERP(1, 2);
-        left[7] = w0;
-        right[1] = w1;
-        LERP(0, 1);
-        left[8] = w0;
-        right[0] = w0;
+        CASTELJAU_8(LERP);
 #undef LERP
         return;
     }
