@@ -1406,6 +1406,23 @@ typedef struct {
     int even;
 } BernQ;
 
+/* Round `from` of the running sums on b0..b8, each entry j >= from adding
+ * its left neighbour, j descending: the upper entries, then the lower. */
+#define SUMS_HIGH(from)                                                    \
+    do {                                                                   \
+        if (8 >= from) b8 += b7;                                           \
+        if (7 >= from) b7 += b6;                                           \
+        if (6 >= from) b6 += b5;                                           \
+        if (5 >= from) b5 += b4;                                           \
+    } while (0)
+#define SUMS_LOW(from)                                                     \
+    do {                                                                   \
+        if (4 >= from) b4 += b3;                                           \
+        if (3 >= from) b3 += b2;                                           \
+        if (2 >= from) b2 += b1;                                           \
+        if (1 >= from) b1 += b0;                                           \
+    } while (0)
+
 /* b_j = sum_{k <= j} C(j, k) a_k, j = 0..n, in place: n rounds of running
  * sums (round r adds each entry j >= r's left neighbour, j descending), so
  * additions only.  Up to degree 8 written out in full for 9 entries (the
@@ -1418,18 +1435,10 @@ static void binomial_sums(double a[], int n)
     if (CONSTANT_AT_MOST(n, 4)) {
         /* the same for 5 entries in the quartics' copy: 10 sums, not 36 */
         double b0 = a[0], b1 = a[1], b2 = a[2], b3 = a[3], b4 = a[4];
-#define ROUND(from)                                                        \
-    do {                                                                   \
-        if (4 >= from) b4 += b3;                                           \
-        if (3 >= from) b3 += b2;                                           \
-        if (2 >= from) b2 += b1;                                           \
-        if (1 >= from) b1 += b0;                                           \
-    } while (0)
-        ROUND(1);
-        ROUND(2);
-        ROUND(3);
-        ROUND(4);
-#undef ROUND
+        SUMS_LOW(1);
+        SUMS_LOW(2);
+        SUMS_LOW(3);
+        SUMS_LOW(4);
         a[0] = b0;
         a[1] = b1;
         a[2] = b2;
@@ -1442,14 +1451,8 @@ static void binomial_sums(double a[], int n)
                b6 = a[6], b7 = a[7], b8 = a[8];
 #define ROUND(from)                                                        \
     do {                                                                   \
-        if (8 >= from) b8 += b7;                                           \
-        if (7 >= from) b7 += b6;                                           \
-        if (6 >= from) b6 += b5;                                           \
-        if (5 >= from) b5 += b4;                                           \
-        if (4 >= from) b4 += b3;                                           \
-        if (3 >= from) b3 += b2;                                           \
-        if (2 >= from) b2 += b1;                                           \
-        if (1 >= from) b1 += b0;                                           \
+        SUMS_HIGH(from);                                                   \
+        SUMS_LOW(from);                                                    \
     } while (0)
         ROUND(1);
         ROUND(2);
@@ -1475,6 +1478,8 @@ static void binomial_sums(double a[], int n)
         for (int j = n; j >= r; j--)
             a[j] += a[j - 1];
 }
+#undef SUMS_HIGH
+#undef SUMS_LOW
 
 static int bernstein_test(const Point *pt, int n, double w, double *pend,
                           BernQ *qb)
