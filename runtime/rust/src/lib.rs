@@ -160,7 +160,7 @@ pub fn first_roots(c: &[f64], degree: usize, tmax: f64, eps: f64, out: &mut [f64
 /// The C runtime's `solve`: by its copy for the degree where there is one (C's `SOLVE_CLONE`:
 /// degrees 2, 4 and 8, where the length of `coef` is a constant in the copy, so that the
 /// loading and the early tests are compiled for it), else `solve_core`.
-/// (The conversions to arrays cannot fail after the length is read, and take no panic path.)
+/// (`try_from` tests the length: no panic path.)
 fn solve(coef: &[f64], tmax: f64, method: Method, eps: f64) -> Status {
     if let Ok(a) = <&[f64; 9]>::try_from(coef) {
         solve_degree(a, tmax, method, eps)
