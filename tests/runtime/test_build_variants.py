@@ -59,6 +59,13 @@ def _answers(exe: Path, lines: list[str]) -> list[str]:
     return out
 
 
+def _assert_same(lines: list[str], default_answers: list[str], out: list[str],
+                 what: str) -> None:
+    """Every answer as the default build's, else the first 20 that differ."""
+    differ = [f"{ln}: {a} / {b}" for ln, a, b in zip(lines, default_answers, out) if a != b]
+    assert not differ, f"{len(differ)} answers differ {what}:\n" + "\n".join(differ[:20])
+
+
 @pytest.fixture(scope="module")
 def default_answers(lines: list[str], tmp_path_factory: pytest.TempPathFactory) -> list[str]:
     exe = tf.build_driver(tmp_path_factory.mktemp("default") / "roots_driver")
@@ -83,9 +90,7 @@ def test_variant_answers_as_the_default_build(cc: str, extra: list[str], lines: 
     found = [ln for ln in default_answers if ln.startswith("1 ")]
     assert len(found) > 500 and min(degrees.count("2"), degrees.count("4")) > 300
     assert degrees.count("8") > 2000
-    differ = [f"{ln}: {a} / {b}" for ln, a, b in zip(lines, default_answers, out) if a != b]
-    what = " ".join([cc, *extra])
-    assert not differ, f"{len(differ)} answers differ with {what}:\n" + "\n".join(differ[:20])
+    _assert_same(lines, default_answers, out, "with " + " ".join([cc, *extra]))
 
 
 @pytest.mark.parametrize("cc, extra", [
@@ -124,5 +129,4 @@ def test_no_uninitialised_reads(lines: list[str], default_answers: list[str],
                           extra=["-O1", "-g", "-fsanitize=memory",
                                  "-fsanitize-memory-track-origins", "-DM2C_NO_GSL"])
     out = _answers(exe, lines)
-    differ = [f"{ln}: {a} / {b}" for ln, a, b in zip(lines, default_answers, out) if a != b]
-    assert not differ, f"{len(differ)} answers differ under MemorySanitizer:\n" + "\n".join(differ[:20])
+    _assert_same(lines, default_answers, out, "under MemorySanitizer")
