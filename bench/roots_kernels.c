@@ -20,8 +20,14 @@
  * polish its window), the kernels interleaved region by region with the unit; per kernel the
  * median over regions of the time per call, the empty region's cost subtracted.
  *
- * Output: a markdown table on stdout.  Argument 1: regions (default 201); argument "check":
- * prints "ok KEPT" or the first difference (tests/test_bench_kernels.py).
+ * Then every polynomial of the input by the path its solve takes (settled before the guess,
+ * the certified guess, a certificate that fails, a guess that fails): each path's whole solves
+ * timed as the kernels, in regions of their own, and its share of the family's mean -- what a
+ * faster certified path can gain at most, and what the solves it does not settle cost.
+ *
+ * Output: two markdown tables on stdout.  Argument 1: regions (default 201); argument "check":
+ * prints "ok KEPT of TOTAL", or the first difference, or the paths' count of certified guesses
+ * where it is not the number kept (tests/test_bench_kernels.py).
  */
 #define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
@@ -47,6 +53,36 @@ typedef struct {
 } Kept;
 
 static Kept kept[MAXPOLY];
+
+/* Every polynomial of the input, and the path its default solve takes: what the mean of a
+ * family is made of (the certified guess's share, and the solves it leaves to the Taylor
+ * points and the bisection). */
+enum { SETTLED_EARLY, CERTIFIED, CERTIFICATE_FAILS, GUESS_FAILS, NPATHS };
+static const char *PATH_NAMES[NPATHS] = {
+    "settled before the guess (the tests at 0, or handed elsewhere)",
+    "the certified guess", "the guess converges, its certificate fails",
+    "the guess fails (complex roots in the way, out of the window, no convergence)"};
+typedef struct {
+    double tmax, c[MAXN + 1];
+    int degree, path;
+} Input;
+static Input inputs[MAXPOLY];
+static int path_size[NPATHS];
+
+static int path_of(const Input *in)
+{
+    double c[MAXN + 1], T, r, touch, dip = 0, pT, over = 0;
+    Point a;
+    int n = prepare_window(in->c, in->degree, in->tmax, c, &T, &a);
+    if (n == 0)
+        return SETTLED_EARLY;
+    int guess = speculate_first_root(c, n, T, &r, &touch, &dip, &over);
+    if (!guess)
+        return GUESS_FAILS;
+    double end = guess == OVERSHOT ? over : r, w = end + end * 0x1p-20;
+    w = w < T ? w : T;
+    return bernstein_test(&a, n, w, &pT, NULL) == BERN_ONE ? CERTIFIED : CERTIFICATE_FAILS;
+}
 
 /* 1 when the certified guess settles the solve of k (its default method). */
 static int prepare(Kept *k)
@@ -77,6 +113,8 @@ static int prepare(Kept *k)
 }
 
 enum { UNIT, SOLVE, REPLICA, PREPARATION, GUESS, CERTIFICATE, POLISH, NKERNELS };
+/* the regions of the paths' solves follow the kernels' (region(NKERNELS + path, ...)) */
+#define NREGIONS (NKERNELS + NPATHS)
 static const char *NAMES[NKERNELS] = {
     "one degree-8 Horner evaluation (the unit)", "the whole solve (m2c_first_root_ex)",
     "the same steps, the replica's kernels called one after the other",
@@ -85,11 +123,33 @@ static const char *NAMES[NKERNELS] = {
     "its certificate: Bernstein test on (0, r (1 + 2^-20)] (bernstein_test)",
     "the polish: p', then compensated Newton (derivative, refine_root)"};
 
+/* One region of the whole solves of the polynomials on one path, as region() below. */
+static double path_region(int path, int total)
+{
+    double dep = 0, t0 = now_ns();
+    for (int i = 0; i < total; i++) {
+        const Input *in = &inputs[i];
+        if (in->path != path)
+            continue;
+        double t = 0;
+        int g = 0;
+        m2c_first_root_ex(in->c, in->degree, in->tmax + 0x1p-1000 * dep, &t,
+                          M2C_METHOD_INTERVAL, &g);
+        dep = t;
+    }
+    double t1 = now_ns();
+    sink = dep;
+    return t1 - t0;
+}
+
 /* One region: every kept polynomial once through kernel `which`, each call's input made to
- * wait for the last call's result (adding 0x1p-1000 times it changes no input). */
-static double region(int which, int m)
+ * wait for the last call's result (adding 0x1p-1000 times it changes no input); from
+ * NKERNELS on, the solves of one path (path_region). */
+static double region(int which, int m, int total)
 {
     static const double hc[9] = {1, -2, 3, -4, 5, -6, 7, -8, 1};
+    if (which >= NKERNELS)
+        return path_region(which - NKERNELS, total);
     double dep = 0, t0 = now_ns();
     for (int i = 0; i < m; i++) {
         Kept *k = &kept[i];
@@ -167,6 +227,12 @@ int main(int argc, char **argv)
         }
         if (got == 0)
             continue;
+        Input *in = &inputs[total];
+        in->tmax = k->tmax;
+        in->degree = k->degree;
+        memcpy(in->c, k->c, sizeof in->c);
+        in->path = path_of(in);
+        path_size[in->path]++;
         total++;
         m += prepare(k);
     }
@@ -185,23 +251,28 @@ int main(int argc, char **argv)
                 return 1;
             }
         }
+        if (path_size[CERTIFIED] != m) {
+            printf("paths: %d certified guesses, %d kept\n", path_size[CERTIFIED], m);
+            return 1;
+        }
         printf("ok %d of %d\n", m, total);
         return 0;
     }
     double empty = empty_region_ns();
-    double *ns[NKERNELS];
-    for (int j = 0; j < NKERNELS; j++) {
+    double *ns[NREGIONS];
+    for (int j = 0; j < NREGIONS; j++) {
         ns[j] = malloc((size_t)regions * sizeof(double));
         if (ns[j] == NULL)
             return 2;
     }
     for (int rgn = 0; rgn < regions; rgn++)
-        for (int j = 0; j < NKERNELS; j++) {
-            int which = (j + rgn) % NKERNELS; /* the order rotates */
-            ns[which][rgn] = (region(which, m) - empty) / m;
+        for (int j = 0; j < NREGIONS; j++) {
+            int which = (j + rgn) % NREGIONS; /* the order rotates */
+            int calls = which < NKERNELS ? m : path_size[which - NKERNELS];
+            ns[which][rgn] = calls > 0 ? (region(which, m, total) - empty) / calls : 0;
         }
-    double med[NKERNELS];
-    for (int j = 0; j < NKERNELS; j++)
+    double med[NREGIONS];
+    for (int j = 0; j < NREGIONS; j++)
         med[j] = median(ns[j], regions);
     double unit = med[UNIT];
     printf("%d of %d polynomials settled by the certified guess; unit %.1f ns; %d regions.\n\n",
@@ -215,7 +286,21 @@ int main(int argc, char **argv)
     double rest = med[SOLVE] - med[PREPARATION] - med[GUESS] - med[CERTIFICATE] - med[POLISH];
     printf("| the rest: calls, copies, and what the kernels cost more inside one solve than "
            "each on its own | %.0f | %.1f | %.0f %% |\n", rest, rest / unit, 100 * rest / med[SOLVE]);
-    for (int j = 0; j < NKERNELS; j++)
+    /* the paths: each one's solves in a region of their own, as the kernels' */
+    double mean = 0;
+    for (int j = 0; j < NPATHS; j++)
+        mean += path_size[j] * med[NKERNELS + j] / unit / total;
+    printf("\nEvery polynomial of the family by the path its solve takes (each path's solves "
+           "timed in regions of their own, as the kernels above): %.1f evaluations a solve in "
+           "the mean.\n\n", mean);
+    printf("| path | polynomials | evaluations each | evaluations of the mean | share of the "
+           "mean |\n|---|---:|---:|---:|---:|\n");
+    for (int j = 0; j < NPATHS; j++) {
+        double each = med[NKERNELS + j] / unit, part = path_size[j] * each / total;
+        printf("| %s | %d | %.1f | %.1f | %.0f %% |\n", PATH_NAMES[j], path_size[j], each,
+               part, mean > 0 ? 100 * part / mean : 0);
+    }
+    for (int j = 0; j < NREGIONS; j++)
         free(ns[j]);
     return 0;
 }

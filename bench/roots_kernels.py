@@ -7,7 +7,9 @@ static), feeds it one of bench/roots.py's families, checks that its replica of t
 path gives the public solve's roots bit for bit, and times the solves that the certified
 guess settles: the whole solve, the guess (Laguerre from 0), its certificate (one Bernstein
 test), the polish (one compensated Newton step, usually), and by difference the rest --
-validation, the preparation, the bounds and tests at 0.  Writes
+validation, the preparation, the bounds and tests at 0.  Then every polynomial of the family by
+the path its solve takes (settled before the guess, the certified guess, a failed certificate,
+a failed guess): each path's solves timed alike, and its share of the family's mean.  Writes
 bench/results/roots_kernels_<family>.md (and stdout).
 
 Why: issue 10's target for a generic octic is 15 evaluations, about half of today's median.
@@ -58,7 +60,8 @@ def main(argv: list[str] | None = None) -> int:
         f"the kernels ran interleaved, region by region). Command: `{command}`. gcc -O2; every "
         "call waits for the last call's result, as a solve's kernels wait for each other; the "
         "unit is bench/timing.h's degree-8 Horner evaluation. Only the polynomials whose default "
-        "solve the certified guess settles (the others go on to Taylor points and bisection).",
+        "solve the certified guess settles (the others go on to Taylor points and bisection); "
+        "the second table has every polynomial of the family, by the path its solve takes.",
         "", out.strip(), ""])
     publish(args.out, f"roots_kernels_{args.family}.md", text)
     return 0

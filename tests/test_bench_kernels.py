@@ -43,6 +43,17 @@ def test_table_has_every_kernel(tmp_path: Path) -> None:
     kept, total = map(int, re.search(r"^(\d+) of (\d+) polynomials settled", text, re.M).groups())
     assert total == 100 and 0 < kept < total
     assert "python bench/roots_kernels.py --count 100 --regions 3" in text
+    # the paths: every polynomial on one, the certified guesses the ones the kernels priced
+    paths = re.findall(r"^\| ([^|]+?) \| (\d+) \| ([\d.]+) \| ([\d.]+) \| (\d+) % \|$", text, re.M)
+    assert [p[0].split(" (")[0] for p in paths] == [
+        "settled before the guess", "the certified guess",
+        "the guess converges, its certificate fails", "the guess fails"], text
+    counts = {p[0].split(" (")[0]: int(p[1]) for p in paths}
+    assert sum(counts.values()) == total and counts["the certified guess"] == kept, text
+    assert counts["the guess fails"] > 0, text  # generic octics: complex roots in the way
+    assert all(float(p[2]) > 0 for p in paths if int(p[1]) > 0), text
+    mean = float(re.search(r"([\d.]+) evaluations a solve in the mean", text).group(1))
+    assert abs(sum(float(p[3]) for p in paths) - mean) <= 0.05 * len(paths), text
 
 
 def test_a_replica_off_the_solver_path_is_refused(tmp_path: Path) -> None:
