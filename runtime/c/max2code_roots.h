@@ -188,7 +188,9 @@
  *     polynomial is |d(t)|^2 - R^2: a pass at gap g has a minimum of about
  *     2 R g) makes a critical point where |p| <= eps + the rounding bound,
  *     without a sign change, a touch: a near-miss within the skin is
- *     reported as contact at the time of closest approach.  Crossings are
+ *     reported as contact at the time of closest approach.  Only a minimum
+ *     of |p| is a touch: a maximum (p(0) within the skin, the bodies first
+ *     moving apart) is the farthest pass, and the scan goes on.  Crossings are
  *     reported exactly as without it.  eps = 0 is the default behaviour.
  *     It applies to the interval method (the quadratic's vertex included) and
  *     to the polynomial left after exact factors of t are divided out (step

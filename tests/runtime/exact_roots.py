@@ -282,6 +282,21 @@ def _near_zero(coeffs: Sequence[float], t: float, rel: float, eps: float = 0.0) 
     return abs(val) <= Fraction(rel) * size + Fraction(eps)
 
 
+def _peak(coeffs: Sequence[float], t: float) -> bool:
+    """|p| strictly larger at t than at t (1 -+ 2^-16), exactly: t is a maximum of |p| -- the
+    farthest pass nearby, which no skin makes a touch (the header: "reported at the time of
+    closest approach").  A touch is reported within far less than 2^-16 of its critical point,
+    so a minimum never reads as a peak."""
+    x = Fraction(t)
+    c = [Fraction(v) for v in coeffs]
+
+    def size(y: Fraction) -> Fraction:
+        return abs(sum(ci * y**i for i, ci in enumerate(c)))
+
+    v, d = size(x), x / 2**16
+    return size(x - d) < v and size(x + d) < v
+
+
 def _log2(x: float) -> float:
     return math.log2(abs(x))
 
@@ -364,7 +379,7 @@ def judge_exact(coeffs: Sequence[float], tmax: float, status: int, t: float, gra
             return "ok-at-tmax"  # within its error bound of tmax
         return "miss"
     x = Fraction(t)
-    near = _near_zero(coeffs, t, TOUCH_REL, eps)
+    near = _near_zero(coeffs, t, TOUCH_REL, eps) and not _peak(coeffs, t)
     if truth.kind == "none":
         return "ok-touch" if near else "false"
     if truth.kind == "cluster":

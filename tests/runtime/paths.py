@@ -24,19 +24,23 @@ CALLS = (("interval", 0, 0.0, "interval"), ("interval-nograze", 1, 0.0, "nograze
          ("interval", 0, tf.SKIN, f"skin:{tf.SKIN!r}"))
 
 
+Call = tuple[str, int, float, str]
+
+
 def answers(runtime: str, vecs: Sequence[Vector], tmp: Path,
-            monkeypatch: pytest.MonkeyPatch | None = None) -> list[tuple[int, float, bool]]:
-    """(status, root, graze) of every call in CALLS on every vector, vector by vector, from
-    "c" (the plain C driver), "rust" (roots_cli), "python" or "python-c" (the pure-Python
-    solver, or the C runtime through cffi; these two need monkeypatch)."""
+            monkeypatch: pytest.MonkeyPatch | None = None,
+            calls: Sequence[Call] = CALLS) -> list[tuple[int, float, bool]]:
+    """(status, root, graze) of every call in `calls` (CALLS unless given) on every vector,
+    vector by vector, from "c" (the plain C driver), "rust" (roots_cli), "python" or "python-c"
+    (the pure-Python solver, or the C runtime through cffi; these two need monkeypatch)."""
     if runtime == "c":
         driver = tf.build_driver(tmp / "roots_driver")
-        lines = [tf.c_line(f"{m}:{eps!r}" if eps else m, c, t) for c, t in vecs for _, m, eps, _ in CALLS]
+        lines = [tf.c_line(f"{m}:{eps!r}" if eps else m, c, t) for c, t in vecs for _, m, eps, _ in calls]
         return [a[:3] for a in tf.run_timed(driver, lines)]
     if runtime == "rust":
         exe = rust.build_cli(rust.require_cargo())
         queries = [f"{name} {rust.fmt(t)} {' '.join(rust.fmt(x) for x in c)}"
-                   for c, t in vecs for *_, name in CALLS]
+                   for c, t in vecs for *_, name in calls]
         out = subprocess.run([str(exe)], input="\n".join(queries) + "\n", capture_output=True,
                              text=True, timeout=120, check=True).stdout.splitlines()
         assert len(out) == len(queries)
@@ -50,7 +54,7 @@ def answers(runtime: str, vecs: Sequence[Vector], tmp: Path,
 
     assert monkeypatch is not None, "the Python runtimes are selected through monkeypatch"
     tf.select_backend("python" if runtime == "python" else "c", monkeypatch)
-    return [rt.first_root_status(list(c), t, method, eps) for c, t in vecs for method, _, eps, _ in CALLS]
+    return [rt.first_root_status(list(c), t, method, eps) for c, t in vecs for method, _, eps, _ in calls]
 
 
 class Judged(NamedTuple):

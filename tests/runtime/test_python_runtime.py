@@ -263,6 +263,72 @@ def test_first_roots_without_numpy(backend: str, monkeypatch: pytest.MonkeyPatch
         rt.first_roots([[1.0, 2.0], [1.0]])
 
 
+def test_input_no_float_can_hold_is_invalid(backend: str) -> None:
+    """An int too large for a float (coefficient, tmax or eps) is invalid input: status -1
+    from first_root_status, which never raises, and ValueError from first_root, on either
+    backend and through every branch (the C call without a skin, the others)."""
+    huge = 10**400
+    for c, tmax, eps in (([huge, -1.0], 1.0, 0.0), ([1.0, -1.0], huge, 0.0),
+                         ([huge, -1.0], 1.0, 1e-3), ([1.0, -1.0], 2.0, huge)):
+        for method in ("interval", "closed") if eps == 0.0 else ("interval",):
+            st, t, g = rt.first_root_status(c, tmax, method, eps)
+            assert st == -1 and math.isnan(t) and not g, (c, tmax, eps, method)
+        with pytest.raises(ValueError):
+            rt.first_root(c, tmax, eps)
+
+
+def test_skin_only_with_the_interval_method(backend: str) -> None:
+    """The skin widens the graze check, which only "interval" has: eps > 0 with another method
+    is invalid input on both backends (the C binding's rule), never a skin that one degree
+    honours and another ignores."""
+    d = 1e-9
+    c = [3.0 * (1.0 + d), -(7.0 + d), 5.0, -1.0]  # a pass at d above zero at 1, a root at 3
+    assert rt.first_root_status(c, 5.0, "interval", 1e-8)[:1] == (1,)
+    for method in ("closed", "interval-nograze"):
+        for coeffs in (c[:3], c, c + [0.0, 1e-3]):  # degrees 2, 3 and 5
+            st, t, _ = rt.first_root_status(coeffs, 5.0, method, 1e-8)
+            assert st == -1 and math.isnan(t), (method, coeffs)
+        assert rt.first_root_status(c, 5.0, method, 0.0)[0] == 1
+
+
+@pytest.mark.parametrize("numpy_present", [True, False])
+def test_first_roots_scalars_as_first_root_status(backend: str, numpy_present: bool,
+                                                  monkeypatch: pytest.MonkeyPatch) -> None:
+    """tmax and eps that first_root_status refuses (a string, None, an int no float holds)
+    make every row NaN on both backends, with numpy or without it; a row holding something
+    other than numbers is NaN without numpy (numpy converts what it can itself)."""
+    if not numpy_present:
+        monkeypatch.setitem(sys.modules, "numpy", None)
+    rows = [[-6.0, 11.0, -6.0, 1.0], [2.0, -3.0, 1.0, 0.0]]
+    for tmax, eps in (("5", 0.0), (None, 0.0), (5.0, "0"), (10**400, 0.0), (5.0, None)):
+        got = list(rt.first_roots(rows, tmax, eps))
+        assert len(got) == 2 and all(math.isnan(x) for x in got), (tmax, eps, got)
+    assert list(rt.first_roots(rows, 5.0)) == [1.0, 1.0]
+    if not numpy_present:
+        got = rt.first_roots([[-6.0, 11.0, -6.0, 1.0], [None, 1.0, 1.0, 1.0],
+                              ["1", -3.0, 1.0, 0.0]], 5.0)
+        assert got[0] == 1.0 and math.isnan(got[1]) and math.isnan(got[2])
+        with pytest.raises(ValueError):
+            rt.first_roots([1.0, 2.0, 3.0])  # one row, not rows
+    assert len(rt.first_roots([], 5.0)) == 0
+
+
+def test_batches_go_to_c_in_chunks(monkeypatch: pytest.MonkeyPatch) -> None:
+    """m2c_first_roots counts rows in a C int: the binding splits larger batches.  With the
+    chunk made 2 rows, 5 rows (numpy and lists) give the single calls' answers."""
+    _require_c_backend()
+    np = pytest.importorskip("numpy")
+    monkeypatch.setattr(rt, "_C", C_BACKEND)
+    monkeypatch.setattr(C_BACKEND, "CHUNK", 2)
+    rows = [[-6.0, 11.0, -6.0, 1.0], [1.0, 1.0, 1.0, 1.0], [-0.5, 1.0, 0.0, 0.0],
+            [2.0, -3.0, 1.0, 0.0], [-24.0, 50.0, -35.0, 10.0]]
+    single = [rt.first_root(r, 10.0) for r in rows]
+    assert all(x is not None for i, x in enumerate(single) if i != 1)
+    want = [math.nan if x is None else x for x in single]
+    for got in (rt.first_roots(np.array(rows), 10.0), C_BACKEND.solve_batch(rows, 10.0, 0.0)):
+        assert [repr(float(x)) for x in got] == [repr(x) for x in want]
+
+
 # Same kappa-relative bounds as for C (see test_c_runtime.random_bound).
 def test_random(backend: str) -> None:
     count = RANDOM_COUNT if backend == "c" else RANDOM_COUNT // 3

@@ -156,12 +156,14 @@ def _solve_python(cc: list[float], tmax: float, method: str, eps: float) -> tupl
 
 
 def _floats(c: Sequence[float], tmax: float, eps: float) -> tuple[list[float], float, float] | None:
-    """Numbers as floats, None for anything else (strings too: C's cffi call refuses them)."""
+    """Numbers as floats, None for anything else (strings too: C's cffi call refuses them;
+    and an int too large for a float, whose conversion raises OverflowError: invalid input,
+    as cffi has it)."""
     try:
         if any(isinstance(x, (str, bytes)) for x in (*c, tmax, eps)):
             return None
         return [float(x) for x in c], float(tmax), float(eps)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):
         return None
 
 
@@ -170,17 +172,19 @@ def first_root_status(c: Sequence[float], tmax: float = math.inf, method: str = 
     """(status, t, graze): status 1 = root t in (0, tmax], 0 = none there (or the first root
     is not representable: it underflows to 0 or overflows), -1 = invalid input (NaN/Inf
     coefficient, no or more than 17 coefficients, tmax NaN or <= 0, eps NaN, negative or
-    infinite, unknown method); t is nan unless status is 1; graze says the root is a touch
-    (double root without sign change, or a near-miss within the contact skin eps)."""
+    infinite, unknown method, a skin eps > 0 with a method other than "interval", which alone
+    has the graze check a skin widens -- as the C binding has it); t is nan unless status is
+    1; graze says the root is a touch (double root without sign change, or a near-miss within
+    the contact skin eps)."""
     if _C is not None and method == "interval" and eps == 0.0:
         return _C.solve_default(c, tmax)  # the common call, validated by C
     got = _floats(c, tmax, eps)
     if got is None or method not in METHODS:
         return -1, math.nan, False
     cc, tm, ep = got
-    if not _valid(cc, tm, ep):
+    if not _valid(cc, tm, ep) or (ep != 0 and method != "interval"):
         return -1, math.nan, False
-    if _C is not None and not (ep != 0 and method != "interval"):
+    if _C is not None:
         return _C.solve(cc, tm, _C_METHOD[method], ep)
     return _solve_python(cc, tm, method, ep)
 
@@ -219,28 +223,49 @@ def first_root(c: Sequence[float], tmax: float = math.inf, eps: float = 0.0) -> 
 
 def first_roots(C: Any, tmax: float = math.inf, eps: float = 0.0) -> Any:
     """The first root of every row of C (an (M, N+1) array or a sequence of M sequences of one
-    length N+1 <= 17, c[i] multiplying t^i), NaN where a row has none or is invalid: a numpy
-    array when numpy is installed, else a list.  One call into C for the whole batch with the
-    C backend (m2c_first_roots); raises ValueError for a ragged or over-long C."""
+    length N+1 <= 17, c[i] multiplying t^i), NaN where a row has none or is invalid (tmax and
+    eps as first_root_status takes them: anything else makes every row NaN): a numpy array
+    when numpy is installed, else a list.  One call into C for the whole batch with the C
+    backend (m2c_first_roots); raises ValueError for a ragged or over-long C, or one that is
+    not rows.  Both backends give the same answers on the same input, bit for bit."""
     try:
         import numpy as np
     except ImportError:
         np = None
+    scalars = _floats((), tmax, eps)
     if np is not None:
         arr = np.ascontiguousarray(C, dtype=np.float64)
+        if arr.ndim == 1 and arr.shape[0] == 0:
+            arr = arr.reshape(0, 1)  # [] : no rows, as without numpy
         if arr.ndim != 2 or arr.shape[1] < 1 or arr.shape[1] > MAX_DEGREE + 1:
             raise ValueError(f"first_roots: C must be (M, N+1) with 1 <= N+1 <= {MAX_DEGREE + 1}, "
                              f"not {arr.shape}")
+        if scalars is None:
+            return np.full(arr.shape[0], np.nan)
+        _, tm, ep = scalars
         if _C is not None:
-            return _C.solve_batch_numpy(arr, float(tmax), float(eps), np)
-        return np.array([_row(r, tmax, eps) for r in arr.tolist()], dtype=np.float64)
-    rows = [list(r) for r in C]
+            return _C.solve_batch_numpy(arr, tm, ep, np)
+        return np.array([_row(r, tm, ep) for r in arr.tolist()], dtype=np.float64)
+    try:
+        rows = [list(r) for r in C]
+    except TypeError:
+        raise ValueError("first_roots: C must be M rows (sequences) of coefficients") from None
     if rows and (len({len(r) for r in rows}) != 1 or not 1 <= len(rows[0]) <= MAX_DEGREE + 1):
         raise ValueError("first_roots: C must be M rows of one length, 1 to "
                          f"{MAX_DEGREE + 1} coefficients")
+    if scalars is None:
+        return [math.nan] * len(rows)
+    _, tm, ep = scalars
     if _C is not None and rows:
-        return _C.solve_batch(rows, float(tmax), float(eps))
-    return [_row(r, tmax, eps) for r in rows]
+        # a row that is not numbers is invalid, NaN, as the pure path has it
+        return _C.solve_batch([_numbers_or_nan(r) for r in rows], tm, ep)
+    return [_row(r, tm, ep) for r in rows]
+
+
+def _numbers_or_nan(r: list[Any]) -> list[float]:
+    """The row as floats, or NaNs (C's invalid input) where one entry is not a number."""
+    got = _floats(r, 0.0, 0.0)
+    return got[0] if got is not None else [math.nan] * len(r)
 
 
 def _row(r: Sequence[float], tmax: float, eps: float) -> float:

@@ -80,22 +80,31 @@ def solve_default(c: Any, tmax: float) -> tuple[int, float, bool]:
         return INVALID
 
 
+# m2c_first_roots counts rows in a C int: larger batches go in chunks of this many rows
+CHUNK = 2**31 - 1
+
+
 def solve_batch(rows: list[list[float]], tmax: float, eps: float) -> list[float]:
-    """m2c_first_roots on M rows of one length: the roots, NaN for none or invalid."""
+    """m2c_first_roots on M rows of one length (floats): the roots, NaN for none or invalid."""
     m, w = len(rows), len(rows[0])
     flat = ffi.new("double[]", m * w)
     for i, r in enumerate(rows):
-        flat[i * w:(i + 1) * w] = [float(x) for x in r]
+        flat[i * w:(i + 1) * w] = r
     out = ffi.new("double[]", m)
-    lib.m2c_first_roots(flat, m, w - 1, tmax, eps, out, ffi.NULL)
+    for i in range(0, m, CHUNK):
+        k = min(CHUNK, m - i)
+        lib.m2c_first_roots(flat + i * w, k, w - 1, tmax, eps, out + i, ffi.NULL)
     return list(out)
 
 
 def solve_batch_numpy(arr: Any, tmax: float, eps: float, np: Any) -> Any:
-    """m2c_first_roots straight on a C-contiguous float64 (M, N+1) array, no copy."""
+    """m2c_first_roots straight on a C-contiguous float64 (M, N+1) array, no copy (in chunks
+    of CHUNK rows)."""
     m, w = arr.shape
     out = np.empty(m, dtype=np.float64)
-    if m:
-        lib.m2c_first_roots(ffi.cast("double *", ffi.from_buffer(arr)), m, w - 1, tmax, eps,
-                            ffi.cast("double *", ffi.from_buffer(out)), ffi.NULL)
+    c = ffi.cast("double *", ffi.from_buffer(arr))
+    t = ffi.cast("double *", ffi.from_buffer(out))
+    for i in range(0, m, CHUNK):
+        k = min(CHUNK, m - i)
+        lib.m2c_first_roots(c + i * w, k, w - 1, tmax, eps, t + i, ffi.NULL)
     return out

@@ -922,7 +922,7 @@ def _isolate_first_root(p: Sequence[float], n: int, skin: float, T: float, faile
             d[n - 1] = _derivative(p, n)
             d[n - 2] = _derivative(d[n - 1], n - 1)
             b = _touch_critical(p, d, n, lo, hi, touch)
-            hit = (_scan_pieces(p, d, n, lo, hi, [b], skin) if b > 0 else
+            hit = (_scan_pieces(p, d, n, lo, hi, [b], skin, b) if b > 0 else
                    _derivative_method(p, n, lo, hi, touch, skin))
             if hit is not None:
                 return hit
@@ -1126,11 +1126,21 @@ def _touch_critical(p: Sequence[float], d: list[list[float]], n: int, lo: float,
     return b if lo < b < hi and abs(x - b) <= TOL_CRITICAL * abs(b) else 0.0
 
 
+def _rises_to(d1: Sequence[float], n: int, a: float, b: float) -> bool:
+    """C rises_to: p certainly rises on (a, b) (p' at the middle beyond its rounding), so the
+    critical point b is a maximum of p > 0 -- the farthest pass, never a touch."""
+    m = a + 0.5 * (b - a)
+    k = _scale_exponent(m, n - 1)
+    v = horner(d1, n - 1, m, k, False)
+    return v > 0 and not v <= noise_factor(n - 1) * _horner_abs(d1, n - 1, m, k)
+
+
 def _scan_pieces(c: Sequence[float], d: list[list[float]], n: int, lo: float, T: float,
-                 crit: list[float], skin: float):
+                 crit: list[float], skin: float, touch: float | None = None):
     """C scan_pieces: the first root in (lo, T] of c (c(lo) > 0), given its critical points
     there (ascending) and p', p'' in d[n - 1], d[n - 2]: monotone pieces scanned left to right,
-    with the graze check at each critical point."""
+    with the graze check at each critical point.  touch: on a touch's interval (C's tv), its
+    critical point, a minimum by _touch_critical (no rises_to there, as in C)."""
     nc = len(crit)
     a, sa, sb, sb_known = lo, 1, 0, False
     for j in range(nc + 1):
@@ -1150,7 +1160,9 @@ def _scan_pieces(c: Sequence[float], d: list[list[float]], n: int, lo: float, T:
             if precise:
                 return _crossing_before_critical(c, d, n, a, b, sa, pb), False
             return _refine_root(c, d[n - 1], n, a, b, sa, 0.0, _split_point(a, b)), False
-        if skin >= 0 and j < nc and _within_noise(c, n, b, skin):
+        # (a maximum is no touch; on a touch's interval b is a minimum: _touch_critical)
+        if skin >= 0 and j < nc and _within_noise(c, n, b, skin) and not (
+                touch is None and _rises_to(d[n - 1], n, a, b)):
             b2 = crit[j + 1] if j + 1 < nc else T
             sb = _sign_at(c, n, b2, True)
             sb_known = True

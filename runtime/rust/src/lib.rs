@@ -86,7 +86,9 @@ pub struct InvalidInput;
 
 impl std::fmt::Display for InvalidInput {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str("invalid input: a NaN or infinite coefficient, no or more than 17 coefficients, or tmax NaN or <= 0")
+        f.write_str("invalid input: a NaN or infinite coefficient, no or more than 17 coefficients, \
+                     tmax NaN or <= 0, or eps NaN, negative or infinite; for first_roots, a degree \
+                     above 16, a length that is not a multiple of degree + 1, or out too short")
     }
 }
 
@@ -140,8 +142,11 @@ pub fn first_root_skin(c: &[f64], tmax: f64, eps: f64) -> Status {
 /// invalid row).  Returns the number of roots found, or `Err(InvalidInput)` (nothing written)
 /// when `degree > 16`, `c.len()` is not a multiple of `degree + 1` or `out` is too short.
 pub fn first_roots(c: &[f64], degree: usize, tmax: f64, eps: f64, out: &mut [f64]) -> Result<usize, InvalidInput> {
+    if degree > MAX_DEGREE {
+        return Err(InvalidInput); // (before degree + 1, which overflows at usize::MAX)
+    }
     let w = degree + 1;
-    if degree > MAX_DEGREE || c.len() / w * w != c.len() || out.len() < c.len() / w {
+    if c.len() / w * w != c.len() || out.len() < c.len() / w {
         return Err(InvalidInput);
     }
     let mut found = 0;

@@ -2100,6 +2100,15 @@ fn touch_critical(p: &[f64], d: &Chain, n: usize, lo: f64, hi: f64, x: f64) -> O
     }
 }
 
+/// C `rises_to`: whether p certainly rises on (a, b) (p' at the middle beyond its rounding),
+/// so that the critical point b is a maximum of p > 0 -- the farthest pass, never a touch.
+fn rises_to(d1: &[f64], n: usize, a: f64, b: f64) -> bool {
+    let m = a + 0.5 * (b - a);
+    let k = scale_exponent(m, n - 1);
+    let v = horner(d1, n - 1, m, k, false);
+    v > 0.0 && !noise_holds(d1, n - 1, m, k, v, 0.0)
+}
+
 /// C `scan_pieces`: the first root in (lo, t_end] of c (c(lo) > 0), given its critical points
 /// there (ascending) and p', p'' in d: monotone pieces scanned left to right, with the graze
 /// check at each critical point.  `tv`: on a touch's interval (one critical point, t_end = hi),
@@ -2163,7 +2172,8 @@ fn scan_pieces(c: &[f64], d: &Chain, n: usize, lo: f64, t_end: f64, crit: &[f64]
                     count::madds(n); // (noise_holds' horner_abs)
                     vb.abs() <= noise_factor(n) * at.ab + skin // (kb = 0)
                 }
-                None => noise_holds(c, n, b, kb, vb, skin),
+                // (a maximum is no touch; on a touch's interval b is a minimum)
+                None => noise_holds(c, n, b, kb, vb, skin) && !rises_to(d.row(n - 1), n, a, b),
             };
         if near {
             let b2 = if j + 1 < nc { crit[j + 1] } else { t_end };

@@ -135,6 +135,8 @@ fn batch_matches_single_calls() {
     assert_eq!(out[3], 1.0);
     assert_eq!(first_roots(&flat, 4, INF, 0.0, &mut out), Err(InvalidInput));
     assert_eq!(first_roots(&flat, 17, INF, 0.0, &mut out), Err(InvalidInput));
+    // the largest degree: refused, no overflow of degree + 1 (a panic in debug builds before)
+    assert_eq!(first_roots(&flat, usize::MAX, INF, 0.0, &mut out), Err(InvalidInput));
 }
 
 #[test]
