@@ -5,6 +5,7 @@ or a symlink: replacing any of those would be wrong (run as root, the old code r
 system's /dev/null with a regular file; reading /dev/full to compare never ended), so something
 that is not a regular file is written straight into, never read; a FIFO nobody reads is an
 error instead of a wait; and a symlink is followed, the file it points to being the output.
+/dev/stdout, /dev/stderr, /dev/fd/N and /proc/self/fd/N are written through that descriptor.
 """
 
 from __future__ import annotations
@@ -34,6 +35,13 @@ def write_if_changed(path: str, text: str) -> bool:
         sys.stdout.flush()
         return True
     data = text.encode("utf-8", "surrogateescape")
+    fd = _descriptor(path)
+    if fd is not None:
+        _write_fd(path, fd, data)
+        return True
+    if os.path.abspath(path).startswith("/dev/"):
+        _write_into(path, path, data)  # a device, written into as it is (never renamed over)
+        return True
     target = os.path.realpath(path)  # a symlink's target is the output; the link stays
     try:
         info = os.stat(target)
@@ -50,6 +58,37 @@ def write_if_changed(path: str, text: str) -> bool:
         return False
     _replace(path, target, data)
     return True
+
+
+def _descriptor(path: str) -> int | None:
+    """The open descriptor a path names -- /dev/stdout, /dev/stderr, /dev/fd/N,
+    /proc/self/fd/N -- or None.  Such an output is written through the descriptor itself,
+    whatever it is (a pipe, a terminal, the file a shell redirected to): realpath would name a
+    pipe by a path that does not exist, a rename would cut the redirection off from what the
+    process prints next, and opening the path anew would write from offset 0 over it."""
+    p = os.path.abspath(path)
+    named = {"/dev/stdout": 1, "/dev/stderr": 2}
+    if p in named:
+        return named[p]
+    for prefix in ("/dev/fd/", "/proc/self/fd/"):
+        if p.startswith(prefix) and p[len(prefix):].isdigit():
+            return int(p[len(prefix):])
+    return None
+
+
+def _write_fd(path: str, fd: int, data: bytes) -> None:
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            if stream is not None and stream.fileno() == fd:
+                stream.flush()  # what the process printed before comes first
+        except (OSError, ValueError):
+            pass
+    try:
+        view = memoryview(data)
+        while view:
+            view = view[os.write(fd, view):]
+    except OSError as exc:
+        raise error(Pos(path, 1, 1), f"cannot write output: {exc.strerror}") from None
 
 
 def _same(path: str, data: bytes) -> bool:

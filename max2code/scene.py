@@ -84,33 +84,77 @@ class Scene:
     name: str = "scene"
 
 
-def _pair(v: object, what: str) -> tuple[float, float]:
-    if not (isinstance(v, (list, tuple)) and len(v) == 2):
-        raise ValueError(f"{what}: expected [x, y], got {v!r}")
-    return float(v[0]), float(v[1])
+FROZEN_KEYS = {"name", "comment", "horizon", "tolerance", "bodies"}
+FROZEN_BODY_KEYS = {"name", "centre", "radius", "velocity", "acceleration", "offset", "omega",
+                    "group"}
 
 
 def load_scene(path: str | Path) -> Scene:
+    """Read and check a frozen scene, as `max2code sim` checks its scenes (the same reader and
+    checker: every problem a `file:line:col: error:` line, raised together as SceneError):
+    known keys only, finite numbers, positive radii, unique names, and no two bodies of
+    different groups overlapping at 0 -- a contact already under way has no first time."""
+    from .engine.scenefile import SceneError, _Checker, read_located
+
     path = Path(path)
-    text = path.read_text()
-    if path.suffix == ".toml":
-        import tomllib
-        data = tomllib.loads(text)
-    else:
-        data = json.loads(text)
-    bodies = []
-    for i, b in enumerate(data["bodies"]):
-        name = str(b.get("name", f"body{i}"))
-        bodies.append(Body(
-            name=name, centre=_pair(b["centre"], f"{name}.centre"), radius=float(b["radius"]),
-            velocity=_pair(b.get("velocity", [0, 0]), f"{name}.velocity"),
-            acceleration=_pair(b.get("acceleration", [0, 0]), f"{name}.acceleration"),
-            offset=_pair(b.get("offset", [0, 0]), f"{name}.offset"),
-            omega=float(b.get("omega", 0.0)), group=b.get("group")))
-    horizon, tol = float(data["horizon"]), float(data["tolerance"])
-    if not (horizon > 0 and tol > 0 and math.isfinite(horizon)):
-        raise ValueError("horizon and tolerance must be positive and finite")
-    return Scene(tuple(bodies), horizon, tol, str(data.get("name", path.stem)))
+    shown = str(path)
+    doc = read_located(path)
+    c = _Checker(shown, doc)
+    data = doc.data
+    if not isinstance(data, dict):
+        raise SceneError([f"{shown}:1:1: error: a frozen scene is a table (JSON object) of fields"])
+    c.keys(data, FROZEN_KEYS, ())
+    name = c.string(data, "name", (), path.stem)
+    c.string(data, "comment", ())
+    horizon = c.number(data, "horizon", (), None, positive=True, required=True)
+    tol = c.number(data, "tolerance", (), None, positive=True, required=True)
+    bodies: list[tuple[int, Body]] = []
+    names: set[str] = set()
+    for i, b in enumerate(c.bodies(data)):
+        where = ("bodies", i)
+        if not isinstance(b, dict):
+            c.error(where, f"expected a table of body fields, got {b!r}")
+            continue
+        before = len(c.errors)
+        c.keys(b, FROZEN_BODY_KEYS, where)
+        body = Body(name=c.name(b, where, i, names),
+                    centre=c.vec(b, "centre", where, None, required=True),
+                    radius=c.number(b, "radius", where, None, positive=True, required=True),
+                    velocity=c.vec(b, "velocity", where, (0.0, 0.0)),
+                    acceleration=c.vec(b, "acceleration", where, (0.0, 0.0)),
+                    offset=c.vec(b, "offset", where, (0.0, 0.0)),
+                    omega=c.number(b, "omega", where, 0.0),
+                    group=c.string(b, "group", where))
+        if len(c.errors) == before:
+            bodies.append((i, body))
+    if not c.errors:
+        _overlapping(c, bodies)
+    if c.errors:
+        raise SceneError(c.errors)
+    return Scene(tuple(b for _, b in bodies), horizon, tol, name)
+
+
+def _overlapping(c, bodies: list[tuple[int, Body]]) -> None:
+    """Bodies of different groups (or none) overlapping at 0, located at the later one: a sweep
+    along x over the circles' extents (their positions at 0 are centre + offset)."""
+    spans = sorted((b.position(0.0)[0] - b.radius, k) for k, (_, b) in enumerate(bodies))
+    active: list[int] = []
+    for x0, k in spans:
+        ib, b = bodies[k]
+        pb = b.position(0.0)
+        active = [j for j in active if bodies[j][1].position(0.0)[0] + bodies[j][1].radius >= x0]
+        for j in active:
+            ia, a = bodies[j]
+            if a.group is not None and a.group == b.group:
+                continue
+            pa = a.position(0.0)
+            gap = math.hypot(pb[0] - pa[0], pb[1] - pa[1]) - (a.radius + b.radius)
+            if gap < 0:
+                first, second = sorted((ia, ib))
+                c.error(("bodies", second), f"body '{bodies[k if ib == second else j][1].name}' "
+                        f"starts overlapping body '{(a if ia == first else b).name}' "
+                        f"(bodies[{first}]) by {-gap:.3g}: a contact under way has no first time")
+        active.append(k)
 
 
 # ---------------------------------------------------------------------------
@@ -337,10 +381,13 @@ def main(argv: list[str]) -> int:
                     help="compare with the exact motion (mpmath)")
     ap.add_argument("--json", action="store_true", help="print the report as JSON")
     args = ap.parse_args(argv)
+    from .engine.scenefile import SceneError
+
     try:
         scene = load_scene(args.scene)
-    except (OSError, ValueError, KeyError) as exc:
-        print(f"{args.scene}: error: {exc}", file=sys.stderr)
+    except SceneError as exc:
+        for d in exc.diagnostics:
+            print(d, file=sys.stderr)
         return 1
     report = run(scene, check=args.check)
     print(json.dumps(report.as_dict(), indent=1) if args.json else report.text())

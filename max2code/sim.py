@@ -15,10 +15,16 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import sys
 import time
 
 from .output import write_if_changed
+
+
+# Frames a run with pictures may ask for: every frame is kept until the end (the view is fit to
+# every body in every frame), about 13 kB each for examples/scenes/pile.toml's 66 bodies.
+MAX_FRAMES = 100_000
 
 
 def event_record(world, ev) -> dict:
@@ -75,10 +81,16 @@ def main(argv: list[str]) -> int:
         return 1
     until = args.until if args.until is not None else (scene.until or 10.0)
     fps = args.fps if args.fps is not None else (scene.fps or 30.0)
-    if not (until >= 0 and fps > 0):
-        print(f"max2code sim: error: --until must be >= 0 and --fps > 0", file=sys.stderr)
+    if not (0 <= until < math.inf and 0 < fps < math.inf):
+        print("max2code sim: error: --until must be finite and >= 0, --fps finite and > 0",
+              file=sys.stderr)
         return 1
     pictures = args.gif or args.mp4 or args.png_dir or args.svg or args.png or args.live
+    if pictures and until * fps + 1 > MAX_FRAMES:
+        print(f"max2code sim: error: --until {until:g} at --fps {fps:g} asks for "
+              f"{until * fps + 1:.0f} frames; at most {MAX_FRAMES} (each is kept, to fit the "
+              "view to every body in every frame): a lower --fps, or no picture", file=sys.stderr)
+        return 1
     try:
         world = build_world(scene)
         e0 = world.energy(0.0)
@@ -86,7 +98,9 @@ def main(argv: list[str]) -> int:
         start = time.perf_counter()
         if pictures:
             from .engine.frames import render_bodies, run_frames
-            frames = list(run_frames(world, until, fps, log))
+            # (--png and --svg draw the state at T itself, a frame of its own when T is not
+            # a frame time)
+            frames = list(run_frames(world, until, fps, log, end_frame=bool(args.png or args.svg)))
         else:
             log = world.step_to(until)
         seconds = time.perf_counter() - start
@@ -94,12 +108,14 @@ def main(argv: list[str]) -> int:
     except EngineError as exc:
         print(f"{args.scene}: error: engine: {exc}", file=sys.stderr)
         return 1
-    if args.events:
-        write_if_changed(args.events, event_log(world, log))
+    # the pictures first: a run that fails there leaves every output as it was, the event log
+    # included
     if pictures:
         rc = _pictures(args, scene, world, frames, fps)
         if rc:
             return rc
+    if args.events:
+        write_if_changed(args.events, event_log(world, log))
     stats = world.stats()
     summary = {"scene": scene.name, "until": until, "bodies": len(world.bodies),
                "events": stats["events"], "collisions": stats["collisions"],

@@ -80,3 +80,35 @@ def test_cli(maxima_exe: str) -> None:
     bad = subprocess.run([sys.executable, "-m", "max2code", "scene", "/nonexistent.json"],
                          capture_output=True, text=True, cwd=ROOT, timeout=60)
     assert bad.returncode == 1 and "error" in bad.stderr and "Traceback" not in bad.stderr
+
+
+FROZEN_BAD = [
+    ("a negative radius", '{"horizon": 1, "tolerance": 1e-6, "bodies": [\n'
+                           ' {"centre": [0, 0], "radius": -1}]}', 2, 21, "bodies[0].radius: must be positive"),
+    ("a body that is no table", '{"horizon": 1, "tolerance": 1e-6,\n "bodies": ["x"]}', 2, 13,
+     "bodies[0]: expected a table"),
+    ("a string for a number", '{"horizon": 1, "tolerance": 1e-6, "bodies": [\n'
+                              ' {"centre": [0, 0], "radius": "1"}]}', 2, 21,
+     "bodies[0].radius: expected a finite number"),
+    ("an unknown key", '{"horizon": 1, "tolerance": 1e-6, "bodies": [\n'
+                       ' {"centre": [0, 0], "radios": 1}]}', 2, 21, "did you mean 'radius'"),
+    ("NaN", '{"horizon": 1, "tolerance": 1e-6, "bodies": [\n {"centre": [0, NaN], "radius": 1}]}',
+     2, 17, "expected a value"),
+    ("a file cut short", '{"horizon": 1,\n', 2, 1, "expected a key"),
+    ("bodies overlapping at 0", '{"horizon": 1, "tolerance": 1e-6, "bodies": [\n'
+                                ' {"centre": [0, 0], "radius": 1},\n {"centre": [0.5, 0], "radius": 1}]}',
+     3, 2, "bodies[1]: body 'body1' starts overlapping body 'body0'"),
+]
+
+
+@pytest.mark.parametrize("what,text,line,col,words", FROZEN_BAD, ids=[b[0] for b in FROZEN_BAD])
+def test_bad_frozen_scene(tmp_path: Path, what: str, text: str, line: int, col: int, words: str) -> None:
+    """A frozen scene is checked as `max2code sim` checks its scenes: a located error and exit
+    1, never an internal error (exit 2) nor a silent run."""
+    path = tmp_path / "frozen.json"
+    path.write_text(text)
+    r = subprocess.run([sys.executable, "-m", "max2code", "scene", str(path)],
+                       capture_output=True, text=True, cwd=ROOT, timeout=60)
+    assert r.returncode == 1, r.stderr
+    assert r.stderr.startswith(f"{path}:{line}:{col}: error: "), r.stderr
+    assert words in r.stderr and "Traceback" not in r.stderr, r.stderr

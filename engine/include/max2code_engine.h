@@ -61,7 +61,7 @@ typedef struct {
     double cell_size;          /* broad-phase cell width; 0: chosen from the bodies; < 0: one cell */
     double rest_speed;         /* v_r of the rest rule (README): 0 automatic, < 0 off */
     double collapse_time;      /* t_c of the collapse rules: 0 automatic (1e-3 s), < 0 off */
-    long long max_events;      /* a step processing more events than this fails (0: no limit) */
+    long long max_events;      /* a step (m2c_world_step) processing more events than this fails (0: no limit) */
 } m2c_config;
 
 typedef struct {
@@ -97,9 +97,11 @@ void m2c_world_free(m2c_world *w);
 int m2c_world_add_body(m2c_world *w, const m2c_body_def *def);
 int m2c_world_body_count(const m2c_world *w);
 
-/* Process every event up to time `until` (inclusive), writing reported events to
+/* Process every event up to time `until` (inclusive, finite), writing reported events to
  * events[0..capacity). Returns 0 when the world reached `until`; 1 when the buffer filled up
- * first (the world's time is that of the last event written: call again); -1 on error. */
+ * first (the world's time is that of the last event written: call again); -1 on error.  A
+ * step is one call that returns 0 and the calls before it that returned 1: max_events counts
+ * the events of the whole step. */
 int m2c_world_step(m2c_world *w, double until, m2c_event *events, int capacity, int *count);
 double m2c_world_time(const m2c_world *w);
 

@@ -419,8 +419,8 @@ int m2c_world_step(m2c_world *w, double until, m2c_event *events, int capacity, 
     if (!count)
         count = &dummy;
     *count = 0;
-    if (isnan(until))
-        return fail(w, "the time to step to is not a number");
+    if (!isfinite(until))
+        return fail(w, "the time to step to must be a finite number");
     if (capacity < 4 || !events)
         return fail(w, "the event buffer needs room for at least 4 events");
     if (w->broken)
@@ -435,7 +435,6 @@ int m2c_world_step(m2c_world *w, double until, m2c_event *events, int capacity, 
         w->out = NULL;
         return 1;
     }
-    long long processed = 0;
     for (;;) {
         int i = heap_top(w);
         double t = i >= 0 ? w->b[i].ev.t : INFINITY;
@@ -450,7 +449,7 @@ int m2c_world_step(m2c_world *w, double until, m2c_event *events, int capacity, 
             *count = w->out_n;
             return fail(w, "more than a million events at one instant (a body stuck in a corner?)");
         }
-        if (tt <= t) {
+        if (w->ntimers > 0 && tt <= t) {
             w->now = tt;
             m2c_event e = {tt, M2C_EVENT_TIMER, w->timers[0].id, -1, 0, 0, 0, 0, 0, 0};
             memmove(w->timers, w->timers + 1, sizeof(timer) * (size_t)--w->ntimers);
@@ -460,7 +459,9 @@ int m2c_world_step(m2c_world *w, double until, m2c_event *events, int capacity, 
                 w->now = next;
             process(w, i);
         }
-        if (w->cfg.max_events > 0 && ++processed > w->cfg.max_events) {
+        /* (counted over the resumed calls of one step: each returns when the buffer fills,
+         * about every thousand events with the Python binding's buffer) */
+        if (w->cfg.max_events > 0 && ++w->step_events > w->cfg.max_events) {
             w->out = NULL;
             *count = w->out_n;
             return fail(w, "the step exceeded max_events");
@@ -473,8 +474,9 @@ int m2c_world_step(m2c_world *w, double until, m2c_event *events, int capacity, 
             return 1;
         }
     }
-    if (until > w->now && isfinite(until))
+    if (until > w->now)
         w->now = until;
+    w->step_events = 0; /* the step is done */
     *count = w->out_n;
     w->out = NULL;
     return 0;

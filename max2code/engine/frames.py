@@ -39,9 +39,11 @@ def frame(world: World, t: float, events: list[Event] = ()) -> Frame:
     return Frame(t, tuple(Pose(x, y, a) for x, y, a in world.poses(t)), contacts)
 
 
-def run_frames(world: World, until: float, fps: float, log: list[Event] | None = None) -> Iterator[Frame]:
+def run_frames(world: World, until: float, fps: float, log: list[Event] | None = None,
+               end_frame: bool = False) -> Iterator[Frame]:
     """Step the world to each frame time 0, 1/fps, ... <= until (and to `until` itself) and yield
-    the frames; every event goes to `log` when given."""
+    the frames; every event goes to `log` when given.  end_frame: a last frame at `until`
+    itself when it is not a frame time (the state at T, for a single picture)."""
     k = 0
     while True:
         t = k / fps
@@ -56,3 +58,5 @@ def run_frames(world: World, until: float, fps: float, log: list[Event] | None =
         events = world.step_to(until)
         if log is not None:
             log.extend(events)
+        if end_frame:
+            yield frame(world, until, events)

@@ -11,7 +11,8 @@
     cell_size = 0.0                  # 0: chosen from the bodies; < 0: one cell (no broad phase)
     rest_speed = 0.0                 # the rest rule's v_r; 0: automatic; < 0: the rules off
     collapse_time = 0.0              # the collapse rules' t_c; 0: automatic (1e-3 s); < 0: off
-    max_events = 0                   # a step processing more fails (0: no limit)
+    max_events = 0                   # a step processing more fails (0: no limit): the whole run
+                                     # without pictures, one frame with them
 
     [[bodies]]
     name = "ball"                    # optional, unique; default body<N>
@@ -172,6 +173,26 @@ class _Checker:
             return default
         return self.vector(table[key], path + (key,))
 
+    def bodies(self, data: dict) -> list:
+        """The scene's list of bodies (empty after an error: missing, or not a non-empty
+        list)."""
+        raw = data.get("bodies")
+        if raw is None:
+            self.error((), "missing field 'bodies'")
+        elif not isinstance(raw, list) or not raw:
+            self.error(("bodies",), "expected a non-empty list of bodies")
+        else:
+            return raw
+        return []
+
+    def name(self, raw: dict, path: tuple, index: int, names: set[str]) -> str:
+        """A body's name (default body<index>), unique among `names`, which it joins."""
+        name = self.string(raw, "name", path, f"body{index}")
+        if name in names:
+            self.error(path + ("name",), f"a second body named '{name}'")
+        names.add(name)
+        return name
+
     def string(self, table: dict, key: str, path: tuple, default=None, choices=None):
         if key not in table:
             return default
@@ -208,10 +229,7 @@ def _body(c: _Checker, raw: object, index: int, names: set[str]) -> BodySpec | N
         return None
     before = len(c.errors)
     c.keys(raw, BODY_KEYS, path)
-    name = c.string(raw, "name", path, f"body{index}")
-    if name in names:
-        c.error(path + ("name",), f"a second body named '{name}'")
-    names.add(name)
+    name = c.name(raw, path, index, names)
     kind = c.string(raw, "kind", path, "dynamic", KINDS)
     if "shape" not in raw:
         c.error(path, "missing field 'shape' (circle, segment, polygon or box)")
@@ -320,19 +338,42 @@ def _overlaps(c: _Checker, bodies: list[tuple[int, BodySpec]], tolerance: float)
                         f"(bodies[{first}]) by {-g:.3g}")
 
 
-def load(path: str | FilePath) -> Scene:
-    """Read and check a scene file; raises SceneError with every problem found."""
+# max_events goes to the core as a long long: a whole number below 2^62 (a limit that large
+# is no limit in practice, and no closer to overflowing its count)
+MAX_EVENTS_LIMIT = 2**62
+
+# The largest scene file read: a scene is data a person or a tool wrote, and a device such as
+# /dev/zero must end in an error, not in all the memory there is.
+MAX_SCENE_BYTES = 64 * 2**20
+
+
+def read_located(path: str | FilePath) -> Located:
+    """A scene file (JSON, or TOML by its suffix) parsed with the position of every value;
+    SceneError with `file:line:col: error:` when it cannot be read or parsed -- too large,
+    not UTF-8, malformed, or nested too deeply for the parser."""
     path = FilePath(path)
     shown = str(path)
     try:
-        text = path.read_text(encoding="utf-8")
+        with open(path, "rb") as f:
+            raw = f.read(MAX_SCENE_BYTES + 1)
+        if len(raw) > MAX_SCENE_BYTES:
+            raise SceneError([f"{shown}:1:1: error: the scene is larger than "
+                              f"{MAX_SCENE_BYTES // 2**20} MiB"])
+        text = raw.decode("utf-8")
     except (OSError, UnicodeDecodeError) as exc:
         raise SceneError([f"{shown}:1:1: error: cannot read the scene: {exc}"]) from exc
     try:
-        doc = parse_toml(text) if path.suffix.lower() == ".toml" else parse_json(text)
+        return parse_toml(text) if path.suffix.lower() == ".toml" else parse_json(text)
     except TextError as exc:
         raise SceneError([f"{shown}:{exc.line}:{exc.col}: error: {exc.message}"]) from exc
-    return check(doc, shown, path.stem)
+    except RecursionError:
+        raise SceneError([f"{shown}:1:1: error: the scene is nested too deeply to read"]) from None
+
+
+def load(path: str | FilePath) -> Scene:
+    """Read and check a scene file; raises SceneError with every problem found."""
+    doc = read_located(path)
+    return check(doc, str(FilePath(path)), FilePath(path).stem)
 
 
 def check(doc: Located, shown: str, stem: str = "scene") -> Scene:
@@ -351,11 +392,12 @@ def check(doc: Located, shown: str, stem: str = "scene") -> Scene:
         v = data["view"]
         if (isinstance(v, list) and len(v) == 4 and all(isinstance(x, (int, float)) and
                                                         not isinstance(x, bool) for x in v)
-                and v[0] < v[2] and v[1] < v[3]):
+                and v[0] < v[2] and v[1] < v[3]
+                and all(math.isfinite(x) for x in (*v, v[2] - v[0], v[3] - v[1]))):
             view = tuple(float(x) for x in v)
         else:
-            c.error(("view",), f"expected [xmin, ymin, xmax, ymax] with xmin < xmax, ymin < ymax, "
-                    f"got {v!r}")
+            c.error(("view",), f"expected [xmin, ymin, xmax, ymax], finite, with xmin < xmax, "
+                    f"ymin < ymax, got {v!r}")
     eng = data.get("engine", {})
     if not isinstance(eng, dict):
         c.error(("engine",), "expected a table")
@@ -365,18 +407,16 @@ def check(doc: Located, shown: str, stem: str = "scene") -> Scene:
     rest_speed = c.number(eng, "rest_speed", ("engine",), 0.0)
     collapse_time = c.number(eng, "collapse_time", ("engine",), 0.0)
     max_events = c.number(eng, "max_events", ("engine",), 0.0, nonneg=True)
-    raw_bodies = data.get("bodies")
+    if max_events != int(max_events) or max_events > MAX_EVENTS_LIMIT:
+        c.error(("engine", "max_events"), f"expected a whole number of events from 0 to "
+                f"{MAX_EVENTS_LIMIT}, got {max_events:g}")
+        max_events = 0.0
     bodies: list[tuple[int, BodySpec]] = []
-    if raw_bodies is None:
-        c.error((), "missing field 'bodies'")
-    elif not isinstance(raw_bodies, list) or not raw_bodies:
-        c.error(("bodies",), "expected a non-empty list of bodies")
-    else:
-        names: set[str] = set()
-        for k, raw in enumerate(raw_bodies):
-            b = _body(c, raw, k, names)
-            if b is not None:
-                bodies.append((k, b))
+    names: set[str] = set()
+    for k, raw in enumerate(c.bodies(data)):
+        b = _body(c, raw, k, names)
+        if b is not None:
+            bodies.append((k, b))
     if not c.errors:
         _overlaps(c, bodies, tolerance)
     if c.errors:

@@ -17,6 +17,10 @@ from .model import Body, Frame, View
 from .write import RenderUnavailable, _check_fps, _imports
 
 
+# SDL's video drivers that show nothing, which pygame 2 falls back to without a display
+HEADLESS = ("offscreen", "dummy")
+
+
 def _pygame():
     os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")  # no greeting on our standard output
     try:
@@ -42,6 +46,11 @@ def show(bodies: Sequence[Body], frames: Iterable[Frame], view: View, fps: float
     fps = _check_fps(fps)
     try:
         pygame.display.init()
+        driver = pygame.display.get_driver()
+        if driver in HEADLESS and not os.environ.get("SDL_VIDEODRIVER"):
+            # SDL fell back to drawing nowhere (no display): say so, rather than spend the
+            # run's wall time on a window nobody sees (a driver the user chose is obeyed)
+            raise pygame.error(f"no display (SDL's video driver fell back to '{driver}')")
         screen = pygame.display.set_mode((view.width, view.height))
     except pygame.error as exc:  # no display to open a window on
         pygame.display.quit()

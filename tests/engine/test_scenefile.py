@@ -73,6 +73,13 @@ BAD_TOML = [
     ("negative tolerance", "tolerance = -1\n" + GOOD, 1, 1, ["tolerance", "must be positive"]),
     ("TOML syntax", GOOD.replace("radius = 0.1", "radius = = 0.1"), 13, 10, ["error"]),
     ("no bodies", 'name = "x"\n', 1, 1, ["missing field 'bodies'"]),
+    ("an infinite view", "view = [-inf, -1, inf, 1]\n" + GOOD, 1, 1, ["view", "finite"]),
+    ("a view too wide for a float", "view = [-1e308, -1, 1e308, 1]\n" + GOOD, 1, 1,
+     ["view", "finite"]),
+    ("max_events not whole", GOOD + "\n[engine]\nmax_events = 0.5\n", 16, 1,
+     ["engine.max_events", "whole number"]),
+    ("max_events beyond the core's count", GOOD + "\n[engine]\nmax_events = 1e30\n", 16, 1,
+     ["engine.max_events", "whole number"]),
 ]
 
 
@@ -149,3 +156,20 @@ def test_cli_bad_scene_exit_status(tmp_path: Path) -> None:
 @pytest.mark.parametrize("scene", sorted((ROOT / "examples" / "scenes").glob("*.toml")), ids=lambda p: p.name)
 def test_example_scenes_load(scene: Path) -> None:
     assert load(scene).bodies
+
+
+def test_hostile_files_are_located_errors(tmp_path: Path) -> None:
+    """Input made to break the reader: nesting deeper than the parser's recursion (JSON and
+    TOML), and an endless device (/dev/zero: the reader stops at 64 MiB) -- each a located
+    error with exit 1, never an internal error (exit 2) or all the memory there is."""
+    deep_json = tmp_path / "deep.json"
+    deep_json.write_text("[" * 100_000 + "]" * 100_000)
+    deep_toml = tmp_path / "deep.toml"
+    deep_toml.write_text("x = " + "[" * 100_000 + "]" * 100_000 + "\n")
+    for path, words in ((deep_json, "nested too deeply"), (deep_toml, "error"),
+                        (Path("/dev/zero"), "larger than 64 MiB")):
+        proc = subprocess.run([sys.executable, "-m", "max2code", "sim", str(path)],
+                              capture_output=True, text=True, cwd=ROOT, timeout=120)
+        assert proc.returncode == 1, (path, proc.stderr)
+        assert proc.stderr.startswith(f"{path}:") and ": error: " in proc.stderr, proc.stderr
+        assert words in proc.stderr and "Traceback" not in proc.stderr, proc.stderr

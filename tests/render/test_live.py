@@ -68,3 +68,14 @@ def test_closing_the_window_ends_the_show(monkeypatch: pytest.MonkeyPatch) -> No
 
     monkeypatch.setattr(pygame.event, "get", get)
     assert live.show(BODIES, frames(10), VIEW, fps=1000) == 2
+
+
+def test_no_display_is_a_note_not_a_hidden_window(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Without a display pygame 2 falls back to SDL's offscreen driver and "shows" every frame
+    to nobody, in real time: that is no window.  (A driver the user chose is obeyed: the tests
+    above choose "dummy".)"""
+    need("pygame")
+    for var in ("SDL_VIDEODRIVER", "DISPLAY", "WAYLAND_DISPLAY"):
+        monkeypatch.delenv(var, raising=False)
+    with pytest.raises(RenderUnavailable, match="no display"):
+        live.show(BODIES, frames(2), VIEW)
