@@ -461,6 +461,24 @@ static int bound_start(feat *f, double tmax, double *t)
     return 1;
 }
 
+/* Does the gap curve down now (its second Taylor coefficient negative)?  From the window's model
+ * c when its order is 2 or more -- its coefficients up to t^2 are then the exact motion's --
+ * else from the order-2 model of the same state (feat_at's). */
+static int pressed_in(const feat *f, int slot, const double c[MAXC])
+{
+    if (ORDER[slot] >= 2)
+        return c[2] < 0;
+    double p[PL_NPARAMS + 1], c2[MAXC] = {0};
+    if (f->kind == F_PP) {
+        fill_pp(f, p, 0.0);
+        PP_COEF[2](p, c2);
+    } else {
+        fill_pl(f, p, 0.0);
+        PL_COEF[2](p, c2);
+    }
+    return c2[2] < 0;
+}
+
 /* The rotating feature's first contact in (0, tmax] from now: 1 and *tau; 0 for none; 2 when
  * the search stopped at *tau (MAX_WINDOWS): the body must be predicted again by then. */
 static int solve_rotating(feat *f, double tmax, double tolp, double vthr, double *tau, double *rate)
@@ -561,6 +579,15 @@ static int solve_rotating(feat *f, double tmax, double tolp, double vthr, double
                     return 1;
                 }
                 mode = INSIDE;
+            } else if (g1 <= vthr && pressed_in(f, slot, c) && on_edge(f, t0)) {
+                /* pressed together with no speed, the gap curving down (first_contact's rule):
+                 * a contact now, for the rest rule to decide.  Without it the root at 0 was
+                 * divided out, the rest of the model lay below zero from the start, no crossing
+                 * was found, and a corner that a burst of bounces had brought to rest on a
+                 * floor sank through it (a spinning box, tests/engine/test_rotation.py) */
+                *tau = t0;
+                *rate = 0.0;
+                return 1;
             } else {
                 mode = ABOVE;
             }
