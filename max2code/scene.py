@@ -135,26 +135,26 @@ def load_scene(path: str | Path) -> Scene:
 
 
 def _overlapping(c, bodies: list[tuple[int, Body]]) -> None:
-    """Bodies of different groups (or none) overlapping at 0, located at the later one: a sweep
-    along x over the circles' extents (their positions at 0 are centre + offset)."""
-    spans = sorted((b.position(0.0)[0] - b.radius, k) for k, (_, b) in enumerate(bodies))
-    active: list[int] = []
-    for x0, k in spans:
-        ib, b = bodies[k]
-        pb = b.position(0.0)
-        active = [j for j in active if bodies[j][1].position(0.0)[0] + bodies[j][1].radius >= x0]
-        for j in active:
-            ia, a = bodies[j]
-            if a.group is not None and a.group == b.group:
-                continue
-            pa = a.position(0.0)
-            gap = math.hypot(pb[0] - pa[0], pb[1] - pa[1]) - (a.radius + b.radius)
-            if gap < 0:
-                first, second = sorted((ia, ib))
-                c.error(("bodies", second), f"body '{bodies[k if ib == second else j][1].name}' "
-                        f"starts overlapping body '{(a if ia == first else b).name}' "
-                        f"(bodies[{first}]) by {-gap:.3g}: a contact under way has no first time")
-        active.append(k)
+    """Bodies of different groups (or none) overlapping at 0, located at the later one (their
+    positions at 0 are centre + offset; the circles near each other by the grid of
+    engine.scenefile.near_pairs)."""
+    from .engine.scenefile import near_pairs
+
+    circles = [(*b.position(0.0), b.radius) for _, b in bodies]
+    found = []
+    for ka, kb in near_pairs(circles):
+        (ia, a), (ib, b) = bodies[ka], bodies[kb]
+        if a.group is not None and a.group == b.group:
+            continue
+        (xa, ya, ra), (xb, yb, rb) = circles[ka], circles[kb]
+        gap = math.hypot(xb - xa, yb - ya) - (ra + rb)
+        if gap < 0:
+            first, second = sorted((ia, ib))
+            found.append((second, first, f"body '{(b if ib == second else a).name}' starts "
+                          f"overlapping body '{(a if ia == first else b).name}' "
+                          f"(bodies[{first}]) by {-gap:.3g}: a contact under way has no first time"))
+    for second, _, message in sorted(found):
+        c.error(("bodies", second), message)
 
 
 # ---------------------------------------------------------------------------

@@ -47,6 +47,7 @@ from __future__ import annotations
 import difflib
 import math
 import re
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path as FilePath
 
@@ -309,6 +310,52 @@ def _body(c: _Checker, raw: object, index: int, names: set[str]) -> BodySpec | N
                     restitution, group, color, friction)
 
 
+def near_pairs(circles: list[tuple[float, float, float]]) -> Iterator[tuple[int, int]]:
+    """The pairs (i < j) of circles (cx, cy, r) that overlap or touch: a uniform grid of cells
+    twice the median radius, each circle in the cells its box covers, so that a scene's check
+    stays near linear however its bodies line up (a sweep along x alone was quadratic on a
+    column of bodies: 29 s for 20 000 circles).  A circle covering more than LARGE_CELLS cells
+    (a long wall) is tested against every other instead."""
+    if not circles:
+        return
+    radii = sorted(r for _, _, r in circles)
+    size = 2 * radii[len(radii) // 2] or 1.0
+    grid: dict[tuple[int, int], list[int]] = {}
+    large: list[int] = []
+    for k, (x, y, r) in enumerate(circles):
+        x0, x1 = math.floor((x - r) / size), math.floor((x + r) / size)
+        y0, y1 = math.floor((y - r) / size), math.floor((y + r) / size)
+        if (x1 - x0 + 1) * (y1 - y0 + 1) > LARGE_CELLS:
+            large.append(k)
+            continue
+        for gx in range(x0, x1 + 1):
+            for gy in range(y0, y1 + 1):
+                grid.setdefault((gx, gy), []).append(k)
+    seen: set[tuple[int, int]] = set()
+
+    def touching(i: int, j: int) -> bool:
+        (xi, yi, ri), (xj, yj, rj) = circles[i], circles[j]
+        return math.hypot(xi - xj, yi - yj) <= ri + rj
+
+    for members in grid.values():
+        for a_pos, i in enumerate(members):
+            for j in members[a_pos + 1:]:
+                pair = (i, j) if i < j else (j, i)
+                if pair not in seen and touching(*pair):
+                    seen.add(pair)
+                    yield pair
+    for i in large:
+        for j in range(len(circles)):
+            pair = (i, j) if i < j else (j, i)
+            if j != i and pair not in seen and touching(*pair):
+                seen.add(pair)
+                yield pair
+
+
+# circles covering more grid cells than this are tested against every other circle
+LARGE_CELLS = 4096
+
+
 def _overlaps(c: _Checker, bodies: list[tuple[int, BodySpec]], tolerance: float) -> None:
     """Bodies that start overlapping (by more than the tolerance): exact geometry, pairs that can
     collide (a dynamic one, different groups), near pairs only (bounding circles)."""
@@ -319,23 +366,20 @@ def _overlaps(c: _Checker, bodies: list[tuple[int, BodySpec]], tolerance: float)
         cy = sum(p[1] for p in pts) / len(pts)
         r = max(math.hypot(p[0] - cx, p[1] - cy) for p in pts) + b.radius
         shapes.append((index, b, pts, cx, cy, r))
-    order = sorted(range(len(shapes)), key=lambda k: shapes[k][3] - shapes[k][5])
-    for a_pos, ka in enumerate(order):
-        ia, a, pa, ax, ay, ar = shapes[ka]
-        for kb in order[a_pos + 1:]:
-            ib, b, pb, bx, by, br = shapes[kb]
-            if bx - br > ax + ar:
-                break
-            if "dynamic" not in (a.kind, b.kind) or (a.group is not None and a.group == b.group):
-                continue
-            if math.hypot(ax - bx, ay - by) > ar + br:
-                continue
-            g = gap(pa, a.radius, pb, b.radius)
-            if g < -tolerance:
-                first, second = sorted((ia, ib))
-                c.error(("bodies", second), f"body '{shapes[ka if ia == second else kb][1].name}' "
-                        f"starts overlapping body '{(a if ia == first else b).name}' "
-                        f"(bodies[{first}]) by {-g:.3g}")
+    found = []
+    for ka, kb in near_pairs([(cx, cy, r) for _, _, _, cx, cy, r in shapes]):
+        ia, a, pa = shapes[ka][:3]
+        ib, b, pb = shapes[kb][:3]
+        if "dynamic" not in (a.kind, b.kind) or (a.group is not None and a.group == b.group):
+            continue
+        g = gap(pa, a.radius, pb, b.radius)
+        if g < -tolerance:
+            first, second = sorted((ia, ib))
+            found.append((second, first, f"body '{(b if ib == second else a).name}' starts "
+                          f"overlapping body '{(a if ia == first else b).name}' "
+                          f"(bodies[{first}]) by {-g:.3g}"))
+    for second, _, message in sorted(found):  # in file order, whatever the grid's
+        c.error(("bodies", second), message)
 
 
 # max_events goes to the core as a long long: a whole number below 2^62 (a limit that large

@@ -16,6 +16,8 @@ from __future__ import annotations
 import math
 import os
 import re
+import shutil
+import tempfile
 from collections.abc import Iterable, Sequence
 from pathlib import Path
 
@@ -56,21 +58,42 @@ def write_png(path: str | os.PathLike, bodies: Sequence[Body], frame: Frame, vie
         image.save(tmp, format="PNG")
 
 
+def _same_file(a: Path, b: Path) -> bool:
+    try:
+        return b.is_file() and a.stat().st_size == b.stat().st_size and a.read_bytes() == b.read_bytes()
+    except OSError:
+        return False
+
+
 def write_png_dir(folder: str | os.PathLike, bodies: Sequence[Body], frames: Iterable[Frame],
                   view: View) -> list[Path]:
     """frame-00000.png, frame-00001.png, ... in `folder` (made if missing). Numbered frames left
     from an earlier, longer run are removed, so the folder holds exactly this run (other files
-    are not touched). Returns the paths written."""
+    are not touched). The frames are drawn into a hidden folder beside it and moved in only
+    once all are drawn: a run that fails or is interrupted while drawing leaves the folder as
+    it was, never half this run's frames among the last one's. Returns the paths written."""
     out = Path(folder)
     try:
         out.mkdir(parents=True, exist_ok=True)
+        stage = Path(tempfile.mkdtemp(prefix=f".{out.name}-", dir=out.parent))
     except OSError as exc:
         raise error(Pos(str(out), 1, 1), f"cannot make the frame folder: {exc.strerror}") from None
-    written = []
-    for i, frame in enumerate(frames):
-        path = out / PNG_NAME.format(i)
-        write_png(path, bodies, frame, view)
-        written.append(path)
+    try:
+        names = []
+        for i, frame in enumerate(frames):
+            names.append(PNG_NAME.format(i))
+            write_png(stage / names[-1], bodies, frame, view)
+        written = []
+        for name in names:
+            try:
+                if not _same_file(stage / name, out / name):  # (an unchanged frame keeps its time)
+                    os.replace(stage / name, out / name)
+            except OSError as exc:
+                raise error(Pos(str(out / name), 1, 1),
+                            f"cannot write output: {exc.strerror}") from None
+            written.append(out / name)
+    finally:
+        shutil.rmtree(stage, ignore_errors=True)
     for old in out.iterdir():
         m = _PNG_NAME.fullmatch(old.name)
         if m and int(m.group(1)) >= len(written) and old.is_file():

@@ -173,3 +173,25 @@ def test_hostile_files_are_located_errors(tmp_path: Path) -> None:
         assert proc.returncode == 1, (path, proc.stderr)
         assert proc.stderr.startswith(f"{path}:") and ": error: " in proc.stderr, proc.stderr
         assert words in proc.stderr and "Traceback" not in proc.stderr, proc.stderr
+
+
+def test_near_pairs_finds_every_touching_pair() -> None:
+    """The overlap check's grid against all pairs: random circles of mixed sizes, a column on
+    one x (the case a sweep along x made quadratic), long walls that take the every-other path,
+    and circles that just touch."""
+    import math
+    import random
+
+    from max2code.engine.scenefile import near_pairs
+
+    rng = random.Random(5)
+    circles = [(rng.uniform(-10, 10), rng.uniform(-10, 10), rng.uniform(0.01, 0.5)) for _ in range(300)]
+    circles += [(0.0, 0.3 * k, 0.16) for k in range(100)]          # a column, neighbours overlap
+    circles += [(0.0, 0.0, 1e4), (5.0, -3.0, 3000.0)]              # larger than LARGE_CELLS cells
+    circles += [(20.0, 0.0, 1.0), (22.0, 0.0, 1.0)]                # touching exactly
+    want = {(i, j) for i in range(len(circles)) for j in range(i + 1, len(circles))
+            if math.hypot(circles[i][0] - circles[j][0], circles[i][1] - circles[j][1])
+            <= circles[i][2] + circles[j][2]}
+    got = list(near_pairs(circles))
+    assert len(got) == len(set(got)) and set(got) == want
+    assert (len(circles) - 2, len(circles) - 1) in want

@@ -152,3 +152,23 @@ def test_save_refuses_unknown_types_and_no_frames(tmp_path: Path) -> None:
     with pytest.raises(RenderModelError):
         write_gif(tmp_path / "x.gif", BODIES, frames(2, 10), VIEW, fps=0)
     assert list(tmp_path.iterdir()) == []
+
+
+def test_png_dir_interrupted_while_drawing_keeps_the_last_run(tmp_path: Path) -> None:
+    """The frames go to a hidden folder first: a failure (or an interrupt) while drawing leaves
+    the folder exactly as the last run left it, not half of each run's frames; a second run
+    over the same frames keeps their time stamps."""
+    out = tmp_path / "frames"
+    first = write_png_dir(out, BODIES, frames(4, 10), VIEW)
+    before = {p.name: (p.read_bytes(), p.stat().st_mtime_ns) for p in first}
+
+    def broken():
+        yield from frames(6, 20)                             # other pictures, more of them
+        raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        write_png_dir(out, BODIES, broken(), VIEW)
+    assert {p.name: (p.read_bytes(), p.stat().st_mtime_ns) for p in out.iterdir()} == before
+    assert [p.name for p in tmp_path.iterdir()] == ["frames"]  # no hidden folder left
+    again = write_png_dir(out, BODIES, frames(4, 10), VIEW)
+    assert {p.name: (p.read_bytes(), p.stat().st_mtime_ns) for p in again} == before
