@@ -39,9 +39,6 @@ def write_if_changed(path: str, text: str) -> bool:
     if fd is not None:
         _write_fd(path, fd, data)
         return True
-    if os.path.abspath(path).startswith("/dev/"):
-        _write_into(path, path, data)  # a device, written into as it is (never renamed over)
-        return True
     target = os.path.realpath(path)  # a symlink's target is the output; the link stays
     try:
         info = os.stat(target)
@@ -152,7 +149,10 @@ def replaced_atomically(path: str) -> Iterator[str]:
     `path:1:1: error: ...` like every output's. As for write_if_changed, a symlink is followed
     and a device or FIFO is written into, never replaced."""
     target = os.path.realpath(path)
-    folder = os.path.dirname(target)
+    descriptor = _descriptor(path)
+    # (an open descriptor's file is written through it: the temporary file goes to the system's
+    # folder for them, as realpath names no folder for a pipe)
+    folder = tempfile.gettempdir() if descriptor is not None else os.path.dirname(target)
     suffix = os.path.splitext(path)[1]
     try:
         fd, tmp = tempfile.mkstemp(prefix=".max2code-", suffix=suffix, dir=folder)
@@ -161,7 +161,10 @@ def replaced_atomically(path: str) -> Iterator[str]:
         raise error(Pos(path, 1, 1), f"cannot write output: {exc.strerror}") from None
     try:
         yield tmp
-        if os.path.exists(target) and not stat.S_ISREG(os.stat(target).st_mode):
+        if descriptor is not None:
+            with open(tmp, "rb") as f:
+                _write_fd(path, descriptor, f.read())
+        elif os.path.exists(target) and not stat.S_ISREG(os.stat(target).st_mode):
             with open(tmp, "rb") as f:
                 _write_into(path, target, f.read())
         else:

@@ -135,3 +135,32 @@ def test_files_written_by_a_library_follow_the_same_rules(tmp_path: Path) -> Non
         Path(tmp).write_bytes(b"png")
     assert stat.S_ISCHR(os.stat(null).st_mode)
     assert sorted(p.name for p in tmp_path.iterdir()) == ["frame.png", "null", "real.png"]
+
+
+def test_regular_files_under_dev_are_replaced_like_any_other() -> None:
+    """/dev/shm holds ordinary files: created when missing, replaced whole when shorter (only a
+    descriptor's name, /dev/stdout or /dev/fd/N, is written through; a reviewer found a shorter
+    log written over the start of the old one)."""
+    shm = Path("/dev/shm")
+    if not shm.is_dir() or not os.access(shm, os.W_OK):
+        pytest.skip("no writable /dev/shm here")
+    out = shm / f"max2code-test-{os.getpid()}.txt"
+    try:
+        assert write_if_changed(str(out), "a long first version\n" * 10)
+        assert write_if_changed(str(out), "short\n")
+        assert out.read_text() == "short\n"
+    finally:
+        out.unlink(missing_ok=True)
+
+
+def test_descriptors_are_written_through() -> None:
+    """/dev/stdout into a pipe, from write_if_changed and from a library's writer
+    (replaced_atomically: --png, --gif): realpath names no file for a pipe."""
+    code = ("from pathlib import Path\n"
+            "from max2code.output import replaced_atomically, write_if_changed\n"
+            "write_if_changed('/dev/stdout', 'text\\n')\n"
+            "with replaced_atomically('/dev/fd/1') as tmp:\n"
+            "    Path(tmp).write_bytes(b'bytes\\n')\n")
+    r = subprocess.run(f"{sys.executable} -c \"{code}\" | cat", shell=True, capture_output=True,
+                       text=True, cwd=ROOT, timeout=60)
+    assert r.returncode == 0 and r.stdout == "text\nbytes\n", r.stderr

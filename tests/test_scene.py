@@ -112,3 +112,15 @@ def test_bad_frozen_scene(tmp_path: Path, what: str, text: str, line: int, col: 
     assert r.returncode == 1, r.stderr
     assert r.stderr.startswith(f"{path}:{line}:{col}: error: "), r.stderr
     assert words in r.stderr and "Traceback" not in r.stderr, r.stderr
+
+
+def test_frozen_circles_placed_to_touch_are_accepted(tmp_path: Path) -> None:
+    """Circles of radius 0.1 at x = 0.1 and 0.3 touch; their centres' distance rounds to 2.8e-17
+    less than the radii's sum.  sim's check allows its tolerance; the frozen scene's allows a
+    few ulps of its figures (a reviewer's case was refused as an overlap)."""
+    from max2code import scene as scene_mod
+
+    path = tmp_path / "touch.json"
+    path.write_text('{"horizon": 1, "tolerance": 1e-6, "bodies": [{"centre": [0.1, 0], "radius": 0.1},'
+                    ' {"centre": [0.3, 0], "radius": 0.1, "velocity": [1, 0]}]}')
+    assert len(scene_mod.load_scene(path).bodies) == 2

@@ -100,8 +100,8 @@ int m2c_world_body_count(const m2c_world *w);
 /* Process every event up to time `until` (inclusive, finite), writing reported events to
  * events[0..capacity). Returns 0 when the world reached `until`; 1 when the buffer filled up
  * first (the world's time is that of the last event written: call again); -1 on error.  A
- * step is one call that returns 0 and the calls before it that returned 1: max_events counts
- * the events of the whole step. */
+ * step is one call that returns 0 or -1 and the calls to the same `until` before it that
+ * returned 1: max_events counts the events of the whole step. */
 int m2c_world_step(m2c_world *w, double until, m2c_event *events, int capacity, int *count);
 double m2c_world_time(const m2c_world *w);
 

@@ -107,6 +107,7 @@ struct m2c_world {
     int any_kinds;              /* m2c_world_first_contact: predict pairs of any kinds */
     long long same;             /* events in a row at one identical time (a guard) */
     long long step_events;      /* events of the step under way, its resumed calls included */
+    double step_until;          /* the time that step goes to */
     double last_time;
     double bound_max;           /* largest bound of a dynamic body */
     timer *timers;

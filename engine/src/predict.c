@@ -420,7 +420,7 @@ static int crossing(m2c_world *w, const double c_in[MAXC], int n, double h, int 
  * their offsets' circles about the bodies' (polynomially moving) reference points, so the
  * exact, non-rotating contact of those circles (or of the circle and a non-rotating edge) comes
  * first: 1 and *t (0 when they overlap now), or 0 when even they never meet before tmax. */
-static int bound_start(feat *f, double tmax, double *t)
+static int bound_start(feat *f, double tmax, double tolp, double *t)
 {
     feat g = *f;
     double p[PL_NPARAMS + 1], c[MAXC] = {0};
@@ -448,7 +448,10 @@ static int bound_start(feat *f, double tmax, double *t)
         p[R2] = r2;
         n = PP_COEF[0](p, c);
     }
-    if (c[0] <= 0) {
+    if (c[0] <= tolp) {
+        /* overlapping, or touching within the tolerance: from now (a corner standing on a
+         * floor touches it with the lowest point of its bounding circle, whose gap rounds to
+         * either sign: a start a hair after now made the touching rules below miss it) */
         *t = 0.0;
         return 1;
     }
@@ -486,7 +489,7 @@ static int solve_rotating(feat *f, double tmax, double tolp, double vthr, double
     m2c_world *w = f->w;
     double tol = w->cfg.tolerance;
     double t0 = 0.0, t_safe = -1.0;
-    if (!bound_start(f, tmax, &t0))
+    if (!bound_start(f, tmax, tolp, &t0))
         return 0;
     enum { ABOVE, INSIDE } mode = ABOVE;
     int after_root = 0;

@@ -430,6 +430,12 @@ int m2c_world_step(m2c_world *w, double until, m2c_event *events, int capacity, 
     w->out_n = 0;
     if (!w->prepared && prepare(w) != 0)
         return -1;
+    /* a call to another time starts a new step (the caller left the last one unfinished: a
+     * callback that raised), as one after a step that returned 0 or -1 does */
+    if (until != w->step_until) {
+        w->step_events = 0;
+        w->step_until = until;
+    }
     if (flush_pending(w)) {
         *count = w->out_n;
         w->out = NULL;
@@ -447,6 +453,7 @@ int m2c_world_step(m2c_world *w, double until, m2c_event *events, int capacity, 
         if (w->same > SAME_TIME_LIMIT) {
             w->out = NULL;
             *count = w->out_n;
+            w->step_events = 0;
             return fail(w, "more than a million events at one instant (a body stuck in a corner?)");
         }
         if (w->ntimers > 0 && tt <= t) {
@@ -464,6 +471,7 @@ int m2c_world_step(m2c_world *w, double until, m2c_event *events, int capacity, 
         if (w->cfg.max_events > 0 && ++w->step_events > w->cfg.max_events) {
             w->out = NULL;
             *count = w->out_n;
+            w->step_events = 0; /* (a failure ends the step: the next call starts one) */
             return fail(w, "the step exceeded max_events");
         }
         /* an event can report up to 4 records: stop while there is room (the caller resumes) */

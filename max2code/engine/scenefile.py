@@ -118,6 +118,20 @@ def path_text(path: tuple) -> str:
     return out or "(top level)"
 
 
+def _finite(v: int | float) -> bool:
+    """A float, or an int a float holds (math.isfinite raises OverflowError on a larger one)."""
+    try:
+        return math.isfinite(v)
+    except OverflowError:
+        return False
+
+
+def _shown(v: object, limit: int = 80) -> str:
+    """repr cut to a length a message can carry (an int of a thousand digits is data too)."""
+    text = repr(v)
+    return text if len(text) <= limit else text[:limit - 3] + "..."
+
+
 @dataclass
 class _Checker:
     file: str
@@ -144,8 +158,8 @@ class _Checker:
             return default
         v = table[key]
         p = path + (key,)
-        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
-            self.error(p, f"expected a finite number, got {v!r}")
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not _finite(v):
+            self.error(p, f"expected a finite number, got {_shown(v)}")
             return default
         v = float(v)
         if positive and not v > 0:
@@ -161,9 +175,9 @@ class _Checker:
 
     def vector(self, value: object, path: tuple) -> Vec | None:
         if (not isinstance(value, list) or len(value) != 2 or
-                any(isinstance(x, bool) or not isinstance(x, (int, float)) or not math.isfinite(x)
+                any(isinstance(x, bool) or not isinstance(x, (int, float)) or not _finite(x)
                     for x in value)):
-            self.error(path, f"expected [x, y] (two finite numbers), got {value!r}")
+            self.error(path, f"expected [x, y] (two finite numbers), got {_shown(value)}")
             return None
         return (float(value[0]), float(value[1]))
 
@@ -311,49 +325,77 @@ def _body(c: _Checker, raw: object, index: int, names: set[str]) -> BodySpec | N
 
 
 def near_pairs(circles: list[tuple[float, float, float]]) -> Iterator[tuple[int, int]]:
-    """The pairs (i < j) of circles (cx, cy, r) that overlap or touch: a uniform grid of cells
-    twice the median radius, each circle in the cells its box covers, so that a scene's check
-    stays near linear however its bodies line up (a sweep along x alone was quadratic on a
-    column of bodies: 29 s for 20 000 circles).  A circle covering more than LARGE_CELLS cells
-    (a long wall) is tested against every other instead."""
-    if not circles:
-        return
-    radii = sorted(r for _, _, r in circles)
-    size = 2 * radii[len(radii) // 2] or 1.0
-    grid: dict[tuple[int, int], list[int]] = {}
-    large: list[int] = []
+    """The pairs (i < j) of circles (cx, cy, r) that overlap or touch, each once: a grid per
+    size class (radii within a factor of 2), cells twice the class's largest radius, so that a
+    circle lies in at most 2 x 2 cells of its own grid, and one of a smaller class meets a
+    larger class's circles in at most 2 x 2 of that grid's cells (two circles that touch have
+    boxes that share a point, which some cell of either grid holds).  Near linear however the
+    bodies line up or differ in size: a sweep along x alone was quadratic on a column (29 s for
+    20 000 circles), and one grid of the median size on a scene of two sizes.  Circles whose
+    cells the floats cannot number (huge coordinates for their size) are tested against every
+    other one instead."""
+    classes: dict[int, list[int]] = {}
+    odd: list[int] = []
     for k, (x, y, r) in enumerate(circles):
-        x0, x1 = math.floor((x - r) / size), math.floor((x + r) / size)
-        y0, y1 = math.floor((y - r) / size), math.floor((y + r) / size)
-        if (x1 - x0 + 1) * (y1 - y0 + 1) > LARGE_CELLS:
-            large.append(k)
-            continue
-        for gx in range(x0, x1 + 1):
-            for gy in range(y0, y1 + 1):
-                grid.setdefault((gx, gy), []).append(k)
+        if r > 0 and math.isfinite(r) and math.isfinite(x) and math.isfinite(y):
+            classes.setdefault(math.frexp(r)[1], []).append(k)
+        else:
+            odd.append(k)
+    grids: list[tuple[float, dict[tuple[int, int], list[int]]]] = []
+    for e in sorted(classes):
+        size = 2 * max(circles[k][2] for k in classes[e])
+        grid: dict[tuple[int, int], list[int]] = {}
+        for k in classes[e]:
+            cells = _cells(circles[k], size)
+            if cells is None:
+                odd.append(k)
+                continue
+            for cell in cells:
+                grid.setdefault(cell, []).append(k)
+        grids.append((size, grid))
     seen: set[tuple[int, int]] = set()
 
     def touching(i: int, j: int) -> bool:
         (xi, yi, ri), (xj, yj, rj) = circles[i], circles[j]
         return math.hypot(xi - xj, yi - yj) <= ri + rj
 
-    for members in grid.values():
-        for a_pos, i in enumerate(members):
-            for j in members[a_pos + 1:]:
-                pair = (i, j) if i < j else (j, i)
-                if pair not in seen and touching(*pair):
-                    seen.add(pair)
-                    yield pair
-    for i in large:
+    def pair(i: int, j: int) -> tuple[int, int] | None:
+        p = (i, j) if i < j else (j, i)
+        if i == j or p in seen or not touching(*p):
+            return None
+        seen.add(p)
+        return p
+
+    for g, (size, grid) in enumerate(grids):
+        for members in grid.values():  # within the class
+            for a_pos, i in enumerate(members):
+                for j in members[a_pos + 1:]:
+                    if (p := pair(i, j)) is not None:
+                        yield p
+            for i in members:  # against the larger classes
+                for big_size, big in grids[g + 1:]:
+                    for cell in _cells(circles[i], big_size) or ():
+                        for j in big.get(cell, ()):
+                            if (p := pair(i, j)) is not None:
+                                yield p
+    for i in odd:
         for j in range(len(circles)):
-            pair = (i, j) if i < j else (j, i)
-            if j != i and pair not in seen and touching(*pair):
-                seen.add(pair)
-                yield pair
+            if (p := pair(i, j)) is not None:
+                yield p
 
 
-# circles covering more grid cells than this are tested against every other circle
-LARGE_CELLS = 4096
+def _cells(circle: tuple[float, float, float], size: float) -> list[tuple[int, int]] | None:
+    """The cells of a grid of that size that the circle's box covers; None where the floats
+    cannot number them."""
+    x, y, r = circle
+    try:
+        x0, x1 = math.floor((x - r) / size), math.floor((x + r) / size)
+        y0, y1 = math.floor((y - r) / size), math.floor((y + r) / size)
+    except (OverflowError, ValueError):
+        return None
+    if (x1 - x0 + 1) * (y1 - y0 + 1) > 9:
+        return None  # (never for a circle of the grid's class or a smaller one)
+    return [(gx, gy) for gx in range(x0, x1 + 1) for gy in range(y0, y1 + 1)]
 
 
 def _overlaps(c: _Checker, bodies: list[tuple[int, BodySpec]], tolerance: float) -> None:

@@ -69,13 +69,15 @@ def write_png_dir(folder: str | os.PathLike, bodies: Sequence[Body], frames: Ite
                   view: View) -> list[Path]:
     """frame-00000.png, frame-00001.png, ... in `folder` (made if missing). Numbered frames left
     from an earlier, longer run are removed, so the folder holds exactly this run (other files
-    are not touched). The frames are drawn into a hidden folder beside it and moved in only
+    are not touched). The frames are drawn into a hidden folder inside it and moved in only
     once all are drawn: a run that fails or is interrupted while drawing leaves the folder as
     it was, never half this run's frames among the last one's. Returns the paths written."""
     out = Path(folder)
     try:
         out.mkdir(parents=True, exist_ok=True)
-        stage = Path(tempfile.mkdtemp(prefix=f".{out.name}-", dir=out.parent))
+        # (inside the folder itself: the same filesystem, so the frames move in by rename, even
+        # where the folder is a mount point or a link to another filesystem)
+        stage = Path(tempfile.mkdtemp(prefix=".max2code-frames-", dir=out))
     except OSError as exc:
         raise error(Pos(str(out), 1, 1), f"cannot make the frame folder: {exc.strerror}") from None
     try:

@@ -80,6 +80,8 @@ BAD_TOML = [
      ["engine.max_events", "whole number"]),
     ("max_events beyond the core's count", GOOD + "\n[engine]\nmax_events = 1e30\n", 16, 1,
      ["engine.max_events", "whole number"]),
+    ("an int no float holds", GOOD + "\n[engine]\nmax_events = 1" + "0" * 400 + "\n", 16, 1,
+     ["engine.max_events", "expected a finite number", "..."]),
 ]
 
 
@@ -176,9 +178,10 @@ def test_hostile_files_are_located_errors(tmp_path: Path) -> None:
 
 
 def test_near_pairs_finds_every_touching_pair() -> None:
-    """The overlap check's grid against all pairs: random circles of mixed sizes, a column on
-    one x (the case a sweep along x made quadratic), long walls that take the every-other path,
-    and circles that just touch."""
+    """The overlap check's grids against all pairs: random circles of mixed sizes, a column on
+    one x (the case a sweep along x made quadratic), two large ones, circles that just touch,
+    two sizes far apart (one grid of the median size put each large circle in thousands of
+    cells), and radii so small beside their coordinates that no cell can be numbered."""
     import math
     import random
 
@@ -187,7 +190,10 @@ def test_near_pairs_finds_every_touching_pair() -> None:
     rng = random.Random(5)
     circles = [(rng.uniform(-10, 10), rng.uniform(-10, 10), rng.uniform(0.01, 0.5)) for _ in range(300)]
     circles += [(0.0, 0.3 * k, 0.16) for k in range(100)]          # a column, neighbours overlap
-    circles += [(0.0, 0.0, 1e4), (5.0, -3.0, 3000.0)]              # larger than LARGE_CELLS cells
+    circles += [(0.0, 0.0, 1e4), (5.0, -3.0, 3000.0)]              # much larger
+    circles += [(30.0 + 0.002 * k, 0.0, 0.001) for k in range(50)]  # small ones, touching
+    circles += [(30.0 + 0.1 * k, 0.2, 0.06) for k in range(20)]      # and a row of larger
+    circles += [(0.0, 0.0, 1e-300), (1e9, 0.0, 1e-300)]            # no numbered cell
     circles += [(20.0, 0.0, 1.0), (22.0, 0.0, 1.0)]                # touching exactly
     want = {(i, j) for i in range(len(circles)) for j in range(i + 1, len(circles))
             if math.hypot(circles[i][0] - circles[j][0], circles[i][1] - circles[j][1])

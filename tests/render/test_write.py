@@ -169,6 +169,7 @@ def test_png_dir_interrupted_while_drawing_keeps_the_last_run(tmp_path: Path) ->
     with pytest.raises(KeyboardInterrupt):
         write_png_dir(out, BODIES, broken(), VIEW)
     assert {p.name: (p.read_bytes(), p.stat().st_mtime_ns) for p in out.iterdir()} == before
-    assert [p.name for p in tmp_path.iterdir()] == ["frames"]  # no hidden folder left
+    assert [p.name for p in tmp_path.iterdir()] == ["frames"]
+    assert not [p for p in out.iterdir() if p.name.startswith(".")]  # no hidden folder left
     again = write_png_dir(out, BODIES, frames(4, 10), VIEW)
     assert {p.name: (p.read_bytes(), p.stat().st_mtime_ns) for p in again} == before

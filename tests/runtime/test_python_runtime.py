@@ -304,6 +304,10 @@ def test_first_roots_scalars_as_first_root_status(backend: str, numpy_present: b
         got = list(rt.first_roots(rows, tmax, eps))
         assert len(got) == 2 and all(math.isnan(x) for x in got), (tmax, eps, got)
     assert list(rt.first_roots(rows, 5.0)) == [1.0, 1.0]
+    # a row holding None or an int no float holds: NaN for that row, numpy or not
+    got = list(rt.first_roots([[-6.0, 11.0, -6.0, 1.0], [None, 1.0, 1.0, 1.0],
+                               [10**400, 1.0, 1.0, 1.0]], 5.0))
+    assert got[0] == 1.0 and math.isnan(got[1]) and math.isnan(got[2]), got
     if not numpy_present:
         got = rt.first_roots([[-6.0, 11.0, -6.0, 1.0], [None, 1.0, 1.0, 1.0],
                               ["1", -3.0, 1.0, 0.0]], 5.0)

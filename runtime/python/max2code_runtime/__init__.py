@@ -223,9 +223,10 @@ def first_root(c: Sequence[float], tmax: float = math.inf, eps: float = 0.0) -> 
 
 def first_roots(C: Any, tmax: float = math.inf, eps: float = 0.0) -> Any:
     """The first root of every row of C (an (M, N+1) array or a sequence of M sequences of one
-    length N+1 <= 17, c[i] multiplying t^i), NaN where a row has none or is invalid (tmax and
-    eps as first_root_status takes them: anything else makes every row NaN): a numpy array
-    when numpy is installed, else a list.  One call into C for the whole batch with the C
+    length N+1 <= 17, c[i] multiplying t^i), NaN where a row has none or is invalid (a row
+    with something that is not a number, or that no float holds, included; tmax and eps as
+    first_root_status takes them: anything else makes every row NaN): a numpy array when numpy
+    is installed, else a list.  One call into C for the whole batch with the C
     backend (m2c_first_roots); raises ValueError for a ragged or over-long C, or one that is
     not rows.  Both backends give the same answers on the same input, bit for bit."""
     try:
@@ -234,7 +235,12 @@ def first_roots(C: Any, tmax: float = math.inf, eps: float = 0.0) -> Any:
         np = None
     scalars = _floats((), tmax, eps)
     if np is not None:
-        arr = np.ascontiguousarray(C, dtype=np.float64)
+        try:
+            arr = np.ascontiguousarray(C, dtype=np.float64)
+        except (TypeError, ValueError, OverflowError):
+            # what numpy cannot convert as a whole (a row with None in a list of lists, an int
+            # no float holds, a ragged list): row by row, as without numpy
+            arr = np.array([_numbers_or_nan(r) for r in _rows(C)], dtype=np.float64)
         if arr.ndim == 1 and arr.shape[0] == 0:
             arr = arr.reshape(0, 1)  # [] : no rows, as without numpy
         if arr.ndim != 2 or arr.shape[1] < 1 or arr.shape[1] > MAX_DEGREE + 1:
@@ -246,13 +252,7 @@ def first_roots(C: Any, tmax: float = math.inf, eps: float = 0.0) -> Any:
         if _C is not None:
             return _C.solve_batch_numpy(arr, tm, ep, np)
         return np.array([_row(r, tm, ep) for r in arr.tolist()], dtype=np.float64)
-    try:
-        rows = [list(r) for r in C]
-    except TypeError:
-        raise ValueError("first_roots: C must be M rows (sequences) of coefficients") from None
-    if rows and (len({len(r) for r in rows}) != 1 or not 1 <= len(rows[0]) <= MAX_DEGREE + 1):
-        raise ValueError("first_roots: C must be M rows of one length, 1 to "
-                         f"{MAX_DEGREE + 1} coefficients")
+    rows = _rows(C)
     if scalars is None:
         return [math.nan] * len(rows)
     _, tm, ep = scalars
@@ -260,6 +260,18 @@ def first_roots(C: Any, tmax: float = math.inf, eps: float = 0.0) -> Any:
         # a row that is not numbers is invalid, NaN, as the pure path has it
         return _C.solve_batch([_numbers_or_nan(r) for r in rows], tm, ep)
     return [_row(r, tm, ep) for r in rows]
+
+
+def _rows(C: Any) -> list[list[Any]]:
+    """C as rows of one length, 1 to 17 entries each (ValueError otherwise)."""
+    try:
+        rows = [list(r) for r in C]
+    except TypeError:
+        raise ValueError("first_roots: C must be M rows (sequences) of coefficients") from None
+    if rows and (len({len(r) for r in rows}) != 1 or not 1 <= len(rows[0]) <= MAX_DEGREE + 1):
+        raise ValueError("first_roots: C must be M rows of one length, 1 to "
+                         f"{MAX_DEGREE + 1} coefficients")
+    return rows
 
 
 def _numbers_or_nan(r: list[Any]) -> list[float]:
