@@ -85,8 +85,8 @@ def search_path(statements: tuple[Statement, ...]) -> str:
     folder = depfile.source_folder(statements)
     if folder is None or not any(depfile.ANY_LOAD.search(s.text) for s in statements):
         return ""
-    if any(c in folder for c in '{}#"\\'):
-        return ""  # would be read as a pattern; such loads need an absolute path
+    if any(c in folder for c in '{}#",[]*?\\'):
+        return ""  # would be read as a pattern; such loads need an absolute path (README)
     return (f'file_search_maxima: append(["{folder}/###", "{folder}/###.{{mac,mc,wxm}}"], '
             f'file_search_maxima)$\n'
             f'file_search_lisp: append(["{folder}/###", "{folder}/###.{{lisp,lsp}}"], '

@@ -76,7 +76,9 @@ def info(lang: str) -> dict[str, str]:
                 "module": where,
                 "note": "pure Python: installed with max2code as 'max2code_runtime', else put "
                         "'dir' on PYTHONPATH"}
-    raise KeyError(lang)
+    # a language added to the registry: its runtime folder, and no flags this tool knows of
+    return {"dir": str(runtime_dir(lang)), "cflags": "", "sources": "", "libs": "",
+            "note": "no build flags known for this language: its runtime is in 'dir'"}
 
 
 CONFIG = """\
@@ -84,6 +86,8 @@ CONFIG = """\
 # MAX2CODE_COMMAND below runs: find_package(max2code) with max2code_DIR set to this folder gives
 # max2code_generate() and the max2code::runtime target (max2code-functions.cmake, included).
 set(max2code_VERSION {version})
+# the languages of this max2code's registry, each with its module's extension
+set(MAX2CODE_LANGUAGE_EXTENSIONS {extensions})
 if(NOT MAX2CODE_COMMAND)
   set(MAX2CODE_COMMAND {command} CACHE STRING "the command that runs max2code")
 endif()
@@ -126,7 +130,10 @@ def cmake_dir() -> Path:
         command = ["${CMAKE_COMMAND}", "-E", "env", f"PYTHONPATH={root}", *command]
     words = " ".join(w if w.startswith("${") else _bracket(w) for w in command)
     functions = _bracket((PACKAGE / "cmake" / "max2code-functions.cmake").as_posix())
-    config = CONFIG.format(functions=functions, version=__version__, command=words)
+    from .languages import LANGUAGES
+    extensions = " ".join(f"{name} {lang.extension}" for name, lang in LANGUAGES.items())
+    config = CONFIG.format(functions=functions, version=__version__, command=words,
+                           extensions=extensions)
     version = CONFIG_VERSION.format(version=__version__, major=__version__.split(".")[0])
     folder = cache.directory() / "cmake" / hashlib.sha256(config.encode()).hexdigest()[:16]
     folder.mkdir(parents=True, exist_ok=True)

@@ -366,6 +366,25 @@ def test_warm_build_runs_nothing(logged: tuple[dict[str, str], Switch], tmp_path
 
 # --- runtime discovery -------------------------------------------------------------------------
 
+def test_runtime_discovery_and_cmake_follow_the_registry(monkeypatch: pytest.MonkeyPatch,
+                                                         tmp_path: Path) -> None:
+    """A language added to the registry (README, "Adding a language") is known to `max2code
+    runtime` (its runtime folder; no flags) and to the CMake package's max2code_generate(LANG),
+    which took a fixed list of the four shipped ones (a reviewer added a toy Lua: KeyError, and
+    "LANG must be one of c, python, rust, m2")."""
+    import dataclasses
+
+    from max2code import languages, runtime_info
+    from max2code.languages.python import Python
+
+    monkeypatch.setitem(languages.LANGUAGES, "toy", dataclasses.replace(Python(), extension=".toy"))
+    monkeypatch.setenv("MAX2CODE_CACHE", str(tmp_path / "cache"))
+    got = runtime_info.info("toy")
+    assert got["dir"].endswith("runtime/toy") and got["cflags"] == got["libs"] == ""
+    config = (runtime_info.cmake_dir() / "max2codeConfig.cmake").read_text()
+    assert "set(MAX2CODE_LANGUAGE_EXTENSIONS c .h python .py m2 .mod rust .rs toy .toy)" in config
+
+
 def test_runtime_discovery() -> None:
     env = dict(os.environ)
     c = run("runtime", "--lang", "c", "--cflags", env=env).stdout.strip()

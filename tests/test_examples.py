@@ -170,3 +170,21 @@ def test_python(tree: Path, env: dict[str, str]) -> None:
         assert "regenerating" in run([sys.executable, "generate.py"], folder, env)
         assert "up to date" in run([sys.executable, "generate.py"], folder, env)
     check_time(run([sys.executable, "main.py"], folder, env))
+
+
+def test_the_python_example_reads_every_depfile_escape(tmp_path: Path) -> None:
+    """examples/python/generate.py reads max2code's depfiles itself: a space, '#', '$' and ':'
+    come escaped (README, dependency files); a folder with a ':' kept it regenerating on every
+    run when '\\:' was not read back."""
+    import importlib.util
+
+    from max2code import depfile
+
+    spec = importlib.util.spec_from_file_location("generate_example",
+                                                  ROOT / "examples" / "python" / "generate.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    deps = ["/a b/c#d/e$f/g:h/x.mxm", "/a b/motion.mac"]
+    d = tmp_path / "out.py.d"
+    d.write_text(depfile.text(["out.py"], deps, phony=True))
+    assert module.dependencies(d) == deps

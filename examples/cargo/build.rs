@@ -38,7 +38,7 @@ fn depfile_dependencies(text: &str) -> Vec<String> {
     let mut chars = after.chars().peekable();
     while let Some(c) = chars.next() {
         match c {
-            '\\' if matches!(chars.peek(), Some(' ') | Some('#') | Some('\\')) => {
+            '\\' if matches!(chars.peek(), Some(' ') | Some('#') | Some(':') | Some('\\')) => {
                 word.push(chars.next().unwrap())
             }
             '$' if chars.peek() == Some(&'$') => {

@@ -19,9 +19,10 @@ DEPFILE = Path(f"{OUT}.d")
 
 
 def dependencies(depfile: Path) -> list[str]:
-    """The prerequisites of the depfile's first rule (Make escapes: '\\ ', '$$', '\\#')."""
+    """The prerequisites of the depfile's first rule (Make escapes: '\\ ', '$$', '\\#', '\\:')."""
     rule = depfile.read_text().split("\n\n")[0].replace("\\\n", " ")
-    words = rule.split(": ", 1)[1].replace("\\ ", "\0").replace("$$", "$").replace("\\#", "#")
+    words = (rule.split(": ", 1)[1].replace("\\ ", "\0").replace("$$", "$").replace("\\#", "#")
+             .replace("\\:", ":"))
     return [w.replace("\0", " ") for w in words.split()]
 
 

@@ -1,4 +1,6 @@
-"""The language registry: one line per language; nothing else in the tool names a language."""
+"""The language registry: an entry per language. The CLI, runtime discovery and the CMake package
+take their languages from here; `max2code check` also needs the language's harness
+(max2code/harness/), and runtime discovery knows build flags for the four shipped ones only."""
 
 from __future__ import annotations
 
