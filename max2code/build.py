@@ -196,16 +196,11 @@ def main(argv: list[str]) -> int:
     ap.add_argument("-o", "--out", default="build", help="output folder (default: build)")
     ap.add_argument("--lang", action="append", metavar="LANG",
                     help="only this language (repeatable; default: all registered ones)")
-    ap.add_argument("--timeout", type=float, default=maxima.DEFAULT_TIMEOUT)
     ap.add_argument("-j", "--jobs", type=int, default=1, metavar="N",
                     help="run up to N equations at once (default 1; 0: one per CPU)")
-    ap.add_argument("--no-cache", action="store_true",
-                    help="neither read nor write the cache of Maxima results and outputs")
     from .cli import add_maxima_options, apply_maxima_options
     add_maxima_options(ap)
     opts = ap.parse_args(argv)
-    if opts.no_cache:
-        cache.disable()
     apply_maxima_options(opts)
     if opts.jobs < 0:
         ap.error("--jobs must be 0 or more")

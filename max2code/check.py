@@ -319,9 +319,10 @@ def main(argv: list[str]) -> int:
                     help=f"kept between runs (Cargo's target folder); default "
                          f"{build_directory()}")
     ap.add_argument("--json", metavar="FILE", help="also write the report as JSON")
-    ap.add_argument("--timeout", type=float, default=maxima.DEFAULT_TIMEOUT, metavar="SECONDS",
-                    help="limit on one Maxima run")
+    from .cli import add_maxima_options, apply_maxima_options
+    add_maxima_options(ap)
     opts = ap.parse_args(argv)
+    apply_maxima_options(opts)
     equations = [Path(p) for p in inputs_or_folder(opts.inputs)]
     if not equations:
         ap.error(no_inputs("check"))

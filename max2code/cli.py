@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import math
 import os
 import signal
 import sys
@@ -59,8 +60,6 @@ def _parser() -> argparse.ArgumentParser:
                     help="fragment: the paper's initialise/terms/finalise text; module: the "
                          "functions of the generated-code contract; auto (default): fragment if "
                          "the .mxm has term blocks, else module")
-    ap.add_argument("--timeout", type=float, default=maxima.DEFAULT_TIMEOUT, metavar="SECONDS",
-                    help=f"limit on one Maxima run (default {maxima.DEFAULT_TIMEOUT:g})")
     ap.add_argument("-MD", dest="md", action="store_true",
                     help="also write a Make/Ninja dependency file OUTPUT.d (the .mxm and the "
                          "files its program loads)")
@@ -68,8 +67,6 @@ def _parser() -> argparse.ArgumentParser:
                     help="write the dependency file to FILE.d (implies -MD)")
     ap.add_argument("-MP", dest="mp", action="store_true",
                     help="add an empty rule for each dependency, as gcc -MP does")
-    ap.add_argument("--no-cache", action="store_true",
-                    help="neither read nor write the cache of Maxima results")
     add_maxima_options(ap)
     ap.add_argument("--strategy", choices=STRATEGIES, default=DEFAULT_STRATEGY,
                     help="optimised (default): relative quantities first, expansion in t only, "
@@ -80,11 +77,41 @@ def _parser() -> argparse.ArgumentParser:
     return ap
 
 
+def seconds(text: str) -> float:
+    """--timeout's type: a finite number of seconds above 0 (a usage error otherwise)."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected seconds, not {text!r}") from None
+    if not (0 < value < math.inf):
+        raise argparse.ArgumentTypeError(f"must be a finite number of seconds above 0, not {text}")
+    return value
+
+
+def mebibytes(text: str) -> int:
+    """--maxima-memory's type: 0 (no limit), or at least what GCL needs to start."""
+    from .confine import MIN_MEMORY_MIB
+
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a whole number of MiB, not {text!r}") from None
+    if value < 0 or 0 < value < MIN_MEMORY_MIB:
+        raise argparse.ArgumentTypeError(f"must be 0 (no limit) or at least {MIN_MEMORY_MIB} "
+                                         f"MiB (what GCL needs to start), not {value}")
+    return value
+
+
 def add_maxima_options(ap: argparse.ArgumentParser) -> None:
-    """The options of every command that runs Maxima on a .mxm (README: Security)."""
+    """The options of every command that runs Maxima on a .mxm (README: Security), so that an
+    error's advice (--allow-unsafe-maxima, --maxima-memory) holds in each."""
     from .confine import DEFAULT_MEMORY_MIB
 
-    ap.add_argument("--maxima-memory", type=int, default=None, metavar="MIB",
+    ap.add_argument("--timeout", type=seconds, default=maxima.DEFAULT_TIMEOUT, metavar="SECONDS",
+                    help=f"limit on one Maxima run (default {maxima.DEFAULT_TIMEOUT:g})")
+    ap.add_argument("--no-cache", action="store_true",
+                    help="neither read nor write the cache (Maxima results; build's outputs)")
+    ap.add_argument("--maxima-memory", type=mebibytes, default=None, metavar="MIB",
                     help=f"memory (address space) one Maxima run may use (default "
                          f"{DEFAULT_MEMORY_MIB}; 0: no limit)")
     ap.add_argument("--allow-unsafe-maxima", action="store_true",
@@ -93,6 +120,8 @@ def add_maxima_options(ap: argparse.ArgumentParser) -> None:
 
 
 def apply_maxima_options(opts: argparse.Namespace) -> None:
+    if opts.no_cache:
+        cache.disable()
     maxima.configure(opts.maxima_memory, opts.allow_unsafe_maxima)
 
 
@@ -150,8 +179,6 @@ def _main(argv: list[str] | None) -> int:
     dep_path = opts.depfile or (depfile.default_name(opts.output) if opts.md else None)
     if dep_path and opts.output == "-":
         ap.error("a dependency file (-MD, -MF) needs an output file (-o FILE)")
-    if opts.no_cache:
-        cache.disable()
     apply_maxima_options(opts)
     from .generate import generate, load
     from .languages import LANGUAGES

@@ -227,8 +227,8 @@ def _variant(spec: Spec, v: Variant, params: tuple[Param, ...], lang: Language,
 def _block(block: CodeBlock | None, lang: Language) -> Block | None:
     if block is None:
         return None
-    return Block(block.text if block.text.endswith("\n") else block.text + "\n",
-                 lang.line_directive(block.pos))
+    text = lang.block_text(block.text)
+    return Block(text if text.endswith("\n") else text + "\n", lang.line_directive(block.pos))
 
 
 @dataclass(frozen=True)

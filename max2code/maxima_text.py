@@ -111,7 +111,10 @@ def _statement(text: str, start: int, end: int, blanks: list[tuple[int, int]],
         return None
     lead = len(body) - len(stripped)
     if stripped.startswith("/*"):
-        lead = len(body) - len(_skip_comments(body))
+        # the statement starts after its leading comments, in its text as at its position:
+        # Maxima's syntax errors are located by counting lines and columns from there
+        stripped = _skip_comments(body)
+        lead = len(body) - len(stripped)
     return Statement(stripped, locate(start + lead))
 
 

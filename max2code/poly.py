@@ -169,7 +169,7 @@ def _read(spec: Spec, text: str, where: Pos, t: str) -> Polynomial:
     except ExprSyntaxError as exc:
         raise error(where, str(exc)) from None
     rest = _field(text, "REST")[0].strip()
-    if rest != "0" or any(t in symbols(c) for c in coefficients):
+    if not _zero(rest) or any(t in symbols(c) for c in coefficients):
         raise error(where, f"not a polynomial in '{t}': '{t}' is left inside a function or a "
                     f"non-integer power ({_inside(coefficients, rest, t)})")
     while len(coefficients) > 1 and coefficients[-1] == ZERO:
@@ -183,12 +183,23 @@ def _read(spec: Spec, text: str, where: Pos, t: str) -> Polynomial:
                       unexpanded=unexpanded, maxima_lines_expanded=max(1, -(-expanded_chars // 79)))
 
 
+def _zero(text: str) -> bool:
+    """Maxima's printed remainder is zero: 0, or 0.0 (or a bigfloat 0.0b0) where the equation
+    has decimal constants -- the subtraction of the terms from themselves in floating point."""
+    if text == "0":
+        return True
+    try:
+        return float(text.replace("b", "e")) == 0.0
+    except ValueError:
+        return False
+
+
 def _inside(coefficients: list[Expr], rest: str, t: str) -> str:
     for c in coefficients:
         names = sorted(n for n in calls(c))
         if names and t in symbols(c):
             return f"for example inside {names[0]}(...)"
-    return f"remainder {rest[:60]}" if rest != "0" else f"'{t}' remains in a coefficient"
+    return f"remainder {rest[:60]}" if not _zero(rest) else f"'{t}' remains in a coefficient"
 
 
 def _parameters(spec: Spec, coefficients: list[Expr]) -> tuple[str, ...]:

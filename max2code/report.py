@@ -16,7 +16,6 @@ from dataclasses import asdict, dataclass
 from html import escape
 from pathlib import Path
 
-from . import maxima
 from .diagnostics import Max2CodeError
 from .generate import generate, load
 from .languages import LANGUAGES
@@ -247,11 +246,13 @@ def main(argv: list[str]) -> int:
     ap.add_argument("inputs", nargs="*", metavar="FILE.mxm",
                     help="equations (default: the .mxm files of the current folder)")
     ap.add_argument("-o", "--out", default="build/report", help="folder (default build/report)")
-    ap.add_argument("--timeout", type=float, default=maxima.DEFAULT_TIMEOUT)
     ap.add_argument("--figure6", action=argparse.BooleanOptionalAction, default=None,
                     help="the paper's figure 6 table (default: when a shipped equation is among "
                          "the inputs)")
+    from .cli import add_maxima_options, apply_maxima_options
+    add_maxima_options(ap)
     opts = ap.parse_args(argv)
+    apply_maxima_options(opts)
     inputs = inputs_or_folder(opts.inputs)
     if not inputs:
         ap.error(no_inputs("report"))

@@ -23,7 +23,6 @@ import re
 import sys
 from dataclasses import dataclass
 
-from . import maxima
 from .diagnostics import Max2CodeError
 from .parse import parse_file
 from .poly import polynomial
@@ -121,8 +120,10 @@ def main(argv: list[str]) -> int:
                     help="list every candidate measured, not only the suggestions")
     ap.add_argument("--pairs", action="store_true",
                     help="also try every pair of parameters (n(n-1)/2 more polynomials)")
-    ap.add_argument("--timeout", type=float, default=maxima.DEFAULT_TIMEOUT)
+    from .cli import add_maxima_options, apply_maxima_options
+    add_maxima_options(ap)
     opts = ap.parse_args(argv)
+    apply_maxima_options(opts)
     try:
         degree, ops, candidates = suggest(opts.input, opts.timeout, opts.pairs)
         existing = {tuple(sorted(r.params)): r.name for r in parse_file(opts.input).roles}

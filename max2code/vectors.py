@@ -306,9 +306,10 @@ def main(argv: list[str]) -> int:
                     help="output file ('-' for standard output, the default)")
     ap.add_argument("--count", type=int, default=GENERIC_COUNT, metavar="N",
                     help=f"random parameter sets (default {GENERIC_COUNT})")
-    ap.add_argument("--timeout", type=float, default=maxima.DEFAULT_TIMEOUT, metavar="SECONDS",
-                    help="limit on one Maxima run")
+    from .cli import add_maxima_options, apply_maxima_options
+    add_maxima_options(ap)
     opts = ap.parse_args(argv)
+    apply_maxima_options(opts)
     if opts.count < 1:
         ap.error("--count must be at least 1")
     try:

@@ -154,6 +154,21 @@ def test_the_command_passes_on_shipped_vectors() -> None:
     assert "check: every language met the tolerances" in proc.stdout
 
 
+def test_an_equation_with_decimal_constants(tmp_path: Path) -> None:
+    """x + v t + 0.5 a t^2 (a reviewer's case): Maxima leaves the remainder of the polynomial's
+    terms as 0.0 where the equation has decimals, which was read as "not a polynomial"; every
+    language now builds it and meets the oracle (Maxima in bigfloat) on fresh vectors."""
+    require("maxima")
+    mxm = tmp_path / "decimals.mxm"
+    mxm.write_text("parameters x, v, a\nbegin\n  x + v*t + 0.5*a*t^2 - 1.25;\nend\n")
+    proc = subprocess.run([sys.executable, "-m", "max2code", "check", str(mxm), "--build-dir",
+                           str(tmp_path / "build")], cwd=tmp_path, capture_output=True, text=True)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    assert "check: every language met the tolerances" in proc.stdout
+    for lang in ("c", "python", "rust", "m2"):
+        assert f"decimals           {lang}" in proc.stdout, proc.stdout
+
+
 def test_inexact_decimal_parameters_are_refused() -> None:
     assert chk.parse_double("0.75") == 0.75
     assert chk.parse_double("0x1.999999999999ap-4") == 0.1

@@ -8,6 +8,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 from conftest import ROOT, require
 
 PAPER = ROOT / "equations" / "paper"
@@ -125,3 +127,33 @@ def test_paper_fragment_compiles_in_a_c_function(tmp_path: Path, maxima_exe: str
                          text=True, cwd=tmp_path, stdin=subprocess.DEVNULL).stdout
     want = float(re.search(r"^VALUE (\S+)$", out, re.M).group(1))
     assert abs(value - want) <= 1e-9 * abs(want)
+
+
+@pytest.mark.parametrize("option,value", [("--timeout", "nan"), ("--timeout", "inf"),
+                                          ("--timeout", "0"), ("--timeout", "-1"),
+                                          ("--maxima-memory", "-5"), ("--maxima-memory", "100")])
+@pytest.mark.parametrize("command", [[], ["build"], ["report"], ["roles"], ["check"], ["vectors"]])
+def test_maxima_options_are_checked_as_usage(command: list[str], option: str, value: str,
+                                             tmp_path: Path) -> None:
+    """Every command that runs Maxima takes the same options, checked before any run: a
+    timeout that is not a finite number of seconds above 0, a memory limit below GCL's start
+    or negative, are usage errors (exit 2; a reviewer found NaN an internal error, -5 a silent
+    "no limit", 100 an exit 1)."""
+    args = [*command, option, value]
+    if not command:
+        args += ["--lang=c"]
+    r = run(*args, "equations/point-line.mxm", "-o" if command != ["roles"] and command != ["check"]
+            else "--json", str(tmp_path / "out"))
+    assert r.returncode == 2, (args, r.returncode, r.stderr)
+    assert f"argument {option}:" in r.stderr and "Traceback" not in r.stderr
+
+
+@pytest.mark.parametrize("command", ["build", "report", "roles", "check", "vectors"])
+def test_every_maxima_command_takes_the_options_its_errors_advise(command: str) -> None:
+    """The lock-down's and the memory limit's errors advise --allow-unsafe-maxima and
+    --maxima-memory: every command that runs Maxima has them (report, roles, check and vectors
+    did not)."""
+    r = run(command, "--help")
+    assert r.returncode == 0
+    for option in ("--allow-unsafe-maxima", "--maxima-memory", "--timeout", "--no-cache"):
+        assert option in r.stdout, (command, option)

@@ -304,6 +304,28 @@ def test_python_fragment_keeps_names(fragment_spec) -> None:
     assert scope["a"] == WANT
 
 
+@pytest.mark.parametrize("initialise,finalise", [
+    ("initialise python { a = [0.0] * 3 }", "finalise python { total = sum(a) }"),
+    ("initialise python {\n    a = [0.0] * 3\n    b = 1\n}",
+     "finalise python {\n        total = sum(a)\n        if total:\n            b = 2\n}"),
+    ("initialise python { a = [0.0] * 3\n    b = 1 }", "finalise python {\n\n  total = sum(a)\n\n}"),
+])
+def test_python_fragment_blocks_are_flush_left(tmp_path: Path, maxima_exe: str, initialise: str,
+                                              finalise: str) -> None:
+    """Python's top level has no indentation: blocks written on their brace's line or indented
+    inside the braces (a reviewer's cases: IndentationError) come out flush left, nested lines
+    keeping their relative indentation."""
+    text = FRAGMENT_MXM.replace("initialise python {\na = [0.0] * 3\n}", initialise)
+    text = text.replace("begin\n", finalise + "\nbegin\n")
+    mxm = tmp_path / "frag.mxm"
+    mxm.write_text(text)
+    spec, poly = load(str(mxm))
+    result = generate(spec, poly, LANGUAGES["python"], "fragment", "frag.py")
+    scope = {("lambda_" if n == "lambda" else n): v for n, v in VALUES.items()}
+    exec(compile(result.text, "frag.py", "exec"), scope)
+    assert scope["a"] == WANT and scope["total"] == sum(WANT)
+
+
 def test_c_and_rust_fragments_keep_names(fragment_spec, tmp_path: Path) -> None:
     spec, poly = fragment_spec
     gcc = require("gcc")

@@ -89,6 +89,11 @@ class Language:
     # Generated lines longer than this are broken before a top-level + or -.
     max_line: int = 100
 
+    def block_text(self, text: str) -> str:
+        """An initialise or finalise block's code as the fragment holds it: as written, unless
+        the language's own rules need otherwise (Python's indentation)."""
+        return text
+
     def wrap(self, text: str, indent: int) -> str:
         """Break a long expression before its top-level additions, so that the expanded
         strategy's thousand-term coefficients stay readable (and line counts mean something)."""

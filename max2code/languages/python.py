@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import textwrap
+
 from dataclasses import dataclass
 
 from ..diagnostics import Pos
@@ -63,6 +65,23 @@ class Python(Language):
         ("atan2", "math.atan2"), ("asin", "math.asin"), ("acos", "math.acos"),
         ("sinh", "math.sinh"), ("cosh", "math.cosh"), ("tanh", "math.tanh"),
     )
+
+    def block_text(self, text: str) -> str:
+        """Flush left, as Python's top level must be: a block written on its brace's line
+        (`initialise python { c = [0.0] }`) or indented inside its braces was an
+        IndentationError.  The first line, when it shares the brace's line, loses its spaces;
+        the others their common indentation."""
+        lines = text.split("\n")
+        if lines and lines[0].strip():
+            rest = textwrap.dedent("\n".join(lines[1:])).split("\n") if len(lines) > 1 else []
+            lines = [lines[0].strip(), *rest]
+        else:
+            lines = textwrap.dedent("\n".join(lines)).split("\n")
+        while lines and not lines[0].strip():
+            lines.pop(0)
+        while lines and not lines[-1].strip():
+            lines.pop()
+        return "\n".join(line.rstrip() for line in lines)
 
     def join_lines(self, lines: list[str], indent: int) -> str:
         return "(" + super().join_lines(lines, indent) + ")" if len(lines) > 1 else lines[0]
