@@ -25,6 +25,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from . import cache, depfile, maxima
+from .mdtext import inline
 from .diagnostics import Max2CodeError, Pos
 from .output import write_if_changed
 from .paths import inputs_or_folder, no_inputs
@@ -176,11 +177,11 @@ def summary(rows: list[Row], failed: list[str], langs: list[str]) -> str:
     head = "| equation | function | degree | parameters | Maxima s | " + " | ".join(
         f"{lang} lines" for lang in langs) + " |"
     rule = "|" + "---|" * (5 + len(langs))
-    body = [f"| {r.source} | {r.name} | {r.degree} | {r.nparams} | {r.seconds:.2f} | "
-            + " | ".join(str(n) for _, n in r.lines) + " |" for r in rows]
+    body = [f"| {inline(r.source)} | {inline(r.name)} | {r.degree} | {r.nparams} | "
+            f"{r.seconds:.2f} | " + " | ".join(str(n) for _, n in r.lines) + " |" for r in rows]
     text = "# max2code build summary\n\n" + "\n".join([head, rule, *body]) + "\n"
     if failed:
-        text += "\nFailed:\n\n" + "\n".join(f"- {f}" for f in failed) + "\n"
+        text += "\nFailed:\n\n" + "\n".join(f"- {inline(f)}" for f in failed) + "\n"
     return text
 
 

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import sys
 from dataclasses import asdict, dataclass
 from html import escape
@@ -19,6 +20,7 @@ from pathlib import Path
 from .diagnostics import Max2CodeError
 from .generate import generate, load
 from .languages import LANGUAGES
+from .mdtext import inline
 from .output import write_if_changed
 from .paths import ROOT, display, inputs_or_folder, no_inputs
 from .variants import STRATEGIES, family
@@ -159,23 +161,28 @@ def sections(equations: list[EquationReport], fig6: list[Figure6Row]) -> list[Se
 def markdown(equations: list[EquationReport], fig6: list[Figure6Row]) -> str:
     out = ["# max2code variant report", ""]
     for sec in sections(equations, fig6):
-        out += ["#" * sec.level + " " + sec.title, ""]
+        out += ["#" * sec.level + " " + inline(sec.title), ""]
         for paragraph in sec.paragraphs:
             out += [paragraph, ""]
         if sec.table:
-            out.append("| " + " | ".join(sec.table.headers) + " |")
+            out.append("| " + " | ".join(inline(h) for h in sec.table.headers) + " |")
             out.append("|" + "---|" * len(sec.table.headers))
-            out += ["| " + " | ".join(row) + " |" for row in sec.table.rows]
+            out += ["| " + " | ".join(inline(c) for c in row) + " |" for row in sec.table.rows]
             out.append("")
     return "\n".join(out)
 
 
 def chart(eq: EquationReport) -> str:
-    """An SVG bar chart of the operations of each variant under both strategies."""
+    """An SVG bar chart of the operations of each variant under both strategies: largest first,
+    ties by label (a set's order differs from run to run, and an unchanged report must be the
+    same bytes); the label column as wide as the longest label needs (about 6.2 px a character
+    at 11 px: long role names were cut off at the left edge)."""
     rows = {s: {v.label: v.add + v.mul + v.div for v in eq.variants[s]} for s in STRATEGIES}
     labels = sorted(set(rows["optimised"]) | set(rows["expanded"]),
-                    key=lambda l: -max(rows["expanded"].get(l, 0), rows["optimised"].get(l, 0)))
+                    key=lambda l: (-max(rows["expanded"].get(l, 0), rows["optimised"].get(l, 0)), l))
     top = max(max(r.values()) for r in rows.values()) or 1
+    x0 = max(330, math.ceil(6.2 * max(len(l) for l in labels)) + 15)
+    width_all = x0 + 490
     height = 22 * len(labels) + 30
     bars = []
     for i, label in enumerate(labels):
@@ -185,16 +192,17 @@ def chart(eq: EquationReport) -> str:
             if value is None:
                 continue
             width = 420 * value / top
-            bars.append(f'<rect class="{strategy}" x="330" y="{y + 9 * j}" width="{width:.1f}" '
+            bars.append(f'<rect class="{strategy}" x="{x0}" y="{y + 9 * j}" width="{width:.1f}" '
                         f'height="8" fill="{colour}"><title>{escape(label)}, {strategy}: {value} '
                         f'operations</title></rect>'
-                        f'<text x="{335 + width:.1f}" y="{y + 8 + 9 * j}" font-size="9">{value}</text>')
-        bars.append(f'<text x="325" y="{y + 13}" font-size="11" text-anchor="end">'
+                        f'<text x="{x0 + 5 + width:.1f}" y="{y + 8 + 9 * j}" font-size="9">{value}</text>')
+        bars.append(f'<text x="{x0 - 5}" y="{y + 13}" font-size="11" text-anchor="end">'
                     f'{escape(label)}</text>')
-    return (f'<figure><svg role="img" width="820" height="{height}" viewBox="0 0 820 {height}" '
+    return (f'<figure><svg role="img" width="{width_all}" height="{height}" '
+            f'viewBox="0 0 {width_all} {height}" '
             f'xmlns="http://www.w3.org/2000/svg"><title>Operations per variant of '
             f'{escape(eq.source)}</title>'
-            f'<text x="330" y="12" font-size="11"><tspan fill="#c0504d">expanded</tspan> / '
+            f'<text x="{x0}" y="12" font-size="11"><tspan fill="#c0504d">expanded</tspan> / '
             f'<tspan fill="#4f81bd">optimised</tspan> (add + mul + div)</text>'
             + "".join(bars) + "</svg><figcaption>Operations per variant (add + mul + div), "
             "expanded and optimised.</figcaption></figure>")

@@ -209,3 +209,67 @@ def test_roles_finds_vectors_by_name_and_effect(tmp_path: Path, maxima_exe: str)
     everything = subprocess.run([sys.executable, "-m", "max2code", "roles", "--all", str(mxm)],
                                 cwd=ROOT, capture_output=True, text=True, timeout=600).stdout
     assert "role vx1 = vx1" in everything and "not worth a role" in everything
+
+
+def test_the_report_is_the_same_bytes_every_run(tmp_path: Path, maxima_exe: str) -> None:
+    """Variants with the same count of operations were charted in a set's order, which Python's
+    string hashing changes from run to run: an unchanged report must be the same file (build
+    systems compare it), so ties go by label."""
+    outs = []
+    for seed in ("1", "2", "3"):
+        out = tmp_path / seed
+        r = subprocess.run([sys.executable, "-m", "max2code", "report", "-o", str(out),
+                            "equations/circle-orbit-line.mxm"], cwd=ROOT, capture_output=True,
+                           text=True, env={**__import__("os").environ, "PYTHONHASHSEED": seed})
+        assert r.returncode == 0, r.stderr
+        outs.append((out / "report.html").read_bytes())
+    assert outs[0] == outs[1] == outs[2]
+
+
+def test_long_variant_labels_fit_the_chart(tmp_path: Path, maxima_exe: str) -> None:
+    """Labels are right-aligned before the bars; the column now grows with the longest label
+    (role names of 40 characters were cut off at the chart's left edge)."""
+    import re
+
+    mxm = tmp_path / "long.mxm"
+    mxm.write_text("parameters ax, bx, cx, dx\n"
+                   "role nothing_accelerates_anywhere_in_this_scene = ax\n"
+                   "role the_second_thing_is_at_rest_all_the_time = bx\n"
+                   "begin\n  dx + cx*t + ax*t^2 + bx*t^3;\nend\n")
+    r = subprocess.run([sys.executable, "-m", "max2code", "report", "-o", str(tmp_path / "r"),
+                        str(mxm)], cwd=ROOT, capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    page = (tmp_path / "r" / "report.html").read_text()
+    labels = re.findall(r'<text x="([\d.]+)" y="[\d.]+" font-size="11" text-anchor="end">([^<]+)</text>', page)
+    assert labels and any(len(text) > 60 for _, text in labels)
+    for x, text in labels:  # about 6.2 px a character at 11 px: room left of the anchor
+        assert float(x) >= 6.2 * len(text.replace("&amp;", "&")), (x, text)
+
+
+def test_markdown_outputs_hold_paths_as_text(tmp_path: Path, maxima_exe: str) -> None:
+    """A file name is data: in summary.md and report.md a '|' must not add a column, a newline
+    must not start a heading, '<...>' must not be HTML, '[...]' no link (a reviewer's
+    `a|b.mxm` and a name with a newline and an <img onerror>)."""
+    import re
+
+    src = tmp_path / "src"
+    src.mkdir()
+    text = (ROOT / "equations" / "point-line.mxm").read_text()
+    names = ["a|b.mxm", "x\n# injected <img src=x onerror=alert(1)> [l](javascript:1).mxm"]
+    for name in names:
+        (src / name).write_text(text.replace("function point_line", "")
+                                if "function" in text else text)
+    for cmd in (["build", "-o", str(tmp_path / "b"), "--lang", "c"], ["report", "-o", str(tmp_path / "r")]):
+        r = subprocess.run([sys.executable, "-m", "max2code", *cmd, *sorted(str(src / n) for n in names)],
+                           cwd=ROOT, capture_output=True, text=True)
+        assert r.returncode == 0, r.stderr
+    for md in (tmp_path / "b" / "summary.md", tmp_path / "r" / "report.md"):
+        out = md.read_text()
+        assert "<img" not in out and "\n# injected" not in out, out
+        assert not re.search(r"(?<!\\)\]\(", out), out  # no link: its ']' is escaped
+        header = next(line for line in out.splitlines() if line.startswith("| "))
+        for line in out.splitlines():  # every row of a table has its header's columns
+            if line.startswith("| ") and "b.mxm" in line:
+                unescaped = len(re.findall(r"(?<!\\)\|", line))
+                assert unescaped == header.count("|") or "report" in str(md), (line, header)
+        assert "a\\|b.mxm" in out
