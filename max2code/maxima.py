@@ -20,6 +20,7 @@ from dataclasses import dataclass
 
 from . import cache, children, confine, depfile, lockdown
 from .diagnostics import Pos, error
+from .maxima_text import advance
 from .spec import Statement
 
 MARK = "@@M2C"
@@ -66,6 +67,7 @@ def program_script(statements: tuple[Statement, ...], names: frozenset[str] = fr
     """The user's statements, each announced by a marker naming its index; unless unsafe
     Maxima is allowed, checked first and preceded by the lock-down (lockdown.py); `names` are
     the .mxm's own (declared) names, symbols even when Maxima has a function of that name."""
+    _no_own_names(statements)
     parts = ["display2d:false$\nlinel:1000000$\n", search_path(statements)]
     if not _policy.allow_unsafe:
         parts.append(lockdown.prelude(lockdown.check(statements, names), f"~%{MARK}-"))
@@ -74,6 +76,23 @@ def program_script(statements: tuple[Statement, ...], names: frozenset[str] = fr
         parts.append(stmt.text + "\n")
     parts.append(marker("PROGRAM-DONE"))
     return "".join(parts)
+
+
+# The prefixes of the names max2code's own Maxima code uses (the coefficients' extraction,
+# m2c__; the oracle, o__). Maxima's variables are dynamically scoped: a user's symbol of one
+# of those names would be bound by that code's loops (a parameter m2c__k read as the loop's
+# index made x + m2c__k t "not a polynomial"; o__e made the oracle's vectors vanish).
+_OWN = re.compile(r"(?<![\w%])(?:m2c__|o__)\w*", re.I)
+
+
+def _no_own_names(statements: tuple[Statement, ...]) -> None:
+    """A name the user's program shares with max2code's Maxima code is an error, located."""
+    for stmt in statements:
+        m = _OWN.search(stmt.text)
+        if m:
+            raise error(advance(stmt.pos, stmt.text[:m.start()]),
+                        f"'{m.group()}': names beginning with m2c__ or o__ are max2code's own in "
+                        f"Maxima (its variables there would take the name's place); rename it")
 
 
 def search_path(statements: tuple[Statement, ...]) -> str:

@@ -214,6 +214,11 @@ def _parameters(spec: Spec, coefficients: list[Expr]) -> tuple[str, ...]:
     declared = spec.parameter_order
     if declared is None:
         return tuple(sorted(used))
+    if spec.variable in declared:
+        assert spec.parameters is not None
+        raise error(spec.parameters.pos, f"'{spec.variable}' is the polynomial's variable, not a "
+                    f"parameter: the coefficients are in the others (a parameter of that name "
+                    f"would be ignored)")
     missing = sorted(used - set(declared))
     if missing:
         assert spec.parameters is not None
