@@ -51,7 +51,7 @@ def write_if_changed(path: str, text: str) -> bool:
     if info is not None and not stat.S_ISREG(info.st_mode):
         _write_into(path, target, data)
         return True
-    if info is not None and info.st_size == len(data) and _same(target, data):
+    if info is not None and info.st_size == len(data) and holds(target, data):
         return False
     _replace(path, target, data)
     return True
@@ -88,7 +88,7 @@ def _write_fd(path: str, fd: int, data: bytes) -> None:
         raise error(Pos(path, 1, 1), f"cannot write output: {exc.strerror}") from None
 
 
-def _same(path: str, data: bytes) -> bool:
+def holds(path: str, data: bytes) -> bool:
     """Whether a regular file holds exactly `data`, reading at most one byte more."""
     try:
         with open(path, "rb") as f:

@@ -138,7 +138,7 @@ def _overlapping(c, bodies: list[tuple[int, Body]]) -> None:
     """Bodies of different groups (or none) overlapping at 0, located at the later one (their
     positions at 0 are centre + offset; the circles near each other by the grid of
     engine.scenefile.near_pairs)."""
-    from .engine.scenefile import near_pairs
+    from .engine.scenefile import near_pairs, report_overlaps
 
     circles = [(*b.position(0.0), b.radius) for _, b in bodies]
     found = []
@@ -151,12 +151,8 @@ def _overlapping(c, bodies: list[tuple[int, Body]]) -> None:
         # (circles placed to touch may round into each other: a few ulps of the figures, as
         # sim's check allows its tolerance)
         if gap < -16 * sys.float_info.epsilon * (abs(xa) + abs(ya) + abs(xb) + abs(yb) + ra + rb):
-            first, second = sorted((ia, ib))
-            found.append((second, first, f"body '{(b if ib == second else a).name}' starts "
-                          f"overlapping body '{(a if ia == first else b).name}' "
-                          f"(bodies[{first}]) by {-gap:.3g}: a contact under way has no first time"))
-    for second, _, message in sorted(found):
-        c.error(("bodies", second), message)
+            found.append(((ia, a.name), (ib, b.name), -gap))
+    report_overlaps(c, found, ": a contact under way has no first time")
 
 
 # ---------------------------------------------------------------------------

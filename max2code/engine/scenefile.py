@@ -416,11 +416,20 @@ def _overlaps(c: _Checker, bodies: list[tuple[int, BodySpec]], tolerance: float)
             continue
         g = gap(pa, a.radius, pb, b.radius)
         if g < -tolerance:
-            first, second = sorted((ia, ib))
-            found.append((second, first, f"body '{(b if ib == second else a).name}' starts "
-                          f"overlapping body '{(a if ia == first else b).name}' "
-                          f"(bodies[{first}]) by {-g:.3g}"))
-    for second, _, message in sorted(found):  # in file order, whatever the grid's
+            found.append(((ia, a.name), (ib, b.name), -g))
+    report_overlaps(c, found)
+
+
+def report_overlaps(c: _Checker, found: list[tuple[tuple[int, str], tuple[int, str], float]],
+                    why: str = "") -> None:
+    """Each overlap ((index, name) of both bodies, depth) as an error at the later body of the
+    file, in file order whatever order near_pairs found them in."""
+    rows = []
+    for one, other, depth in found:
+        (first, first_name), (second, second_name) = sorted((one, other))
+        rows.append((second, first, f"body '{second_name}' starts overlapping body "
+                     f"'{first_name}' (bodies[{first}]) by {depth:.3g}{why}"))
+    for second, _, message in sorted(rows):
         c.error(("bodies", second), message)
 
 

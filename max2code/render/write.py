@@ -22,7 +22,7 @@ from collections.abc import Iterable, Sequence
 from pathlib import Path
 
 from ..diagnostics import Pos, error
-from ..output import replaced_atomically, write_if_changed
+from ..output import holds, replaced_atomically, write_if_changed
 from .model import Body, Frame, RenderModelError, View
 
 GIF_MAX_FPS = 50
@@ -58,13 +58,6 @@ def write_png(path: str | os.PathLike, bodies: Sequence[Body], frame: Frame, vie
         image.save(tmp, format="PNG")
 
 
-def _same_file(a: Path, b: Path) -> bool:
-    try:
-        return b.is_file() and a.stat().st_size == b.stat().st_size and a.read_bytes() == b.read_bytes()
-    except OSError:
-        return False
-
-
 def write_png_dir(folder: str | os.PathLike, bodies: Sequence[Body], frames: Iterable[Frame],
                   view: View) -> list[Path]:
     """frame-00000.png, frame-00001.png, ... in `folder` (made if missing). Numbered frames left
@@ -88,7 +81,8 @@ def write_png_dir(folder: str | os.PathLike, bodies: Sequence[Body], frames: Ite
         written = []
         for name in names:
             try:
-                if not _same_file(stage / name, out / name):  # (an unchanged frame keeps its time)
+                # (an unchanged frame keeps its time stamp)
+                if not (out / name).is_file() or not holds(str(out / name), (stage / name).read_bytes()):
                     os.replace(stage / name, out / name)
             except OSError as exc:
                 raise error(Pos(str(out / name), 1, 1),
