@@ -1,9 +1,10 @@
 # The two commands of the README: `make` (generate every shipped equation in every language into
 # build/, with a summary, and the variant report in build/report/) and `make test`. Both install
-# what is missing first (scripts/setup).
-PYTHON ?= python3
+# what is missing first (scripts/setup), Python packages into the checkout's own .venv: every
+# command below, and every test's subprocess, runs this checkout's code and nobody else's.
+PYTHON := $(CURDIR)/.venv/bin/python
 
-.PHONY: all build test setup clean bench
+.PHONY: all build test setup clean distclean bench
 
 all: build
 
@@ -20,16 +21,21 @@ build: setup
 MAX2CODE_FUZZ_EXAMPLES ?= 100000
 export MAX2CODE_FUZZ_EXAMPLES
 
+# make test is what CI runs: a tool the tests need and setup installs is a failure when missing,
+# never a skip (tests/conftest.py: require).
 test: setup
-	$(PYTHON) -m pytest
+	CI=true $(PYTHON) -m pytest
 
 # Speed against accuracy: root methods, Taylor model error, example scenes, the engine against
 # pymunk and Box2D -> bench/results/ (the bench extra, installed here when missing).
 bench: setup
 	$(PYTHON) -c "import numpy, matplotlib, mpmath, pymunk, Box2D" 2>/dev/null || \
-	    $(PYTHON) -m pip install -q --disable-pip-version-check --root-user-action=ignore -e '.[bench]'
+	    $(PYTHON) -m pip install -q --disable-pip-version-check -e '.[bench]'
 	$(PYTHON) bench/roots.py
 	$(PYTHON) bench/engine.py
 
 clean:
-	rm -rf build runtime/rust/target
+	rm -rf build runtime/rust/target  # .venv stays: make distclean removes it too
+
+distclean: clean
+	rm -rf .venv
