@@ -18,6 +18,7 @@ from .output import write_if_changed
 SUBCOMMANDS = {
     "build": "build",
     "check": "check",
+    "pge": "pge.command",
     "report": "report",
     "roles": "roles",
     "runtime": "runtime_info",
@@ -30,6 +31,7 @@ SUMMARIES = {
     "build": "generate every language for each .mxm (default: the current folder's), with a "
              "summary",
     "check": "build each equation in every language and compare with the oracle's vectors",
+    "pge": "run a PGE game unmodified on the predictive engine: window, or headless with pictures",
     "report": "the variant report: Markdown, JSON and HTML with a chart",
     "roles": "which parameters (alone, in pairs, as vectors) are worth a role",
     "runtime": "where the runtimes are, and the flags and CMake package to build with them",

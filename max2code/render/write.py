@@ -18,8 +18,9 @@ import os
 import re
 import shutil
 import tempfile
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from pathlib import Path
+from typing import TypeVar
 
 from ..diagnostics import Pos, error
 from ..output import holds, replaced_atomically, write_if_changed
@@ -28,6 +29,7 @@ from .model import Body, Frame, RenderModelError, View
 GIF_MAX_FPS = 50
 PNG_NAME = "frame-{:05d}.png"
 _PNG_NAME = re.compile(r"frame-(\d{5,})\.png")
+F = TypeVar("F")
 
 
 class RenderUnavailable(RuntimeError):
@@ -53,13 +55,22 @@ def _check_fps(fps: float) -> float:
 
 def write_png(path: str | os.PathLike, bodies: Sequence[Body], frame: Frame, view: View) -> None:
     raster, _ = _imports()
-    image = raster.frame_image(bodies, frame, view)
-    with replaced_atomically(os.fspath(path)) as tmp:
-        image.save(tmp, format="PNG")
+    _save_png(path, raster.frame_image(bodies, frame, view))
 
 
 def write_png_dir(folder: str | os.PathLike, bodies: Sequence[Body], frames: Iterable[Frame],
                   view: View) -> list[Path]:
+    """The frames as a folder of PNGs (png_dir_of below)."""
+    raster, _ = _imports()
+    return png_dir_of(folder, frames, lambda f: raster.frame_image(bodies, f, view))
+
+
+def _save_png(path: str | os.PathLike, image) -> None:
+    with replaced_atomically(os.fspath(path)) as tmp:
+        image.save(tmp, format="PNG")
+
+
+def png_dir_of(folder: str | os.PathLike, frames: Iterable[F], draw: Callable[[F], object]) -> list[Path]:
     """frame-00000.png, frame-00001.png, ... in `folder` (made if missing). Numbered frames left
     from an earlier, longer run are removed, so the folder holds exactly this run (other files
     are not touched). The frames are drawn into a hidden folder inside it and moved in only
@@ -77,7 +88,7 @@ def write_png_dir(folder: str | os.PathLike, bodies: Sequence[Body], frames: Ite
         names = []
         for i, frame in enumerate(frames):
             names.append(PNG_NAME.format(i))
-            write_png(stage / names[-1], bodies, frame, view)
+            _save_png(stage / names[-1], draw(frame))
         written = []
         for name in names:
             try:
@@ -112,7 +123,14 @@ def gif_timing(count: int, fps: float) -> tuple[int, list[int]]:
 def write_gif(path: str | os.PathLike, bodies: Sequence[Body], frames: Iterable[Frame], view: View,
               fps: float) -> int:
     """An animated GIF that loops; returns the number of frames kept (see the module's timing)."""
-    raster, Image = _imports()
+    raster, _ = _imports()
+    return gif_of(path, frames, lambda f: raster.frame_image(bodies, f, view), fps)
+
+
+def gif_of(path: str | os.PathLike, frames: Iterable[F], draw: Callable[[F], object], fps: float) -> int:
+    """An animated GIF of draw(frame) (an RGB Pillow image) for each frame: frames that the
+    timing drops are never drawn."""
+    _, Image = _imports()
     fps = _check_fps(fps)
     step = max(1, math.ceil(fps / GIF_MAX_FPS - 1e-9))
     images = []
@@ -120,7 +138,7 @@ def write_gif(path: str | os.PathLike, bodies: Sequence[Body], frames: Iterable[
     for i, frame in enumerate(frames):
         count += 1
         if i % step == 0:
-            rgb = raster.frame_image(bodies, frame, view)
+            rgb = draw(frame)
             images.append(rgb.quantize(colors=256, method=Image.Quantize.MEDIANCUT,
                                        dither=Image.Dither.NONE))
     if not images:
@@ -134,10 +152,18 @@ def write_gif(path: str | os.PathLike, bodies: Sequence[Body], frames: Iterable[
 
 def write_mp4(path: str | os.PathLike, bodies: Sequence[Body], frames: Iterable[Frame], view: View,
               fps: float, quality: float = 8.0) -> int:
-    """An H.264 MP4 (yuv420p, so every player takes it) through the ffmpeg binary shipped in the
-    imageio-ffmpeg wheel; odd picture sizes are padded by one pixel of background, as H.264 in
-    4:2:0 needs even ones. Returns the number of frames."""
+    """An H.264 MP4 of the frames (mp4_of below)."""
     raster, _ = _imports()
+    return mp4_of(path, frames, lambda f: raster.frame_image(bodies, f, view), fps,
+                  view.background, quality)
+
+
+def mp4_of(path: str | os.PathLike, frames: Iterable[F], draw: Callable[[F], object], fps: float,
+           background: str = "#000000", quality: float = 8.0) -> int:
+    """An H.264 MP4 (yuv420p, so every player takes it) of draw(frame) for each frame, through
+    the ffmpeg binary shipped in the imageio-ffmpeg wheel; odd picture sizes are padded by one
+    pixel of background, as H.264 in 4:2:0 needs even ones. Returns the number of frames."""
+    _imports()
     fps = _check_fps(fps)
     try:
         import imageio.v2 as imageio
@@ -146,25 +172,29 @@ def write_mp4(path: str | os.PathLike, bodies: Sequence[Body], frames: Iterable[
     except ImportError as exc:
         raise RenderUnavailable(f"MP4 needs imageio and imageio-ffmpeg ({exc.name} is missing): "
                                 "pip install 'max2code[render]'") from None
-    pad_w, pad_h = view.width % 2, view.height % 2
-    background = np.array([int(view.background[i:i + 2], 16) for i in (1, 3, 5)], dtype=np.uint8)
+    fill = np.array([int(background[i:i + 2], 16) for i in (1, 3, 5)], dtype=np.uint8)
     count = 0
+    writer = None
     with replaced_atomically(os.fspath(path)) as tmp:
-        writer = imageio.get_writer(tmp, format="FFMPEG", mode="I", fps=fps, codec="libx264",
-                                    pixelformat="yuv420p", quality=quality, macro_block_size=1,
-                                    ffmpeg_log_level="error")
         try:
             for frame in frames:
-                pixels = np.asarray(raster.frame_image(bodies, frame, view))
-                if pad_w or pad_h:
-                    full = np.empty((view.height + pad_h, view.width + pad_w, 3), dtype=np.uint8)
-                    full[:] = background
-                    full[:view.height, :view.width] = pixels
+                pixels = np.asarray(draw(frame))
+                h, w = pixels.shape[:2]
+                if w % 2 or h % 2:
+                    full = np.empty((h + h % 2, w + w % 2, 3), dtype=np.uint8)
+                    full[:] = fill
+                    full[:h, :w] = pixels
                     pixels = full
+                if writer is None:
+                    writer = imageio.get_writer(tmp, format="FFMPEG", mode="I", fps=fps,
+                                                codec="libx264", pixelformat="yuv420p",
+                                                quality=quality, macro_block_size=1,
+                                                ffmpeg_log_level="error")
                 writer.append_data(pixels)
                 count += 1
         finally:
-            writer.close()
+            if writer is not None:
+                writer.close()
         if count == 0:
             raise RenderModelError("an animation needs at least one frame")
     return count
