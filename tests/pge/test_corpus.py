@@ -1,0 +1,108 @@
+"""PGE's own example games (../shared/corpus/pge-python/examples, real programs nobody here wrote)
+run unmodified under `max2code pge --headless`, and play as their authors meant."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import pytest
+
+from .conftest import CORPUS, pge_run
+
+pytestmark = pytest.mark.skipif(not CORPUS.is_dir(), reason=f"no PGE corpus at {CORPUS}")
+
+
+def game(name: str) -> str:
+    return str(CORPUS / "examples" / f"{name}.py")
+
+
+def test_breakout_every_brick_hit_vanishes_and_the_player_wins(tmp_path: Path) -> None:
+    r, log = pge_run(tmp_path, game("breakout-breakout"))
+    assert r.returncode == 0, r.stderr
+    removed = [e for e in log if e["kind"] == "rm"]
+    # the 27 bricks (made after the 4 borders: box-4 .. box-30), each once
+    assert sorted(e["object"] for e in removed) == sorted(f"box-{i}" for i in range(4, 31))
+    hits = {(e["t"], e["b"]) for e in log if e["kind"] == "collision"}
+    for e in removed:  # removed at the instant the ball hit it, by its on_collision callback
+        assert (e["t"], e["object"]) in hits
+    # a removed brick is never hit again
+    gone = {e["object"]: e["t"] for e in removed}
+    assert not [e for e in log if e["kind"] == "collision" and e["b"] in gone and e["t"] > gone[e["b"]]]
+    # winner: finish_game runs 4 s / slow_down 6 after the last brick, and exits 0
+    assert r.stderr.split("simulated")[0].endswith(f"{removed[-1]['t'] + 4 / 6:g} s ")
+
+
+def test_snooker_triangles_speed_the_ball_up_and_it_stays_on_the_table(tmp_path: Path) -> None:
+    r, log = pge_run(tmp_path, game("snooker-snooker"), "--until", "3")
+    assert r.returncode == 0, r.stderr
+    hits = [e for e in log if e["kind"] == "collision"]
+    assert {e["a"] for e in hits} | {e["b"] for e in hits} >= {"circle-6", "poly3-0", "poly3-1"}
+    for e in hits:  # the cushions hold the ball: every contact inside the table
+        assert 0.0 <= e["point"][0] <= 1.0 and 0.0 <= e["point"][1] <= 1.0
+    # push_it multiplies the ball's velocity by 1.15 at each triangle hit: the ball, elastic
+    # otherwise, gets faster (closing speeds at the cushions grow)
+    cushions = [e["speed"] for e in hits if e["b"].startswith("box") or e["a"].startswith("box")]
+    assert max(cushions[-5:]) > 1.5 * max(cushions[:3])
+    # the game's pockets (box_of) are never placed by its main(): nothing is potted
+    assert not [e for e in log if e["kind"] == "rm"]
+
+
+def test_snooker_a_mouse_click_changes_the_game_from_its_time_on(tmp_path: Path) -> None:
+    script = tmp_path / "click.jsonl"
+    script.write_text('{"t": 0.5, "type": "MOUSEBUTTONDOWN", "pos": [100, 700], "button": 1}\n')
+    _, quiet = pge_run(tmp_path, game("snooker-snooker"), "--until", "2")
+    r, clicked = pge_run(tmp_path, game("snooker-snooker"), "--until", "2", "--input", str(script))
+    assert r.returncode == 0, r.stderr
+    before = lambda log: [e for e in log if e["t"] < 0.5 and e["kind"] == "collision"]  # noqa: E731
+    after = lambda log: [e for e in log if e["t"] > 0.5 and e["kind"] == "collision"]  # noqa: E731
+    assert before(quiet) == before(clicked)
+    assert after(quiet)[0] != after(clicked)[0]
+    assert {"t": 0.5, "kind": "input", "type": "MOUSEBUTTONDOWN", "pos": [100, 700],
+            "button": 1} in clicked
+
+
+def test_bagatelle_launched_balls_drop_out_at_the_bottom(tmp_path: Path) -> None:
+    script = tmp_path / "launch.jsonl"
+    script.write_text("".join(json.dumps({"t": t, "type": "MOUSEBUTTONDOWN", "pos": [x, 80],
+                                          "button": 1}) + "\n"
+                              for t, x in ((0.1, 400), (1.5, 420), (3.0, 380))))
+    r, log = pge_run(tmp_path, game("bagatelle-bagatelle"), "--input", str(script))
+    assert r.returncode == 0, r.stderr
+    # each click puts a ball in the shoot (mouse_press) ...
+    made = sorted({n for e in log if e["kind"] == "collision" for n in (e["a"], e["b"])
+                   if n.startswith("circle") and int(n.split("-")[1]) >= 15})
+    assert len(made) == 3
+    # ... which hits things on its way and is removed when it reaches the bottom border
+    # (box-12, the south side: delete_ball), at the instant it touches it
+    removed = [e for e in log if e["kind"] == "rm"]
+    assert [e["object"] for e in removed] == made
+    for e in removed:
+        assert any(c["kind"] == "collision" and c["t"] == e["t"] and "box-12" in (c["a"], c["b"])
+                   and e["object"] in (c["a"], c["b"]) for c in log)
+
+
+def test_rotation_the_box_lands_on_a_corner_and_tips_over(tmp_path: Path) -> None:
+    r, log = pge_run(tmp_path, game("rotation-rotation"))
+    assert r.returncode == 0, r.stderr
+    hits = [e for e in log if e["kind"] == "collision"]
+    # the falling box (box-5) lands with its lower left corner (x 0.47) on the top of the fixed
+    # red box (y 0.4), its centre beyond the red box's edge (0.49), so it turns off it to the
+    # floor (box-1)
+    assert (hits[0]["a"], hits[0]["b"]) in (("box-0", "box-5"), ("box-5", "box-0"))
+    assert hits[0]["point"] == pytest.approx([0.47, 0.4], abs=1e-9)
+    assert any("box-1" in (e["a"], e["b"]) for e in hits)
+    assert r.stderr.split(": ")[2].startswith("2.5 s simulated")
+
+
+@pytest.mark.parametrize("name, line", [("springs-simple", 59), ("springs-swing", None)])
+def test_spring_scenes_stop_with_an_unsupported_error_naming_the_call(tmp_path: Path, name: str,
+                                                                     line: int | None) -> None:
+    r, log = pge_run(tmp_path, game(name))
+    assert r.returncode == 1
+    err = r.stderr.strip().splitlines()[-1]
+    assert ": error: unsupported: spring " in err and err.startswith(game(name) + ":")
+    if line:
+        assert err.split(":")[1] == str(line)
+    assert log is None  # no output written
