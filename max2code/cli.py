@@ -23,6 +23,7 @@ SUBCOMMANDS = {
     "roles": "roles",
     "runtime": "runtime_info",
     "scene": "scene",
+    "serve": "serve",
     "sim": "sim",
     "vectors": "vectors",
 }
@@ -36,6 +37,7 @@ SUMMARIES = {
     "roles": "which parameters (alone, in pairs, as vectors) are worth a role",
     "runtime": "where the runtimes are, and the flags and CMake package to build with them",
     "scene": "every pair's first contact in a frozen scene, predicted by the engine",
+    "serve": "serve a scene to browsers: an authoritative event server and its client page",
     "sim": "run a scene in the predictive engine: event log, pictures (GIF, MP4, PNG, SVG)",
     "vectors": "test vectors for any .mxm from the independent oracle (Maxima + mpmath)",
 }

@@ -111,6 +111,14 @@ int m2c_world_pose(const m2c_world *w, int body, double t, double out[3]);
 int m2c_world_velocity(const m2c_world *w, int body, double t, double out[3]);
 /* All bodies at once: out[3 i .. 3 i + 2] = pose of body i at time t. */
 int m2c_world_poses(const m2c_world *w, double t, double *out);
+/* Every body's motion segment as the engine holds it, for a client that draws on its own
+ * (max2code serve): out[9 i ..] = t0, x, y, angle, vx, vy, omega, ax, ay, the pose at time t
+ * being (x, y) + (vx, vy) s + (ax, ay) s^2/2 and angle + omega s, s = t - t0; counters[i]
+ * changes whenever body i's motion does (an impulse, rest, wake, input), and only then. */
+void m2c_world_motions(const m2c_world *w, double *out, unsigned int *counters);
+/* The time of the earliest queued event, reported or internal (a cell crossing, the end of a
+ * prediction window): no reported event comes before it. INFINITY when nothing is queued. */
+double m2c_world_next_time(m2c_world *w);
 
 /* Change a body's velocity at the world's current time (an input event); 0 or -1. */
 int m2c_world_set_velocity(m2c_world *w, int body, double vx, double vy, double omega);

@@ -527,6 +527,36 @@ int m2c_world_poses(const m2c_world *w, double t, double *out)
     return status;
 }
 
+void m2c_world_motions(const m2c_world *w, double *out, unsigned int *counters)
+{
+    for (int i = 0; i < w->n; i++) {
+        const motion *m = &w->b[i].m;
+        double *o = out + 9 * i;
+        o[0] = m->t;
+        o[1] = m->x;
+        o[2] = m->y;
+        o[3] = m->th;
+        o[4] = m->vx;
+        o[5] = m->vy;
+        o[6] = m->w;
+        o[7] = m->ax;
+        o[8] = m->ay;
+        counters[i] = w->b[i].counter;
+    }
+}
+
+double m2c_world_next_time(m2c_world *w)
+{
+    if (w->broken || (!w->prepared && prepare(w) != 0))
+        return INFINITY;
+    if (w->npending > 0)
+        return w->now;
+    int i = heap_top(w);
+    double t = i >= 0 ? w->b[i].ev.t : INFINITY;
+    double tt = w->ntimers > 0 ? w->timers[0].t : INFINITY;
+    return t < tt ? t : tt;
+}
+
 int m2c_world_set_velocity(m2c_world *w, int i, double vx, double vy, double omega)
 {
     if (i < 0 || i >= w->n || w->b[i].kind != M2C_DYNAMIC)

@@ -264,6 +264,25 @@ class World:
             raise EngineError(f"poses at {t}: before some body's last event")
         return self._poses
 
+    def motions(self) -> tuple[list[tuple[float, ...]], list[int]]:
+        """Every body's motion segment as the core holds it, and its change counter:
+        ([(t0, x, y, angle, vx, vy, omega, ax, ay), ...], [counter, ...]). The pose at t is
+        (x, y) + (vx, vy) s + (ax, ay) s^2/2, angle + omega s with s = t - t0; a counter
+        changes exactly when its body's motion does. What a remote client needs to draw any
+        frame until the next event (max2code serve), in one call into the core."""
+        n = len(self.bodies)
+        flat = self._ffi.new("double[]", 9 * n)
+        counters = self._ffi.new("unsigned int[]", n)
+        self._lib.m2c_world_motions(self._w, flat, counters)
+        it = iter(memoryview(self._ffi.buffer(flat)).cast("d").tolist())
+        return list(zip(*[it] * 9)), list(counters)
+
+    def next_time(self) -> float:
+        """The earliest time anything is queued for (a contact, a timer, or an internal event
+        such as a cell crossing): no reported event comes before it; inf when nothing is
+        queued. A server sleeps until then (or until input arrives)."""
+        return float(self._lib.m2c_world_next_time(self._w))
+
     def first_contact(self, a: int, b: int, horizon: float) -> float | None:
         """When bodies a and b would first touch within `horizon` from now, were they alone
         and nothing changed (any kinds: kinematic orbits too); None when they would not."""

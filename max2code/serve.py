@@ -1,0 +1,66 @@
+"""`max2code serve SCENE`: the scene's world, authoritative on this machine, played from browsers.
+
+    max2code serve examples/scenes/arena.toml            # then open http://127.0.0.1:8036/
+    max2code serve SCENE [--host 127.0.0.1] [--port 8036] [--player NAME ...] [--rooms N] [--speed V]
+
+Each browser that joins a room (the page's ?room=NAME, default "main") gets the world and then
+only events (docs/server.md). A joining client controls the first player body nobody else
+controls: --player names them (default: the scene's bodies named player...); the others watch.
+The server binds to loopback unless --host says otherwise.
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import sys
+
+
+def main(argv: list[str]) -> int:
+    ap = argparse.ArgumentParser(prog="max2code serve", description=__doc__.split("\n\n")[0])
+    ap.add_argument("scene", metavar="SCENE", help="a scene file (.toml or .json)")
+    ap.add_argument("--host", default="127.0.0.1",
+                    help="address to listen on (default 127.0.0.1: this machine only)")
+    ap.add_argument("--port", type=int, default=8036, help="TCP port (default 8036; 0: any free)")
+    ap.add_argument("--player", action="append", default=[], metavar="NAME",
+                    help="a body clients may control (repeat; default: bodies named player*)")
+    ap.add_argument("--rooms", type=int, default=16, metavar="N", help="most rooms at once (default 16)")
+    ap.add_argument("--speed", type=float, metavar="V",
+                    help="input speed in scene units per second (default: a quarter of the view's width)")
+    args = ap.parse_args(argv)
+    if not 0 <= args.port <= 65535 or args.rooms < 1 or (args.speed is not None and not 0 < args.speed < 1e300):
+        print("max2code serve: error: --port must be 0..65535, --rooms at least 1, --speed positive",
+              file=sys.stderr)
+        return 2
+
+    from .engine.scenefile import SceneError, load
+    from .server.app import Options, run
+
+    try:
+        scene = load(args.scene)
+    except SceneError as exc:
+        for d in exc.diagnostics:
+            print(d, file=sys.stderr)
+        return 1
+    names = {b.name: i for i, b in enumerate(scene.bodies)}
+    wanted = args.player or [b.name for b in scene.bodies
+                             if b.name.startswith("player") and b.kind == "dynamic"]
+    bad = [n for n in wanted if n not in names or scene.bodies[names[n]].kind != "dynamic"]
+    if bad:
+        print(f"{args.scene}: error: --player {bad[0]!r}: no dynamic body of that name", file=sys.stderr)
+        return 1
+    options = Options(scene, tuple(names[n] for n in wanted), max_rooms=args.rooms, speed=args.speed)
+
+    def ready(server, port: int) -> None:
+        print(f"max2code serve: {scene.name} on http://{args.host}:{port}/ "
+              f"(players: {', '.join(wanted) or 'none'})", file=sys.stderr, flush=True)
+
+    try:
+        asyncio.run(run(options, args.host, args.port, ready))
+    except KeyboardInterrupt:
+        return 130
+    except OSError as exc:
+        print(f"max2code serve: error: cannot listen on {args.host}:{args.port}: {exc.strerror or exc}",
+              file=sys.stderr)
+        return 1
+    return 0

@@ -1,0 +1,163 @@
+"""The server: rooms, the WebSocket endpoint (/ws) and the client page (/), on `websockets`.
+
+One asyncio process: connections are handled as they come, every message is parsed and
+checked (protocol.parse) before it reaches a room, and a connection that breaks the protocol
+gets an error frame and is closed; the room and the other connections go on. A room is made
+on the first join that names it, up to `max_rooms`.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import json
+from dataclasses import dataclass
+from importlib import resources
+from urllib.parse import urlsplit
+
+from websockets.asyncio.server import ServerConnection, serve
+from websockets.datastructures import Headers
+from websockets.exceptions import ConnectionClosed
+from websockets.http11 import Request, Response
+
+from ..engine.scenefile import Scene
+from . import protocol
+from .protocol import Hello, Key, Ping, Point, ProtocolError, RateLimit
+from .room import Room
+
+STATIC = {"/": ("index.html", "text/html; charset=utf-8"),
+          "/client.js": ("client.js", "text/javascript; charset=utf-8")}
+SECURITY_HEADERS = [("Content-Security-Policy", "default-src 'self'; connect-src 'self'"),
+                    ("X-Content-Type-Options", "nosniff"), ("Cache-Control", "no-cache")]
+HELLO_TIMEOUT = 10.0
+
+
+@dataclass(frozen=True)
+class Options:
+    scene: Scene
+    players: tuple[int, ...]
+    max_rooms: int = 16
+    max_clients: int = 256      # per room
+    speed: float | None = None
+
+
+class Server:
+    """Rooms by name, and the connection handler."""
+
+    def __init__(self, options: Options) -> None:
+        self.options = options
+        self.rooms: dict[str, Room] = {}
+        self.files = {path: (resources.files(__package__).joinpath("static").joinpath(name).read_bytes(), kind)
+                      for path, (name, kind) in STATIC.items()}
+
+    def room(self, name: str) -> Room:
+        room = self.rooms.get(name)
+        if room is None:
+            if len(self.rooms) >= self.options.max_rooms:
+                raise ProtocolError(f"no room {name!r}, and no more rooms (at most {self.options.max_rooms})")
+            room = Room(name, self.options.scene, self.options.players, speed=self.options.speed)
+            room.start()
+            self.rooms[name] = room
+        return room
+
+    async def close(self) -> None:
+        for room in self.rooms.values():
+            await room.stop()
+
+    # -- HTTP: the page, and the origin check ------------------------------------------------
+
+    def process_request(self, connection: ServerConnection, request: Request) -> Response | None:
+        path = urlsplit(request.path).path
+        if path == "/ws":
+            origin = request.headers.get("Origin")
+            host = request.headers.get("Host")
+            if origin is not None and urlsplit(origin).netloc != host:
+                return connection.respond(403, "cross-origin WebSocket refused\n")
+            return None
+        found = self.files.get(path)
+        if found is None:
+            return connection.respond(404, "not found\n")
+        body, kind = found
+        headers = Headers([("Content-Type", kind), ("Content-Length", str(len(body)))] + SECURITY_HEADERS)
+        return Response(200, "OK", headers, body)
+
+    # -- WebSocket ------------------------------------------------------------------------------
+
+    async def handler(self, ws: ServerConnection) -> None:
+        limit = RateLimit()
+        loop = asyncio.get_running_loop()
+        seq = 0
+        room = client = None
+        try:
+            try:
+                first = await asyncio.wait_for(ws.recv(), HELLO_TIMEOUT)
+            except asyncio.TimeoutError:
+                raise ProtocolError("no hello within 10 s") from None
+            msg = protocol.parse(first, seq)
+            if not isinstance(msg, Hello):
+                raise ProtocolError("the first message must be hello")
+            seq += 1
+            room = self.room(msg.room)
+            if len(room.clients) >= self.options.max_clients:
+                raise ProtocolError(f"room {msg.room!r} is full")
+            client, world = room.join(_sender(ws), msg.name)
+            await ws.send(world)
+            async for frame in ws:
+                if not limit.allow(loop.time()):
+                    raise ProtocolError(f"more than {protocol.RATE:g} messages per second")
+                msg = protocol.parse(frame, seq)
+                seq += 1
+                reply = self._dispatch(room, client, msg)
+                if reply is not None:
+                    await ws.send(reply)
+        except ProtocolError as exc:
+            await _refuse(ws, exc)
+        except ConnectionClosed:
+            pass
+        finally:
+            if room is not None and client is not None:
+                room.leave(client)
+
+    def _dispatch(self, room: Room, client, msg) -> str | None:
+        """A checked message to its room; the text to answer with, if any."""
+        if isinstance(msg, Ping):
+            return protocol.encode({"type": "pong", "id": msg.id, "c": msg.c, "s": room.clock()})
+        if isinstance(msg, Hello):
+            raise ProtocolError("hello twice")
+        if isinstance(msg, Key):
+            why = room.key(client, msg.body, msg.key, msg.down)
+        else:
+            assert isinstance(msg, Point)
+            why = room.point(client, msg.body, msg.x, msg.y)
+        if why is None:
+            return None
+        return protocol.encode({"type": "refused", "seq": msg.seq, "reason": why})
+
+
+def _sender(ws: ServerConnection):
+    """A non-blocking send for the room's broadcasts: queued on the connection's transport
+    (websockets.broadcast semantics), so a slow client never holds the world up."""
+    from websockets.asyncio.server import broadcast
+
+    return lambda text: broadcast([ws], text)
+
+
+async def _refuse(ws: ServerConnection, exc: ProtocolError) -> None:
+    try:
+        await ws.send(protocol.error(exc.reason))
+        await ws.close(exc.code, exc.reason[:120])
+    except ConnectionClosed:
+        pass
+
+
+async def run(options: Options, host: str, port: int, ready=None) -> None:
+    """Serve until cancelled; `ready(port)` is called once listening (port 0 picks one)."""
+    server = Server(options)
+    async with serve(server.handler, host, port, process_request=server.process_request,
+                     max_size=protocol.HARD_MAX_MESSAGE, max_queue=16, close_timeout=1) as ws_server:
+        bound = ws_server.sockets[0].getsockname()[1]
+        if ready is not None:
+            ready(server, bound)
+        try:
+            await asyncio.Future()
+        finally:
+            await server.close()

@@ -1,0 +1,221 @@
+"""One room: an authoritative World, its clients, and the loop that sleeps between events.
+
+The world runs at the server's clock (seconds since the room opened). The loop sleeps until
+the engine's next queued event (World.next_time) or until input arrives, steps the world to
+the clock, and sends one message for everything that happened in that step: the reported
+events and the segments of the bodies whose motion changed (found by the core's per-body
+change counters). A step that changed nothing drawn (an internal cell crossing) sends
+nothing, and with nothing queued the loop sleeps until input comes.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import math
+import time
+from dataclasses import dataclass, field
+from typing import Callable
+
+from ..engine.scenefile import Scene, build_world
+from ..engine.world import EngineError, Event
+from . import protocol, wire
+
+
+@dataclass(eq=False)
+class Client:
+    """A joined connection: `send` takes a text frame (the server's WebSocket, or a test's list)."""
+    send: Callable[[str], None]
+    name: str
+    controls: tuple[int, ...] = ()
+    keys: set[str] = field(default_factory=set)
+    sent_bytes: int = 0
+
+
+@dataclass
+class Stats:
+    steps: int = 0
+    messages: int = 0
+    events: int = 0
+    inputs: int = 0
+    bytes_sent: int = 0
+
+
+def _speed(scene: Scene) -> float:
+    """Input speed: a quarter of the scene's width per second (view, else the bodies' extent)."""
+    if scene.view:
+        return (scene.view[2] - scene.view[0]) / 4
+    xs = [b.position[0] + v[0] for b in scene.bodies for v in b.vertices]
+    return max((max(xs) - min(xs)) / 4, 1.0) if xs else 1.0
+
+
+class Room:
+    """An independent world shared by its clients. `clock` gives the room's time (seconds)."""
+
+    def __init__(self, name: str, scene: Scene, players: tuple[int, ...],
+                 clock: Callable[[], float] | None = None, speed: float | None = None) -> None:
+        self.name = name
+        self.scene = scene
+        self.world = build_world(scene)
+        self.players = players
+        self.speed = speed if speed is not None else _speed(scene)
+        start = time.monotonic()
+        self.clock = clock or (lambda: time.monotonic() - start)
+        self.clients: list[Client] = []
+        self.counters = self.world.motions()[1]
+        self.gravity = [b.gravity if b.gravity is not None else scene.gravity for b in scene.bodies]
+        self.seq = 0
+        self.stats = Stats()
+        self.failed: str | None = None
+        self._wake = asyncio.Event()
+        self._task: asyncio.Task | None = None
+
+    # -- the loop ---------------------------------------------------------------------------
+
+    def start(self) -> None:
+        self._task = asyncio.get_running_loop().create_task(self._run())
+
+    async def stop(self) -> None:
+        if self._task:
+            self._task.cancel()
+            try:
+                await self._task
+            except asyncio.CancelledError:
+                pass
+
+    async def _run(self) -> None:
+        while self.failed is None:
+            delay = self.world.next_time() - self.clock()
+            self._wake.clear()
+            if delay > 0:
+                try:
+                    await asyncio.wait_for(self._wake.wait(), None if math.isinf(delay) else delay)
+                except asyncio.TimeoutError:
+                    pass
+            else:
+                await asyncio.sleep(0)   # let connections run between busy steps
+            self.advance(self.clock())
+
+    def advance(self, t: float) -> None:
+        """Step the world to t and send what changed (nothing when nothing drawn changed)."""
+        if self.failed is not None or t <= self.world.time:
+            return
+        try:
+            events = self.world.step_to(t)
+        except EngineError as exc:   # the world cannot go on: say so, keep serving the page
+            self.failed = str(exc)
+            self._broadcast({"type": "error", "reason": f"engine: {exc}"})
+            return
+        self.stats.steps += 1
+        self.stats.events += len(events)
+        self._send_changes(events, None)
+
+    def _send_changes(self, events: list[Event], extra: tuple[int, int, int] | None) -> None:
+        motions, counters = self.world.motions()
+        changed = [i for i, (c, old) in enumerate(zip(counters, self.counters)) if c != old]
+        self.counters = counters
+        drawn = [e for e in events if e.kind != "timer"]
+        if not changed and not drawn and extra is None:
+            return
+        # the message's time: its latest event (or the input's time), so that a step holding
+        # one instant sends no time per event; every segment is re-expressed from it
+        times = [e.time for e in drawn] + [motions[i][0] for i in changed]
+        t = self.world.time if extra is not None or not times else max(times)
+        ev = []
+        for e in drawn:   # [kind, a, b], and the time before t when the step held several
+            item = [protocol.EVENT_CODES[e.kind], e.a, e.b]
+            ev.append(item if e.time == t else item + [protocol.number(e.time - t)])
+        if extra is not None:
+            ev.append(list(extra))
+        self.seq += 1
+        self._broadcast({"type": "ev", "n": self.seq, "t": t, "ev": ev,
+                         "seg": [wire.segment(i, motions[i], t) for i in changed]})
+
+    def _broadcast(self, message: dict) -> None:
+        text = protocol.encode(message)
+        self.stats.messages += 1
+        for c in list(self.clients):
+            c.sent_bytes += len(text)
+            self.stats.bytes_sent += len(text)
+            c.send(text)
+
+    # -- clients ----------------------------------------------------------------------------
+
+    def join(self, send: Callable[[str], None], name: str) -> tuple[Client, str]:
+        """A new client: the bodies it controls (the first free player body, if any) and the
+        world message it starts from (every body's shape, style and segment now)."""
+        taken = {b for c in self.clients for b in c.controls}
+        free = [b for b in self.players if b not in taken]
+        client = Client(send, name, tuple(free[:1]))
+        self.advance(self.clock())
+        t = self.world.time
+        motions, _ = self.world.motions()
+        message = {"type": "world", "v": protocol.VERSION, "room": self.name, "n": self.seq,
+                   "t": t, "you": list(client.controls), "view": self._view(),
+                   "bodies": [wire.body(self.world, i) for i in range(len(self.world.bodies))],
+                   "seg": [wire.segment(i, motions[i], t) for i in range(len(motions))]}
+        if self.failed:
+            message["failed"] = self.failed
+        self.clients.append(client)
+        return client, protocol.encode(message)
+
+    def leave(self, client: Client) -> None:
+        if client in self.clients:
+            self.clients.remove(client)
+
+    def _view(self) -> list[float]:
+        """The scene's view, else one fit to every body now (max2code.render.fit)."""
+        if self.scene.view:
+            return list(self.scene.view)
+        from ..engine.frames import frame, render_bodies
+        from ..render.fit import fit_view
+
+        v = fit_view(render_bodies(self.world), [frame(self.world, self.world.time)])
+        return [protocol.number(x) for x in (v.xmin, v.ymin, v.xmax, v.ymax)]
+
+    # -- input ------------------------------------------------------------------------------
+
+    def key(self, client: Client, body: int, key: str, down: bool) -> str | None:
+        """A key pressed or released for a body the client controls; None, or why refused."""
+        if body not in client.controls:
+            return f"body {body} is not yours (you control {list(client.controls)})"
+        held = client.keys
+        was = set(held)
+        (held.add if down else held.discard)(key)
+        if held == was:
+            return None
+        self.advance(self.clock())
+        vx, vy, w = self.world.velocity(body)
+        dx = ("right" in held) - ("left" in held)
+        dy = ("up" in held) - ("down" in held)
+        if self.gravity[body] != (0.0, 0.0):   # a platformer: left/right walk, up jumps
+            vx = dx * self.speed
+            if key == "up" and down:
+                vy = self.speed
+        else:
+            norm = math.hypot(dx, dy) or 1.0
+            vx, vy = dx * self.speed / norm, dy * self.speed / norm
+        return self._input(body, vx, vy, w)
+
+    def point(self, client: Client, body: int, x: float, y: float) -> str | None:
+        """A pointer press: the body heads for (x, y) at the input speed."""
+        if body not in client.controls:
+            return f"body {body} is not yours (you control {list(client.controls)})"
+        self.advance(self.clock())
+        px, py, _ = self.world.pose(body)
+        _, _, w = self.world.velocity(body)
+        d = math.hypot(x - px, y - py)
+        if d == 0:
+            return None
+        return self._input(body, (x - px) / d * self.speed, (y - py) / d * self.speed, w)
+
+    def _input(self, body: int, vx: float, vy: float, w: float) -> str | None:
+        if self.failed:
+            return "the world stopped: " + self.failed
+        try:
+            self.world.set_velocity(body, (vx, vy), w)
+        except EngineError as exc:
+            return str(exc)
+        self.stats.inputs += 1
+        self._send_changes([], (protocol.EVENT_CODES["input"], body, -1))
+        self._wake.set()
+        return None

@@ -1,0 +1,68 @@
+"""A World as the client sees it: shapes and styles once, motion segments at events.
+
+Shapes and styles are max2code.render's (engine.frames.render_body), so the page draws what
+`max2code sim --png` draws. A segment is the body's exact motion from a time t on:
+
+    [id, x, y, angle, vx, vy, omega, ax, ay]    pose(t') = (x, y) + v s + a s^2/2, angle + omega s
+
+with s = t' - t, and trailing zeros left off (a body at rest is [id, x, y, angle], a body
+that neither turns nor accelerates [id, x, y, angle, vx, vy]). Every segment of one message is
+given at the message's time, so no segment carries a time of its own.
+"""
+
+from __future__ import annotations
+
+from ..engine.frames import render_body
+from ..engine.world import World
+from ..render.model import Capsule, Circle, Polygon, Segment
+from .protocol import number
+
+Motion = tuple[float, ...]   # the core's (t0, x, y, angle, vx, vy, omega, ax, ay)
+
+
+def shape(shape_) -> dict:
+    """The render model's shape as JSON: circle {c, r}, polygon {p, r}, segment {s}, capsule {s, r}."""
+    kinds = {
+        Circle: lambda s: {"c": [number(v) for v in s.centre], "r": number(s.radius)},
+        Polygon: lambda s: {"p": [[number(x), number(y)] for x, y in s.vertices],
+                            "r": number(s.radius)},
+        Segment: lambda s: {"s": [[number(x), number(y)] for x, y in (s.a, s.b)]},
+        Capsule: lambda s: {"s": [[number(x), number(y)] for x, y in (s.a, s.b)],
+                            "r": number(s.radius)},
+    }
+    return kinds[type(shape_)](shape_)
+
+
+def body(world: World, i: int) -> dict:
+    """What the page needs to draw body i: its shape, style and name."""
+    info = world.bodies[i]
+    drawn = render_body(info)
+    st = drawn.style
+    return {"id": i, "name": info.name, "kind": info.kind, "shape": shape(drawn.shape),
+            "fill": st.fill, "stroke": st.stroke, "sw": number(st.stroke_width), "spoke": st.spoke}
+
+
+def at(m: Motion, t: float) -> tuple[float, ...]:
+    """The motion (from its own time m[0]) re-expressed from time t >= m[0]: the same formula
+    the core evaluates (motion.c), so the client's pose is the engine's to rounding."""
+    t0, x, y, th, vx, vy, w, ax, ay = m
+    s = t - t0
+    if s == 0:
+        return (x, y, th, vx, vy, w, ax, ay)
+    return (x + s * (vx + 0.5 * ax * s), y + s * (vy + 0.5 * ay * s), th + w * s if w else th,
+            vx + ax * s, vy + ay * s, w, ax, ay)
+
+
+def segment(i: int, m: Motion, t: float) -> list:
+    """Body i's segment from time t, trailing zeros left off."""
+    values = [number(v) for v in at(m, t)]
+    while len(values) > 3 and values[-1] == 0:
+        values.pop()
+    return [i] + values
+
+
+def pose(seg: list, t: float, t_seg: float) -> tuple[float, float, float]:
+    """What the page computes from a segment (client.js poseAt), for tests and the bench."""
+    x, y, th, vx, vy, w, ax, ay = (list(seg[1:]) + [0.0] * 8)[:8]
+    s = t - t_seg
+    return (x + s * (vx + 0.5 * ax * s), y + s * (vy + 0.5 * ay * s), th + w * s)

@@ -1,0 +1,74 @@
+"""A minimal protocol client for the tests and the bench: the page's logic (client.js) in
+Python: join, keep every body's segment, evaluate poses."""
+
+from __future__ import annotations
+
+import asyncio
+import json
+
+from websockets.asyncio.client import connect
+
+from max2code.server import wire
+
+
+class Client:
+    def __init__(self, ws) -> None:
+        self.ws = ws
+        self.seq = 0
+        self.segs: dict[int, tuple[list, float]] = {}
+        self.world: dict = {}
+        self.messages: list[dict] = []
+        self.n = 0
+
+    @classmethod
+    async def join(cls, url: str, room: str = "main", **kw) -> "Client":
+        ws = await connect(url, **kw)
+        c = cls(ws)
+        await c.send({"type": "hello", "v": 1, "room": room})
+        c.world = json.loads(await ws.recv())
+        assert c.world["type"] == "world", c.world
+        c.n = c.world["n"]
+        for seg in c.world["seg"]:
+            c.segs[seg[0]] = (seg, c.world["t"])
+        return c
+
+    async def send(self, message: dict) -> None:
+        await self.ws.send(json.dumps({**message, "seq": self.seq}))
+        self.seq += 1
+
+    def apply(self, m: dict) -> None:
+        self.messages.append(m)
+        if m["type"] == "ev":
+            assert m["n"] == self.n + 1, (m["n"], self.n)
+            self.n = m["n"]
+            for seg in m["seg"]:
+                self.segs[seg[0]] = (seg, m["t"])
+
+    async def receive(self, seconds: float) -> list[dict]:
+        """Every message within `seconds`, applied."""
+        out = []
+        loop = asyncio.get_running_loop()
+        end = loop.time() + seconds
+        while (left := end - loop.time()) > 0:
+            try:
+                text = await asyncio.wait_for(self.ws.recv(), left)
+            except asyncio.TimeoutError:
+                break
+            m = json.loads(text)
+            self.apply(m)
+            out.append(m)
+        return out
+
+    async def until(self, predicate, seconds: float = 5.0) -> dict:
+        loop = asyncio.get_running_loop()
+        end = loop.time() + seconds
+        while (left := end - loop.time()) > 0:
+            m = json.loads(await asyncio.wait_for(self.ws.recv(), left))
+            self.apply(m)
+            if predicate(m):
+                return m
+        raise AssertionError("no such message")
+
+    def pose(self, body: int, t: float) -> tuple[float, float, float]:
+        seg, t0 = self.segs[body]
+        return wire.pose(seg, t, t0)
