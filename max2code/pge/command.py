@@ -198,7 +198,7 @@ def main(argv: list[str]) -> int:
 def _pictures(args, game) -> int:
     from ..diagnostics import Max2CodeError
     from ..render import write
-    from .draw import image
+    from ..render.items import image
 
     size, window = args.size, game.resolution or args.size
     draw = lambda frame: image(frame, size, window)  # noqa: E731

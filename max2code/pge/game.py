@@ -18,7 +18,7 @@ import time as wallclock
 from dataclasses import dataclass, field
 from typing import Callable
 
-from .draw import Frame, Item
+from ..render.items import Frame, Item, body_item
 from .objects import Colour, Decoration, Event, Shape
 from .physics import Physics, PgeError
 
@@ -210,23 +210,14 @@ class Game:
 
     def snapshot(self) -> Frame:
         """Every visible thing now: decorations below level 0, the shapes, those above."""
-        import math as m
-
         items: list[Item] = []
         behind = sorted((d for d in self.decorations if d.level < 0), key=lambda d: d.level)
         front = sorted((d for d in self.decorations if d.level > 0), key=lambda d: d.level)
         items += [_decoration_item(d) for d in behind]
-        for ob, (x, y, a) in zip(self.physics.objects, self.physics.poses()):
-            if not ob.visible:
-                continue
-            colour = (self.collision_colour if ob.name in self.flash else ob.colour).rgb255(ob.alpha)
-            s = ob.state
-            if ob.kind == "circle":
-                items.append(Item("circle", colour, ((x, y),), s.radius))
-            else:
-                c, sn = m.cos(a), m.sin(a)
-                items.append(Item("polygon", colour,
-                                  tuple((x + c * u - sn * v, y + sn * u + c * v) for u, v in s.local)))
+        for ob, pose in zip(self.physics.objects, self.physics.poses()):
+            if ob.visible:
+                colour = self.collision_colour if ob.name in self.flash else ob.colour
+                items.append(body_item(ob.state.local, ob.state.radius, pose, colour.rgb255(ob.alpha)))
         items += [_decoration_item(d) for d in front]
         self.flash.clear()
         return Frame(self.now, tuple(items))
@@ -235,7 +226,7 @@ class Game:
         """Live: wait for the frame's wall time (slowed down), show it, handle pygame's events."""
         import pygame
 
-        from .draw import image
+        from ..render.items import image
 
         size = self.resolution or 640
         if self.window is None:
