@@ -168,7 +168,10 @@ class Game:
         import pygame
 
         code = getattr(pygame, kind)
-        self.log.append({"t": self.now, "kind": "input", "type": kind, **attrs})
+        logged = dict(attrs)
+        if "key" in logged:
+            logged["key"] = key_name(logged["key"])
+        self.log.append({"t": self.now, "kind": "input", "type": kind, **logged})
         handler = self.handlers.get(code)
         if handler is not None:
             handler(pygame.event.Event(code, {k: tuple(v) if isinstance(v, list) else v
@@ -265,6 +268,21 @@ def _attrs(e) -> dict:
     """The attributes of a live pygame event that its handlers read (kept in the log)."""
     keep = ("key", "mod", "unicode", "pos", "button", "rel", "buttons")
     return {k: (list(v) if isinstance(v, tuple) else v) for k, v in e.dict.items() if k in keep}
+
+
+_KEY_NAMES: dict[int, str] = {}
+
+
+def key_name(code: int) -> str | int:
+    """pygame's name of a key code (K_UP), which the log keeps: codes differ between pygame
+    versions, names do not."""
+    if not _KEY_NAMES:
+        import pygame
+
+        for name in dir(pygame):
+            if name.startswith("K_"):
+                _KEY_NAMES.setdefault(getattr(pygame, name), name)
+    return _KEY_NAMES.get(code, code)
 
 
 def init_type_names() -> None:

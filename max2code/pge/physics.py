@@ -123,6 +123,7 @@ class Physics:
     def remove(self, ob: Physical) -> None:
         self.touch()
         ob.removed = True
+        ob.body = None  # (its pose stays the one it had when removed)
         self.objects.remove(ob)
 
     def set_velocity(self, ob: Physical, vx: float, vy: float) -> None:
