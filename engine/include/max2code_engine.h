@@ -16,13 +16,22 @@
  * paper's orbiting paddles); both have infinite mass. Dynamic bodies respond to impulses.
  *
  * Everything between the cdef markers is read by the Python binding (cffi, ABI mode):
- * plain declarations only there.
+ * plain declarations only there (the binding drops the M2C_API markers).
+ *
+ * Only the functions marked M2C_API are exported from the shared library (it is built with
+ * -fvisibility=hidden): the engine's internals and the root-finding runtime stay private.
  */
 #ifndef MAX2CODE_ENGINE_H
 #define MAX2CODE_ENGINE_H
 
 #ifdef __cplusplus
 extern "C" {
+#endif
+
+#if defined(_WIN32)
+#define M2C_API __declspec(dllexport)
+#else
+#define M2C_API __attribute__((visibility("default")))
 #endif
 
 /* cdef-begin */
@@ -52,8 +61,12 @@ typedef struct {
     double radius;             /* rounding radius (the circle's radius) */
     int nvertices;             /* 1: circle, 2: segment/capsule, >= 3: convex polygon */
     const double *vertices;    /* 2 * nvertices numbers: offsets in the body frame */
-    int group;                 /* >= 0: bodies of one group never collide with each other */
+    int group;                 /* >= 0: bodies of one group never collide with each other; -1: none */
     double friction;           /* Coulomb coefficient >= 0; a contact uses sqrt(fa fb); impacts only */
+    unsigned int category;     /* the body's category bits (default 1) */
+    unsigned int mask;         /* the categories it collides with (default all): a pair collides
+                                  when each one's category meets the other's mask */
+    int internal;              /* set by m2c_default_body_def(): a def not made by it is refused */
 } m2c_body_def;
 
 typedef struct {
@@ -90,53 +103,93 @@ typedef struct {
     double cell_size;
 } m2c_stats;
 
-m2c_world *m2c_world_new(const m2c_config *config);
-void m2c_world_free(m2c_world *w);
+/* A body def with every field at its default: dynamic, at the origin, at rest, mass 1 and
+ * inertia 1, restitution 1, no friction, no group (-1), category 1, mask all; no shape (give
+ * nvertices, vertices and radius). Start every def from it: a def made otherwise (a zeroed
+ * struct) is refused by m2c_world_add_body. */
+M2C_API m2c_body_def m2c_default_body_def(void);
+
+M2C_API m2c_world *m2c_world_new(const m2c_config *config);
+M2C_API void m2c_world_free(m2c_world *w);
 
 /* The id of the new body (0, 1, ...), or -1 (m2c_world_error says why). */
-int m2c_world_add_body(m2c_world *w, const m2c_body_def *def);
-int m2c_world_body_count(const m2c_world *w);
+M2C_API int m2c_world_add_body(m2c_world *w, const m2c_body_def *def);
+M2C_API int m2c_world_body_count(const m2c_world *w);
 
 /* Process every event up to time `until` (inclusive, finite), writing reported events to
  * events[0..capacity). Returns 0 when the world reached `until`; 1 when the buffer filled up
  * first (the world's time is that of the last event written: call again); -1 on error.  A
  * step is one call that returns 0 or -1 and the calls to the same `until` before it that
  * returned 1: max_events counts the events of the whole step. */
-int m2c_world_step(m2c_world *w, double until, m2c_event *events, int capacity, int *count);
-double m2c_world_time(const m2c_world *w);
+M2C_API int m2c_world_step(m2c_world *w, double until, m2c_event *events, int capacity, int *count);
+M2C_API double m2c_world_time(const m2c_world *w);
 
 /* Pose (x, y, angle) and velocity (vx, vy, omega) of a body at time t >= the body's last
  * event (usually the world's time): exact evaluation, the state is not changed. 0 or -1. */
-int m2c_world_pose(const m2c_world *w, int body, double t, double out[3]);
-int m2c_world_velocity(const m2c_world *w, int body, double t, double out[3]);
+M2C_API int m2c_world_pose(const m2c_world *w, int body, double t, double out[3]);
+M2C_API int m2c_world_velocity(const m2c_world *w, int body, double t, double out[3]);
 /* All bodies at once: out[3 i .. 3 i + 2] = pose of body i at time t. */
-int m2c_world_poses(const m2c_world *w, double t, double *out);
+M2C_API int m2c_world_poses(const m2c_world *w, double t, double *out);
 /* Every body's motion segment as the engine holds it, for a client that draws on its own
  * (max2code serve): out[9 i ..] = t0, x, y, angle, vx, vy, omega, ax, ay, the pose at time t
  * being (x, y) + (vx, vy) s + (ax, ay) s^2/2 and angle + omega s, s = t - t0; counters[i]
  * changes whenever body i's motion does (an impulse, rest, wake, input), and only then. */
-void m2c_world_motions(const m2c_world *w, double *out, unsigned int *counters);
+M2C_API void m2c_world_motions(const m2c_world *w, double *out, unsigned int *counters);
 /* The time of the earliest queued event, reported or internal (a cell crossing, the end of a
  * prediction window): no reported event comes before it. INFINITY when nothing is queued. */
-double m2c_world_next_time(m2c_world *w);
+M2C_API double m2c_world_next_time(m2c_world *w);
 
-/* Change a body's velocity at the world's current time (an input event); 0 or -1. */
-int m2c_world_set_velocity(m2c_world *w, int body, double vx, double vy, double omega);
+/* Changes at the world's current time (input events; also from inside a step's callbacks,
+ * between two calls of m2c_world_step). Each returns 0, or -1 (m2c_world_error says why) and
+ * changes nothing. The change is effective at once: every prediction that depends on the body
+ * is made again (a kinematic or static body's change predicts every dynamic body again), and
+ * bodies resting on it or asleep against it wake. */
+
+/* Remove a body: it takes part in nothing from now on (its id is never reused; its pose
+ * stays where it was removed). */
+M2C_API int m2c_world_remove_body(m2c_world *w, int body);
+/* 1 while the body exists (added and not removed), else 0. */
+M2C_API int m2c_world_body_alive(const m2c_world *w, int body);
+/* Velocity and angular velocity of a dynamic or kinematic body (static bodies never move). */
+M2C_API int m2c_world_set_velocity(m2c_world *w, int body, double vx, double vy, double omega);
+/* Move a body (any kind) to a new pose. Refused, naming the other body, when its shape would
+ * overlap (deeper than the tolerance) a body it can collide with: no push-out is invented. */
+M2C_API int m2c_world_set_pose(m2c_world *w, int body, double x, double y, double angle);
+/* Constant acceleration (the body's own gravity) of a dynamic or kinematic body. */
+M2C_API int m2c_world_set_acceleration(m2c_world *w, int body, double ax, double ay);
+/* Mass and moment of inertia (> 0) about the centre of mass (cx, cy), an offset in the body's
+ * frame: the body's reference point moves there (its vertices with it, so the shape stays in
+ * place; m2c_world_vertices reads them). Any kind of body: a static or kinematic body keeps
+ * them for when it becomes dynamic. */
+M2C_API int m2c_world_set_mass(m2c_world *w, int body, double mass, double inertia, double cx,
+                               double cy);
+/* Change a body's kind (M2C_STATIC, M2C_KINEMATIC, M2C_DYNAMIC). Becoming dynamic needs a mass
+ * (given when it was added, or m2c_world_set_mass); becoming static stops it. */
+M2C_API int m2c_world_set_kind(m2c_world *w, int body, int kind);
+/* An impulse (jx, jy) applied at the world point (px, py) to a dynamic body. */
+M2C_API int m2c_world_apply_impulse(m2c_world *w, int body, double jx, double jy, double px,
+                                    double py);
+/* The body's vertices in its own frame (2 * count numbers, count = its number of vertices;
+ * they change when m2c_world_set_mass moves the reference point): the count, or -1. */
+M2C_API int m2c_world_vertices(const m2c_world *w, int body, double *out, int capacity);
+
 /* A timer: an M2C_EVENT_TIMER event (a = the returned id) at time t. */
-int m2c_world_add_timer(m2c_world *w, double t);
+M2C_API int m2c_world_add_timer(m2c_world *w, double t);
+/* Cancel a pending timer: 0, or -1 when no timer with that id is pending (fired or cancelled). */
+M2C_API int m2c_world_cancel_timer(m2c_world *w, int id);
 
 /* The first contact of bodies i and j alone, as if nothing else existed and nothing changed,
  * in (now, now + tmax] (any kinds of body): 1 and *t (absolute), 0 when none. The prediction
  * the event loop uses (`max2code scene` shows it per pair). */
-int m2c_world_first_contact(m2c_world *w, int i, int j, double tmax, double *t);
+M2C_API int m2c_world_first_contact(m2c_world *w, int i, int j, double tmax, double *t);
 
 /* Energy: kinetic + potential (-m a.x) of the dynamic bodies at time t. */
-double m2c_world_energy(const m2c_world *w, double t);
+M2C_API double m2c_world_energy(const m2c_world *w, double t);
 /* 1 when the body is asleep (the rest rule), else 0. */
-int m2c_world_asleep(const m2c_world *w, int body);
+M2C_API int m2c_world_asleep(const m2c_world *w, int body);
 
-void m2c_world_stats(const m2c_world *w, m2c_stats *out);
-const char *m2c_world_error(const m2c_world *w);
+M2C_API void m2c_world_stats(const m2c_world *w, m2c_stats *out);
+M2C_API const char *m2c_world_error(const m2c_world *w);
 /* cdef-end */
 
 #ifdef __cplusplus

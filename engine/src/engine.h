@@ -50,6 +50,10 @@ typedef struct {
 
 enum { AWAKE = 0, RESTING = 1, ASLEEP = 2 };
 
+/* A removed body's kind: in no list, no cell, no heap; nothing predicts against it. */
+#define KIND_REMOVED 3
+#define DEF_COOKIE 0x6d32635f /* "m2c_": m2c_default_body_def() made the def */
+
 typedef struct {
     motion m;
     int kind;                   /* M2C_STATIC / M2C_KINEMATIC / M2C_DYNAMIC */
@@ -59,6 +63,8 @@ typedef struct {
     double rho;                 /* max |offset| (what rotation moves) */
     int nvert, vert;            /* vertices: w->verts[2 (vert + k)], k < nvert */
     int group;
+    unsigned int category, mask; /* collision filter (max2code_engine.h) */
+    double dmass, dinertia;     /* mass and inertia kept for becoming dynamic (0: none given) */
     uint32_t counter;           /* bumped whenever the motion changes */
     int cx, cy;                 /* cell (dynamic bodies) */
     int next, prev;             /* the cell's list of dynamic bodies */
@@ -131,6 +137,7 @@ int heap_init(m2c_world *w, int capacity);
 void heap_insert(m2c_world *w, int i);
 void heap_update(m2c_world *w, int i);      /* after b[i].ev.t changed */
 int heap_top(const m2c_world *w);           /* -1 when empty */
+void heap_remove(m2c_world *w, int i);
 
 /* grid.c */
 int grid_build(m2c_world *w);
@@ -138,6 +145,7 @@ void grid_free(grid *g);
 void grid_cell_of(const grid *g, double x, double y, int *cx, int *cy);
 void grid_insert(m2c_world *w, int i);
 void grid_move(m2c_world *w, int i, int dx, int dy);
+void grid_remove(m2c_world *w, int i);      /* a dynamic body leaves its cell's list */
 double grid_crossing(const m2c_world *w, int i, double tmax, int *dx, int *dy);
 /* Calls visit(w, i, j, ctx) for every body j that may touch dynamic body i before it
  * leaves its cell: dynamic bodies of the 3x3 cells around it, static bodies within reach
@@ -179,6 +187,13 @@ double rest_leave_time(const m2c_world *w, int k, double tmax);
 
 /* motion.c */
 double first_crossing(double x, double v, double a, double edge, int dir, double tmax);
+
+/* geometry.c: shapes at the world's current time */
+/* Gap between the shapes of bodies i and j (radii included): negative when they overlap
+ * (a vertex inside the other polygon or crossing edges count as overlapping). */
+double shape_gap(const m2c_world *w, int i, int j);
+/* 1 when the pair may collide: different groups (or none), each category in the other's mask. */
+int pair_filtered(const body *a, const body *b);
 
 /* world.c */
 void world_predict(m2c_world *w, int i);

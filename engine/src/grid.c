@@ -52,6 +52,11 @@ static void unlink_body(m2c_world *w, int i)
     b->next = b->prev = -1;
 }
 
+void grid_remove(m2c_world *w, int i)
+{
+    unlink_body(w, i);
+}
+
 void grid_insert(m2c_world *w, int i)
 {
     snap s = motion_at(&w->b[i].m, w->now);
@@ -116,7 +121,7 @@ int grid_build(m2c_world *w)
     w->bound_max = 0;
     for (int i = 0; i < w->n; i++) {
         const body *b = &w->b[i];
-        if (b->kind == M2C_KINEMATIC)
+        if (b->kind == M2C_KINEMATIC || b->kind == KIND_REMOVED)
             continue;
         snap s = motion_at(&b->m, w->now);
         if (b->kind == M2C_STATIC) {
@@ -266,7 +271,8 @@ void grid_neighbours(m2c_world *w, int i, visit_fn visit, void *ctx)
     }
     int c = cy * g->nx + cx;
     for (int k = g->fixed_start[c]; k < g->fixed_start[c + 1]; k++)
-        visit(w, i, g->fixed[k], ctx);
+        if (w->b[g->fixed[k]].kind == M2C_STATIC) /* (removed or made dynamic since the build) */
+            visit(w, i, g->fixed[k], ctx);
     for (int k = 0; k < w->nkin; k++)
         visit(w, i, w->kinematic[k], ctx);
 }

@@ -82,3 +82,17 @@ int heap_top(const m2c_world *w)
 {
     return w->heap_n > 0 ? w->heap[0] : -1;
 }
+
+/* Take body i out of the queue (removed, or no longer dynamic). */
+void heap_remove(m2c_world *w, int i)
+{
+    int k = w->heap_pos[i];
+    if (k < 0)
+        return;
+    w->heap_pos[i] = -1;
+    int last = w->heap[--w->heap_n];
+    if (last == i)
+        return;
+    place(w, k, last);
+    heap_update(w, last);
+}

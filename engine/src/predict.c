@@ -782,7 +782,7 @@ static void points_on_edges(feat *f, contact *best, int swapped)
 int predict_pair(m2c_world *w, int i, int j, contact *c)
 {
     const body *A = &w->b[i], *B = &w->b[j];
-    if (A->group >= 0 && A->group == B->group)
+    if (!pair_filtered(A, B) || A->kind == KIND_REMOVED || B->kind == KIND_REMOVED)
         return 0;
     if (A->kind != M2C_DYNAMIC && B->kind != M2C_DYNAMIC && !w->any_kinds)
         return 0;

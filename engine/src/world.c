@@ -76,10 +76,34 @@ static int finite_all(const double *v, int n)
     return 1;
 }
 
+m2c_body_def m2c_default_body_def(void)
+{
+    m2c_body_def d;
+    memset(&d, 0, sizeof d);
+    d.kind = M2C_DYNAMIC;
+    d.mass = 1.0;
+    d.inertia = 1.0;
+    d.restitution = 1.0;
+    d.group = -1;
+    d.category = 1u;
+    d.mask = ~0u;
+    d.internal = DEF_COOKIE;
+    return d;
+}
+
+/* The signed turn at vertex k + 1 of a closed polygon. */
+static double turn(const double *v, int n, int k)
+{
+    const double *p = &v[2 * k], *q = &v[2 * ((k + 1) % n)], *r = &v[2 * ((k + 2) % n)];
+    return (q[0] - p[0]) * (r[1] - q[1]) - (q[1] - p[1]) * (r[0] - q[0]);
+}
+
 static int check_def(m2c_world *w, const m2c_body_def *d)
 {
     if (w->broken)
         return -1;
+    if (d->internal != DEF_COOKIE)
+        return fail(w, "the body def was not made by m2c_default_body_def()");
     if (d->kind != M2C_STATIC && d->kind != M2C_KINEMATIC && d->kind != M2C_DYNAMIC)
         return fail(w, "kind must be static, kinematic or dynamic");
     double nums[] = {d->x, d->y, d->angle, d->vx, d->vy, d->omega, d->ax, d->ay, d->radius,
@@ -108,12 +132,13 @@ static int check_def(m2c_world *w, const m2c_body_def *d)
             return fail(w, "two consecutive vertices coincide");
     }
     if (d->nvertices >= 3) {
+        /* either winding: every turn the same way (clockwise polygons are stored reversed) */
         int n = d->nvertices;
+        double first = turn(v, n, 0);
         for (int k = 0; k < n; k++) {
-            const double *p = &v[2 * k], *q = &v[2 * ((k + 1) % n)], *r = &v[2 * ((k + 2) % n)];
-            double c = (q[0] - p[0]) * (r[1] - q[1]) - (q[1] - p[1]) * (r[0] - q[0]);
-            if (!(c > 0))
-                return fail(w, "a polygon must be convex with its vertices anticlockwise");
+            double c = turn(v, n, k);
+            if (!(first > 0 ? c > 0 : c < 0))
+                return fail(w, "a polygon must be convex (no three vertices in a line)");
         }
     }
     return 0;
@@ -219,6 +244,12 @@ int m2c_world_add_body(m2c_world *w, const m2c_body_def *d)
     b->nvert = d->nvertices;
     b->vert = w->nverts;
     b->group = d->group;
+    b->category = d->category;
+    b->mask = d->mask;
+    if (d->mass > 0 && d->inertia > 0 && isfinite(d->mass) && isfinite(d->inertia)) {
+        b->dmass = d->mass;
+        b->dinertia = d->inertia;
+    }
     b->support = -1;
     b->gx = b->m.ax;
     b->gy = b->m.ay;
@@ -230,12 +261,15 @@ int m2c_world_add_body(m2c_world *w, const m2c_body_def *d)
     b->ev.kind = EV_NONE;
     w->heap_pos[i] = -1;
     double rho = 0;
+    int reversed = d->nvertices >= 3 && turn(d->vertices, d->nvertices, 0) < 0;
     for (int k = 0; k < d->nvertices; k++) {
-        const double *p = &d->vertices[2 * k];
+        int from = reversed ? d->nvertices - 1 - k : k;
+        const double *p = &d->vertices[2 * from];
         w->verts[2 * (b->vert + k)] = p[0];
         w->verts[2 * (b->vert + k) + 1] = p[1];
         rho = fmax(rho, hypot(p[0], p[1]));
-        const double *q = &d->vertices[2 * ((k + 1) % d->nvertices)];
+        int next = reversed ? (from + d->nvertices - 1) % d->nvertices : (from + 1) % d->nvertices;
+        const double *q = &d->vertices[2 * next];
         double len = hypot(q[0] - p[0], q[1] - p[1]);
         double *e = &w->edges[3 * (b->vert + k)];
         e[0] = len > 0 ? (q[0] - p[0]) / len : 0.0;
@@ -557,24 +591,6 @@ double m2c_world_next_time(m2c_world *w)
     return t < tt ? t : tt;
 }
 
-int m2c_world_set_velocity(m2c_world *w, int i, double vx, double vy, double omega)
-{
-    if (i < 0 || i >= w->n || w->b[i].kind != M2C_DYNAMIC)
-        return fail(w, "set_velocity: not a dynamic body");
-    if (!isfinite(vx) || !isfinite(vy) || !isfinite(omega))
-        return fail(w, "set_velocity: not finite");
-    body *b = &w->b[i];
-    body_commit(b, w->now);
-    b->m.vx = vx;
-    b->m.vy = vy;
-    b->m.w = omega;
-    b->counter++;
-    rest_restore(w, i);
-    if (w->prepared)
-        world_predict(w, i);
-    return 0;
-}
-
 int m2c_world_add_timer(m2c_world *w, double t)
 {
     if (!(t >= w->now) || !isfinite(t))
@@ -594,6 +610,17 @@ int m2c_world_add_timer(m2c_world *w, double t)
     }
     w->timers[k] = (timer){t, w->next_timer_id};
     return w->next_timer_id++;
+}
+
+int m2c_world_cancel_timer(m2c_world *w, int id)
+{
+    for (int k = 0; k < w->ntimers; k++)
+        if (w->timers[k].id == id) {
+            memmove(w->timers + k, w->timers + k + 1, sizeof(timer) * (size_t)(w->ntimers - k - 1));
+            w->ntimers--;
+            return 0;
+        }
+    return fail(w, "cancel_timer: no such timer pending");
 }
 
 double m2c_world_energy(const m2c_world *w, double t)
@@ -622,7 +649,8 @@ void m2c_world_stats(const m2c_world *w, m2c_stats *out)
 
 int m2c_world_first_contact(m2c_world *w, int i, int j, double tmax, double *t)
 {
-    if (w->broken || i < 0 || j < 0 || i >= w->n || j >= w->n || i == j || !(tmax > 0))
+    if (w->broken || i < 0 || j < 0 || i >= w->n || j >= w->n || i == j || !(tmax > 0)
+        || w->b[i].kind == KIND_REMOVED || w->b[j].kind == KIND_REMOVED)
         return fail(w, "first_contact: bad bodies or horizon");
     double now = w->now, end = now + tmax;
     int found = 0;

@@ -15,7 +15,7 @@ def declarations() -> str:
     m = re.search(r"/\* cdef-begin \*/(.*)/\* cdef-end \*/", text, re.S)
     if not m:
         raise RuntimeError(f"{header()}: no cdef-begin/cdef-end section")
-    return m.group(1)
+    return re.sub(r"\bM2C_API\s+", "", m.group(1))
 
 
 @lru_cache(maxsize=1)

@@ -3,11 +3,11 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, replace
 from typing import Callable, Iterable, Sequence
 
 from .binding import load
-from .shapes import mass_properties
+from .shapes import mass_properties, polygon_area
 
 Vec = tuple[float, float]
 KINDS = {"static": 0, "kinematic": 1, "dynamic": 2}
@@ -34,6 +34,10 @@ class BodyInfo:
     group: str | None
     color: str | None = None
     friction: float = 0.0
+    category: int = 1
+    mask: int = 0xFFFFFFFF
+    data: object = None
+    alive: bool = True
 
     @property
     def shape(self) -> str:
@@ -85,6 +89,9 @@ class World:
         self._groups: dict[str, int] = {}
         self._callbacks: list[Callable[["World", Event], None]] = []
         self._timers: dict[int, _Timer] = {}
+        self._density: list[float] = []
+        self._gravity: list[Vec] = []
+        self._dormant: dict[int, tuple[float, float]] = {}
         self._buf = self._ffi.new("m2c_event[]", BUFFER)
         self._count = self._ffi.new("int *")
         self._pose = self._ffi.new("double[3]")
@@ -97,16 +104,24 @@ class World:
                  omega: float = 0.0, gravity: Vec | None = None, mass: float | None = None,
                  density: float = 1.0, inertia: float | None = None, restitution: float = 1.0,
                  group: str | None = None, name: str | None = None,
-                 color: str | None = None, friction: float = 0.0) -> int:
+                 color: str | None = None, friction: float = 0.0, category: int = 1,
+                 mask: int = 0xFFFFFFFF, data: object = None) -> int:
         """Add a body; returns its id. `vertices` are offsets from `position` in the body's
         frame (turned by `angle`): one vertex and a radius make a circle, two a segment (a
-        capsule with a radius), three or more a convex polygon, anticlockwise. A dynamic body's
-        reference point moves to its centre of mass (and its vertices with it: see `bodies`).
-        `gravity` overrides the world's for this body (static bodies have none). `friction`
-        is a Coulomb coefficient, at impacts only (a contact uses sqrt(fa fb); README)."""
+        capsule with a radius), three or more a convex polygon, in either winding (kept
+        anticlockwise). A dynamic body's reference point moves to its centre of mass (and its
+        vertices with it: see `bodies`). `gravity` overrides the world's for this body (static
+        bodies have none). `friction` is a Coulomb coefficient, at impacts only (a contact uses
+        sqrt(fa fb); README). A pair collides when neither `group` is shared and each body's
+        `category` bits meet the other's `mask`. `data` is yours (`bodies[id].data`)."""
         if kind not in KINDS:
             raise EngineError(f"kind must be one of {', '.join(KINDS)}, not {kind!r}")
         verts = [(float(x), float(y)) for x, y in vertices]
+        if len(verts) >= 3 and polygon_area(verts) < 0:
+            verts.reverse()  # clockwise: the core keeps polygons anticlockwise
+        for bits in (category, mask):
+            if not (isinstance(bits, int) and 0 <= bits <= 0xFFFFFFFF):
+                raise EngineError(f"category and mask are 32-bit masks, not {bits!r}")
         px, py = float(position[0]), float(position[1])
         m = I = 0.0
         if kind == "dynamic":
@@ -123,6 +138,7 @@ class World:
             if not (I > 0):  # a point mass (a segment's rod with no length cannot happen)
                 I = m * 1e-12
         g = self.gravity if gravity is None else (float(gravity[0]), float(gravity[1]))
+        own = g  # what it falls with when dynamic (set_kind)
         if kind == "static":
             g = (0.0, 0.0)
         if kind == "kinematic" and gravity is None:
@@ -130,7 +146,7 @@ class World:
         gid = -1
         if group is not None:
             gid = self._groups.setdefault(group, len(self._groups))
-        d = self._ffi.new("m2c_body_def *")
+        d = self._ffi.new("m2c_body_def *", self._lib.m2c_default_body_def())
         flat = self._ffi.new("double[]", [c for v in verts for c in v])
         d.kind = KINDS[kind]
         d.x, d.y, d.angle = px, py, float(angle)
@@ -143,6 +159,7 @@ class World:
         d.nvertices = len(verts)
         d.vertices = flat
         d.group = gid
+        d.category, d.mask = category, mask
         i = self._lib.m2c_world_add_body(self._w, d)
         if i < 0:
             raise EngineError(self.error())
@@ -150,8 +167,11 @@ class World:
         self.bodies.append(BodyInfo(i, name, kind, tuple(verts), float(radius),
                                     m if kind == "dynamic" else math.inf,
                                     I if kind == "dynamic" else math.inf,
-                                    float(restitution), group, color, float(friction)))
+                                    float(restitution), group, color, float(friction),
+                                    category, mask, data))
         self._names[name] = i
+        self._density.append(float(density))
+        self._gravity.append(own)
         return i
 
     def add_circle(self, position: Vec, radius: float, **kw) -> int:
@@ -185,6 +205,12 @@ class World:
             raise EngineError(self.error())
         self._timers[k] = _Timer(callback)
         return k
+
+    def cancel_timer(self, timer: int) -> None:
+        """Cancel a pending timer (PGE's at_cancel): an EngineError when it already fired or
+        was cancelled."""
+        self._call(self._lib.m2c_world_cancel_timer(self._w, timer))
+        self._timers.pop(timer, None)
 
     def step_to(self, t: float, events: bool = True) -> list[Event]:
         """Process every event up to time t (inclusive); returns the reported events (none with
@@ -220,11 +246,104 @@ class World:
         for cb in self._callbacks:
             cb(self, ev)
 
-    def set_velocity(self, body: int, velocity: Vec, omega: float = 0.0) -> None:
-        """Change a dynamic body's velocity now (an input event)."""
-        if self._lib.m2c_world_set_velocity(self._w, body, float(velocity[0]), float(velocity[1]),
-                                            float(omega)) < 0:
+    # -- changing bodies now (also from callbacks; effective at once for prediction) ---------
+
+    def _call(self, status: int) -> None:
+        if status < 0:
             raise EngineError(self.error())
+
+    def set_velocity(self, body: int, velocity: Vec, omega: float = 0.0) -> None:
+        """Change a dynamic or kinematic body's velocity now (an input event: steering a
+        kinematic paddle predicts every dynamic body against its new path at once)."""
+        self._call(self._lib.m2c_world_set_velocity(self._w, body, float(velocity[0]),
+                                                    float(velocity[1]), float(omega)))
+
+    def remove(self, body: int) -> None:
+        """Remove a body now, also from inside a callback: nothing collides with it from now
+        on (its id is never reused; `bodies[id].alive` turns False, its pose stays put)."""
+        self._call(self._lib.m2c_world_remove_body(self._w, body))
+        self.bodies[body] = replace(self.bodies[body], alive=False)
+
+    def alive(self, body: int) -> bool:
+        return bool(self._lib.m2c_world_body_alive(self._w, body))
+
+    def set_pose(self, body: int, position: Vec, angle: float | None = None) -> None:
+        """Move a body (any kind) to `position` (its reference point: a dynamic body's centre
+        of mass) and `angle` (default: unchanged) now. An overlap with a body it can collide
+        with at the new place is an EngineError naming that body, and nothing moves."""
+        a = self.pose(body)[2] if angle is None else float(angle)
+        self._call(self._lib.m2c_world_set_pose(self._w, body, float(position[0]),
+                                                float(position[1]), a))
+
+    def set_acceleration(self, body: int, acceleration: Vec) -> None:
+        """The body's own constant acceleration (its gravity; PGE's put_xaccel/put_yaccel)."""
+        self._call(self._lib.m2c_world_set_acceleration(self._w, body, float(acceleration[0]),
+                                                        float(acceleration[1])))
+        self._gravity[body] = (float(acceleration[0]), float(acceleration[1]))
+
+    def set_mass(self, body: int, mass: float, inertia: float | None = None) -> None:
+        """A new mass (and moment of inertia about the centre of mass: default the shape's, or
+        the old one scaled with the mass). A static or kinematic body keeps them for when it
+        becomes dynamic (set_kind)."""
+        info = self.bodies[body]
+        if inertia is None:
+            inertia = (info.inertia * mass / info.mass if math.isfinite(info.mass)
+                       else mass * mass_properties(list(info.vertices), info.radius).inertia_per_mass)
+        if not (inertia > 0):
+            inertia = mass * 1e-12  # a point mass
+        if not (mass > 0 and math.isfinite(mass) and math.isfinite(inertia)):
+            raise EngineError("set_mass: mass and inertia must be positive and finite")
+        if info.kind != "dynamic":
+            self._dormant[body] = (float(mass), float(inertia))
+            return
+        self._call(self._lib.m2c_world_set_mass(self._w, body, float(mass), float(inertia), 0.0, 0.0))
+        self._sync(body, mass=float(mass), inertia=float(inertia))
+
+    def set_kind(self, body: int, kind: str) -> None:
+        """Make a body static, kinematic or dynamic now (PGE's fix/unfix). A body becoming
+        dynamic gets the mass given to set_mass, else its density (at add_body) times its area,
+        and its reference point moves to its centre of mass (`bodies[id].vertices` follow);
+        a body becoming static stops."""
+        if kind not in KINDS:
+            raise EngineError(f"kind must be one of {', '.join(KINDS)}, not {kind!r}")
+        info = self.bodies[body]
+        if not info.alive:
+            raise EngineError("set_kind: the body was removed")
+        if kind == info.kind:
+            return
+        if kind == "dynamic":
+            props = mass_properties(list(info.vertices), info.radius)
+            m, I = self._dormant.get(body, (self._density[body] * props.area, 0.0))
+            I = I or m * props.inertia_per_mass or m * 1e-12
+            if not (m > 0):
+                raise EngineError("set_kind: a dynamic body needs a positive mass (set_mass first)")
+            cx, cy = props.centroid if props.area > 0 else (0.0, 0.0)
+            self._call(self._lib.m2c_world_set_mass(self._w, body, m, I, cx, cy))
+            self._call(self._lib.m2c_world_set_kind(self._w, body, KINDS[kind]))
+            self._sync(body, kind=kind, mass=m, inertia=I)
+            self.set_acceleration(body, self._gravity[body])
+            return
+        if info.kind == "dynamic":
+            self._dormant[body] = (info.mass, info.inertia)
+        self._call(self._lib.m2c_world_set_kind(self._w, body, KINDS[kind]))
+        self._sync(body, kind=kind, mass=math.inf, inertia=math.inf)
+
+    def apply_impulse(self, body: int, impulse: Vec, point: Vec | None = None) -> None:
+        """Apply an impulse to a dynamic body now, at a world point (default: its centre of
+        mass, which gives no spin)."""
+        x, y, _ = self.pose(body) if point is None else (point[0], point[1], 0.0)
+        self._call(self._lib.m2c_world_apply_impulse(self._w, body, float(impulse[0]),
+                                                     float(impulse[1]), float(x), float(y)))
+
+    def _sync(self, body: int, **changes) -> None:
+        """BodyInfo after a change: the core's vertices (set_mass may move the reference
+        point to the centre of mass) and the changed fields."""
+        info = self.bodies[body]
+        n = len(info.vertices)
+        out = self._ffi.new("double[]", 2 * n)
+        self._lib.m2c_world_vertices(self._w, body, out, n)
+        verts = tuple((out[2 * k], out[2 * k + 1]) for k in range(n))
+        self.bodies[body] = replace(info, vertices=verts, **changes)
 
     # -- reading ----------------------------------------------------------------------------
 
