@@ -27,10 +27,8 @@ test: setup
 	CI=true $(PYTHON) -m pytest
 
 # Speed against accuracy: root methods, Taylor model error, example scenes, the engine against
-# pymunk and Box2D -> bench/results/ (the bench extra, installed here when missing).
+# pymunk and Box2D -> bench/results/ (setup installs the bench extra with the rest).
 bench: setup
-	$(PYTHON) -c "import numpy, matplotlib, mpmath, pymunk, Box2D" 2>/dev/null || \
-	    $(PYTHON) -m pip install -q --disable-pip-version-check -e '.[bench]'
 	$(PYTHON) bench/roots.py
 	$(PYTHON) bench/engine.py
 

@@ -8,6 +8,7 @@ text echoed)."""
 from __future__ import annotations
 
 import argparse
+import os
 import shutil
 import subprocess
 import sys
@@ -17,6 +18,20 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
 from max2code.output import write_if_changed  # noqa: E402  (temporary file, then rename)
+
+
+def smoke() -> bool:
+    """MAX2CODE_BENCH_SMOKE=1: run the documented command at the smallest size that still goes
+    through every step (tests/test_docs.py runs the docs' bench commands so). Its figures mean
+    nothing; a smoke run never writes into bench/results unless told to (results_dir)."""
+    return os.environ.get("MAX2CODE_BENCH_SMOKE") == "1"
+
+
+def results_dir(default: Path) -> Path:
+    """Where a benchmark writes its results: MAX2CODE_BENCH_RESULTS, else the script's folder
+    under bench/results (default)."""
+    where = os.environ.get("MAX2CODE_BENCH_RESULTS")
+    return Path(where) if where else default
 
 
 def gcc(tool: str) -> str:

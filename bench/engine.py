@@ -42,8 +42,9 @@ import engine_anchors  # noqa: E402
 import engine_ours  # noqa: E402
 import engine_scenes as S  # noqa: E402
 from roots import machine  # noqa: E402
+from benchtools import results_dir, smoke  # noqa: E402
 
-RESULTS = HERE / "results"
+RESULTS = results_dir(HERE / "results")
 SIZES = (10, 100, 1000)
 KINDS = ("sparse", "dense")
 
@@ -446,12 +447,12 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--quick", action="store_true", help="fewer trials, shorter runs")
     args = parser.parse_args(argv)
-    results = run(args.quick)
+    results = run(args.quick or smoke())
     RESULTS.mkdir(parents=True, exist_ok=True)
     (RESULTS / "engine.json").write_text(json.dumps(results, indent=1) + "\n")
     (RESULTS / "engine.md").write_text(markdown(results))
     for path in charts(results):
-        print(f"bench/engine: wrote {path.relative_to(HERE.parent)}")
+        print(f"bench/engine: wrote {path}")
     print(table(results))
     return 0
 

@@ -72,10 +72,10 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "tests"))
 sys.path.insert(0, str(ROOT / "bench"))
 
-from benchtools import compile_c  # noqa: E402  (bench/benchtools.py, beside this script)
+from benchtools import compile_c, results_dir, smoke  # noqa: E402  (bench/benchtools.py, beside this script)
 from runtime import cases  # noqa: E402  (tests/runtime/cases.py: builders and the oracle)
 
-RESULTS = ROOT / "bench" / "results"
+RESULTS = results_dir(ROOT / "bench" / "results")
 CACHE = ROOT / "bench" / ".cache"
 C_DIR = ROOT / "runtime" / "c"
 METHODS = ("interval", "interval-nograze", "gsl", "closed")  # C numbering 0..3
@@ -578,6 +578,8 @@ def main(argv: list[str] | None = None) -> int:
     args = ap.parse_args(argv)
     if args.quick:
         args.count, args.sweeps = 60, 5
+    if smoke():  # tests/test_docs.py: every step, the least work
+        args.count, args.sweeps, args.rounds, args.quick = 4, 1, 1, True
     start = time.time()
     polys = polynomials(args.count)
     cmd = " ".join(["python bench/roots.py", *(argv if argv is not None else sys.argv[1:])])
