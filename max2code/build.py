@@ -27,6 +27,7 @@ from pathlib import Path
 from . import cache, depfile, maxima
 from .mdtext import inline
 from .diagnostics import Max2CodeError, Pos
+from .options import add_maxima_options, add_quiet_option, apply_maxima_options
 from .output import write_if_changed
 from .paths import inputs_or_folder, no_inputs
 
@@ -48,6 +49,7 @@ class Outcome:
     row: Row | None
     messages: tuple[str, ...]
     outputs: tuple[tuple[str, str], ...] = ()
+    notes: tuple[str, ...] = ()  # advice, printed unless -q
 
 
 def build_one(path: str, out: Path, langs: list[str] | None, timeout: float) -> Outcome:
@@ -60,17 +62,21 @@ def build_one(path: str, out: Path, langs: list[str] | None, timeout: float) -> 
     name = module_name(spec)
     lines = []
     messages: list[str] = []
+    notes: list[str] = []
     outputs: list[tuple[str, str]] = []
     for lang_name in langs:
         lang = LANGUAGES[lang_name]
         folder = out / lang_name
         target = folder / f"{name}{lang.extension}"
         result = generate(spec, poly, lang, "module", str(target))
-        messages += [str(w) for w in result.warnings if str(w) not in messages]
+        for w in result.warnings:
+            kept = notes if w.severity == "note" else messages
+            if str(w) not in kept:
+                kept.append(str(w))
         outputs += [*result.companions, (str(target), result.text)]
         lines.append((lang_name, result.text.count("\n") + sum(t.count("\n") for _, t in result.companions)))
     row = Row(path, name, poly.degree, len(poly.parameters), poly.maxima_seconds, tuple(lines))
-    return Outcome(row, tuple(messages), tuple(outputs))
+    return Outcome(row, tuple(messages), tuple(outputs), tuple(notes))
 
 
 def _result_key(path: str, out: Path, langs: list[str] | None) -> str | None:
@@ -106,7 +112,8 @@ def _cached(key: str | None, out: Path) -> Outcome | None:
             if len(parts) != 2 or any(p in ("", ".", "..") or "\\" in p for p in parts):
                 return None
             outputs.append((str(out / parts[0] / parts[1]), str(text)))
-        return Outcome(row, tuple(str(m) for m in obj["messages"]), tuple(outputs))
+        return Outcome(row, tuple(str(m) for m in obj["messages"]), tuple(outputs),
+                       tuple(str(m) for m in obj["notes"]))
     except (KeyError, TypeError, ValueError):
         return None
 
@@ -122,7 +129,7 @@ def _store(key: str | None, outcome: Outcome, out: Path) -> None:
     cache.put_json(key, {"row": {"source": r.source, "name": r.name, "degree": r.degree,
                                  "nparams": r.nparams, "seconds": r.seconds,
                                  "lines": [list(x) for x in r.lines]},
-                         "messages": list(outcome.messages),
+                         "messages": list(outcome.messages), "notes": list(outcome.notes),
                          "outputs": relative}, "results")
 
 
@@ -199,8 +206,8 @@ def main(argv: list[str]) -> int:
                     help="only this language (repeatable; default: all registered ones)")
     ap.add_argument("-j", "--jobs", type=int, default=1, metavar="N",
                     help="run up to N equations at once (default 1; 0: one per CPU)")
-    from .cli import add_maxima_options, apply_maxima_options
     add_maxima_options(ap)
+    add_quiet_option(ap)
     opts = ap.parse_args(argv)
     apply_maxima_options(opts)
     if opts.jobs < 0:
@@ -229,7 +236,7 @@ def main(argv: list[str]) -> int:
     rows, failed = [], []
     clashes = _clashes(inputs, outcomes)
     for path, outcome in zip(inputs, outcomes):
-        for message in outcome.messages:
+        for message in (*outcome.messages, *(() if opts.quiet else outcome.notes)):
             print(message, file=sys.stderr)
         if path in clashes:
             if clashes[path]:

@@ -9,9 +9,10 @@ import os
 import signal
 import sys
 
-from . import __version__, cache, children, depfile, maxima
+from . import __version__, children, depfile
 from .diagnostics import Max2CodeError
-from .output import write_if_changed
+from .options import add_maxima_options, add_quiet_option, apply_maxima_options, shown
+from .output import require_folder, write_if_changed
 
 
 # `max2code NAME ...` runs the module's main(argv); one line per subcommand.
@@ -72,61 +73,17 @@ def _parser() -> argparse.ArgumentParser:
     ap.add_argument("-MP", dest="mp", action="store_true",
                     help="add an empty rule for each dependency, as gcc -MP does")
     add_maxima_options(ap)
+    add_quiet_option(ap)
     ap.add_argument("--strategy", choices=STRATEGIES, default=DEFAULT_STRATEGY,
                     help="optimised (default): relative quantities first, expansion in t only, "
                          "shared subexpressions; expanded: the paper's fully expanded coefficients")
     ap.add_argument("--no-variants", action="store_true",
                     help="emit only the general polynomial, without the role variants")
+    ap.add_argument("--print-name", action="store_true",
+                    help="print the name the outputs are named after (the declared 'function', "
+                         "else the file's stem) and exit; reads only the header, no Maxima")
     ap.add_argument("input", metavar="FILE.mxm")
     return ap
-
-
-def seconds(text: str) -> float:
-    """--timeout's type: a finite number of seconds above 0 (a usage error otherwise)."""
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected seconds, not {text!r}") from None
-    if not (0 < value < math.inf):
-        raise argparse.ArgumentTypeError(f"must be a finite number of seconds above 0, not {text}")
-    return value
-
-
-def mebibytes(text: str) -> int:
-    """--maxima-memory's type: 0 (no limit), or at least what GCL needs to start."""
-    from .confine import MIN_MEMORY_MIB
-
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a whole number of MiB, not {text!r}") from None
-    if value < 0 or 0 < value < MIN_MEMORY_MIB:
-        raise argparse.ArgumentTypeError(f"must be 0 (no limit) or at least {MIN_MEMORY_MIB} "
-                                         f"MiB (what GCL needs to start), not {value}")
-    return value
-
-
-def add_maxima_options(ap: argparse.ArgumentParser) -> None:
-    """The options of every command that runs Maxima on a .mxm (README: Security), so that an
-    error's advice (--allow-unsafe-maxima, --maxima-memory) holds in each."""
-    from .confine import DEFAULT_MEMORY_MIB
-
-    ap.add_argument("--timeout", type=seconds, default=maxima.DEFAULT_TIMEOUT, metavar="SECONDS",
-                    help=f"limit on one Maxima run (default {maxima.DEFAULT_TIMEOUT:g})")
-    ap.add_argument("--no-cache", action="store_true",
-                    help="neither read nor write the cache (Maxima results; build's outputs)")
-    ap.add_argument("--maxima-memory", type=mebibytes, default=None, metavar="MIB",
-                    help=f"memory (address space) one Maxima run may use (default "
-                         f"{DEFAULT_MEMORY_MIB}; 0: no limit)")
-    ap.add_argument("--allow-unsafe-maxima", action="store_true",
-                    help="let the .mxm program run shell commands, Lisp, file input/output and "
-                         "plotting (refused by default: see README, Security)")
-
-
-def apply_maxima_options(opts: argparse.Namespace) -> None:
-    if opts.no_cache:
-        cache.disable()
-    maxima.configure(opts.maxima_memory, opts.allow_unsafe_maxima)
 
 
 def report(exc: Max2CodeError) -> int:
@@ -173,6 +130,19 @@ def closed_pipe() -> int:
     return 128 + signal.SIGPIPE
 
 
+def print_name(path: str, lang_name: str) -> int:
+    """What `max2code build` and CMake's max2code_generate() name an equation's outputs after,
+    so that a build system can know the file before generating it."""
+    from .emit import check_module_name, module_name
+    from .languages import LANGUAGES
+    from .parse import parse_file
+
+    spec = parse_file(path)
+    check_module_name(spec, LANGUAGES[lang_name])
+    print(module_name(spec))
+    return 0
+
+
 def _main(argv: list[str] | None) -> int:
     args = list(sys.argv[1:] if argv is None else argv)
     if args and args[0] in SUBCOMMANDS:
@@ -180,10 +150,15 @@ def _main(argv: list[str] | None) -> int:
         return int(module.main(args[1:]))
     ap = _parser()
     opts = ap.parse_args(args)
+    if opts.print_name:
+        return print_name(opts.input, opts.lang)
     dep_path = opts.depfile or (depfile.default_name(opts.output) if opts.md else None)
     if dep_path and opts.output == "-":
         ap.error("a dependency file (-MD, -MF) needs an output file (-o FILE)")
     apply_maxima_options(opts)
+    for path in (opts.output, dep_path):  # before Maxima runs, as a compiler would fail at once
+        if path and path != "-":
+            require_folder(path)
     from .generate import generate, load
     from .languages import LANGUAGES
 
@@ -197,8 +172,8 @@ def _main(argv: list[str] | None) -> int:
             targets = [opts.output, *(path for path, _ in result.companions)]
             deps = [opts.input, *depfile.loaded_files(spec.program.statements)]
             dep_text = depfile.text(targets, deps, opts.mp)
-        for warning in result.warnings:
-            print(warning, file=sys.stderr)
+        for line in shown(result.warnings, opts.quiet):
+            print(line, file=sys.stderr)
         for path, text in result.companions:  # first: a definition precedes its implementation
             write_if_changed(path, text)
         write_if_changed(opts.output, result.text)

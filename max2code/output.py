@@ -57,6 +57,18 @@ def write_if_changed(path: str, text: str) -> bool:
     return True
 
 
+def require_folder(path: str) -> None:
+    """Refuse at once an output whose folder does not exist (or is not a folder), before any
+    slow step runs: `max2code -o missing/x.h` fails in a moment, not after Maxima did its work,
+    and like a compiler it does not create the folder (a typo would otherwise scatter files)."""
+    if _descriptor(path) is not None:
+        return
+    folder = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(folder):
+        what = "is not a folder" if os.path.exists(folder) else "does not exist"
+        raise error(Pos(path, 1, 1), f"cannot write output: its folder {os.path.dirname(path) or '.'!r} {what}")
+
+
 def _descriptor(path: str) -> int | None:
     """The open descriptor a path names -- /dev/stdout, /dev/stderr, /dev/fd/N,
     /proc/self/fd/N -- or None.  Such an output is written through the descriptor itself,

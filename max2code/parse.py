@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import difflib
 import os
 import re
 from functools import lru_cache
@@ -186,9 +187,19 @@ def _syntax_error(exc: UnexpectedInput, text: str, path: str) -> Max2CodeError:
             return error(end, eof_message)
         if str(tok).lower() == "begin":  # BEGIN_END did not match: no closing 'end' line
             return error(pos, "unterminated 'begin': no line starting with 'end' follows")
-        expected = ", ".join(sorted(_describe(t) for t in exc.expected))
-        return error(pos, f"unexpected {_describe(tok.type)} {str(tok)[:20]!r}; expected {expected}")
+        described = sorted(_describe(t) for t in exc.expected)
+        expected = ", ".join(described)
+        return error(pos, f"unexpected {_describe(tok.type)} {str(tok)[:20]!r}; expected "
+                          f"{expected}{_did_you_mean(str(tok), described)}")
     return error(pos, str(exc).splitlines()[0])
+
+
+def _did_you_mean(word: str, described: list[str]) -> str:
+    """A misspelt section keyword (`paramters`) is named with its likely meaning, as gcc and
+    Python do for a misspelt identifier."""
+    keywords = [d for d in described if d.isalpha()]
+    close = difflib.get_close_matches(word.lower(), keywords, n=1, cutoff=0.75)
+    return f"; did you mean '{close[0]}'?" if close else ""
 
 
 def _describe(terminal: str) -> str:

@@ -257,7 +257,7 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--figure6", action=argparse.BooleanOptionalAction, default=None,
                     help="the paper's figure 6 table (default: when a shipped equation is among "
                          "the inputs)")
-    from .cli import add_maxima_options, apply_maxima_options
+    from .options import add_maxima_options, apply_maxima_options
     add_maxima_options(ap)
     opts = ap.parse_args(argv)
     apply_maxima_options(opts)

@@ -120,7 +120,7 @@ def main(argv: list[str]) -> int:
                     help="list every candidate measured, not only the suggestions")
     ap.add_argument("--pairs", action="store_true",
                     help="also try every pair of parameters (n(n-1)/2 more polynomials)")
-    from .cli import add_maxima_options, apply_maxima_options
+    from .options import add_maxima_options, apply_maxima_options
     add_maxima_options(ap)
     opts = ap.parse_args(argv)
     apply_maxima_options(opts)

@@ -306,7 +306,7 @@ def main(argv: list[str]) -> int:
                     help="output file ('-' for standard output, the default)")
     ap.add_argument("--count", type=int, default=GENERIC_COUNT, metavar="N",
                     help=f"random parameter sets (default {GENERIC_COUNT})")
-    from .cli import add_maxima_options, apply_maxima_options
+    from .options import add_maxima_options, apply_maxima_options
     add_maxima_options(ap)
     opts = ap.parse_args(argv)
     apply_maxima_options(opts)

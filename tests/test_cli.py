@@ -157,3 +157,49 @@ def test_every_maxima_command_takes_the_options_its_errors_advise(command: str) 
     assert r.returncode == 0
     for option in ("--allow-unsafe-maxima", "--maxima-memory", "--timeout", "--no-cache"):
         assert option in r.stdout, (command, option)
+
+
+def test_output_into_a_missing_folder_fails_before_maxima(tmp_path: Path) -> None:
+    """Like a compiler, at once: with no Maxima on PATH the folder's error still comes first
+    (it used to come only after Maxima had run), and no folder is created."""
+    env = {k: v for k, v in os.environ.items() if k != "MAXIMA"}
+    env["PATH"] = str(tmp_path)  # no Maxima on it
+    for args in (["-o", str(tmp_path / "nowhere" / "x.h")],
+                 ["-o", str(tmp_path / "x.h"), "-MF", str(tmp_path / "nodeps" / "x.d")]):
+        result = subprocess.run([sys.executable, "-m", "max2code", "--lang=c",
+                                 "equations/point-line.mxm", *args],
+                                capture_output=True, text=True, cwd=ROOT, env=env, timeout=60)
+        assert result.returncode == 1, result.stderr
+        assert "cannot write output: its folder" in result.stderr and "does not exist" in result.stderr
+        assert "maxima" not in result.stderr.lower()
+    assert sorted(p.name for p in tmp_path.iterdir()) == []
+
+
+def test_print_name_reads_only_the_header(tmp_path: Path) -> None:
+    """--print-name: the declared function, else the stem made an identifier; no Maxima."""
+    env = {**os.environ, "PATH": str(tmp_path)}
+    named = tmp_path / "some-file.mxm"
+    named.write_text("function declared_name\nbegin\n  t - 1;\nend\n")
+    plain = tmp_path / "2-bodies.mxm"
+    plain.write_text("begin\n  t - 1;\nend\n")
+    for path, expected in ((named, "declared_name"), (plain, "eq_2_bodies")):
+        result = subprocess.run([sys.executable, "-m", "max2code", "--lang=c", "--print-name",
+                                 str(path)], capture_output=True, text=True, env=env, timeout=60)
+        assert (result.returncode, result.stdout) == (0, expected + "\n"), result.stderr
+
+
+def test_quiet_silences_notes_only(tmp_path: Path, maxima_exe: str) -> None:
+    """A role that gives no variant is a note; -q drops it (in build too), nothing else."""
+    mxm = tmp_path / "q.mxm"
+    mxm.write_text("function quiet_demo\nparameters a, b\nrole bzero = b\nbegin\n"
+                   "  (a + t)^2 - b;\nend\n")
+    note = f"{mxm}:3:1: note: role 'bzero' gives no variant"
+    loud = run("--lang=c", str(mxm), "-o", str(tmp_path / "q.h"))
+    quiet = run("-q", "--lang=c", str(mxm), "-o", str(tmp_path / "q2.h"))
+    assert loud.returncode == quiet.returncode == 0
+    assert note in loud.stderr and quiet.stderr == ""
+    assert "quiet_demo_first_root" in (tmp_path / "q2.h").read_text()
+    for flags in ([], ["-q"]):  # the second run is served from the cache: its notes too
+        built = run("build", *flags, "-o", str(tmp_path / "b"), "--lang", "c", str(mxm))
+        assert built.returncode == 0, built.stderr
+        assert (note in built.stderr) == (not flags), built.stderr

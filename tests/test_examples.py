@@ -121,6 +121,24 @@ def test_cmake(tree: Path, env: dict[str, str]) -> None:
     check_time(run([str(build / "collide")], folder, env))
 
 
+def test_cmake_names_the_output_after_the_function(tree: Path, env: dict[str, str]) -> None:
+    """max2code_generate() without OUTPUT names the file as `max2code build` does: after the
+    declared function (main.c includes "circles.h"), not the file's stem ("two-circles.h")."""
+    cmake = require("cmake")
+    require("ninja")
+    folder = tree / "cmake"
+    (tree / "equations" / "circles.mxm").rename(tree / "equations" / "two-circles.mxm")
+    lists = folder / "CMakeLists.txt"
+    lists.write_text(lists.read_text().replace("equations/circles.mxm", "equations/two-circles.mxm"))
+    package = run([sys.executable, "-m", "max2code", "runtime", "--cmake-dir"], folder, env).strip()
+    build = folder / "build"
+    run([cmake, "-S", str(folder), "-B", str(build), "-G", "Ninja", f"-Dmax2code_DIR={package}"],
+        folder, env)
+    out = run([cmake, "--build", str(build)], folder, env)
+    assert "max2code circles.h" in out and not (build / "two-circles.h").exists(), out
+    check_time(run([str(build / "collide")], folder, env))
+
+
 def cargo_exe() -> str:
     home = Path.home() / ".cargo" / "bin" / "cargo"
     return shutil.which("cargo") or (str(home) if home.exists() else require("cargo"))

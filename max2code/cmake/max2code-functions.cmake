@@ -84,7 +84,15 @@ function(max2code_generate out_var)
   list(GET _extensions ${_at} _extension)
   get_filename_component(_mxm "${ARG_MXM}" ABSOLUTE)
   if(NOT ARG_OUTPUT)
-    get_filename_component(_stem "${_mxm}" NAME_WE)
+    # Named as `max2code build` names it: after the declared function, else the file's stem.
+    # Reading the header again when the .mxm changes keeps the name right after a rename.
+    execute_process(COMMAND ${MAX2CODE_COMMAND} --lang=${ARG_LANG} --print-name "${_mxm}"
+                    OUTPUT_VARIABLE _stem ERROR_VARIABLE _error RESULT_VARIABLE _status
+                    OUTPUT_STRIP_TRAILING_WHITESPACE)
+    if(NOT _status EQUAL 0)
+      message(FATAL_ERROR "max2code_generate: ${_error}")
+    endif()
+    set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS "${_mxm}")
     set(ARG_OUTPUT "${_stem}${_extension}")
   endif()
   set(_out "${CMAKE_CURRENT_BINARY_DIR}/${ARG_OUTPUT}")
