@@ -4,7 +4,7 @@
 
 For each equation (default: every shipped one, equations/*.mxm) the generated module (module
 form, default strategy, with variants) is built in every language by its harness
-(max2code/harness/) and run on the equation's vectors (default tests/vectors/<stem>.jsonl: exact
+(its folder's harness.py, max2code/languages/<lang>/) and run on the equation's vectors (default tests/vectors/<stem>.jsonl: exact
 parameters, the exact coefficients and first root from an independent oracle). Reported per
 language and vector family: the worst coefficient error (relative to the largest exact
 coefficient), the worst relative error of the first root, how much of its bound the worst root
@@ -211,8 +211,8 @@ def shipped_equations() -> list[Path]:
 
 
 def languages() -> list[str]:
-    from .harness import HARNESSES
-    return list(HARNESSES)
+    from .languages import harnesses
+    return list(harnesses())
 
 
 def build_directory() -> Path:
@@ -227,10 +227,10 @@ def check(equations: list[Path], vectors: dict[Path, Path] | None = None,
 
     `vectors` maps an equation to its vector file (default: `vectors_for`). No language is
     built for an equation without vectors (an error in the report instead)."""
-    from .harness import HARNESSES
+    from .languages import harnesses
 
     report = Report()
-    langs = langs or list(HARNESSES)
+    langs = langs or list(harnesses())
     build_dir = build_dir or build_directory()
     build_dir.mkdir(parents=True, exist_ok=True)
     with tempfile.TemporaryDirectory(prefix="max2code-check-") as tmp:
@@ -242,7 +242,8 @@ def check(equations: list[Path], vectors: dict[Path, Path] | None = None,
 def _check(equations: list[Path], vectors: dict[Path, Path] | None, langs: list[str],
            build_dir: Path, timeout: float, tmp: Path, report: Report) -> None:
     from .generate import load
-    from .harness import HARNESSES, Case, HarnessError, Unit
+    from .languages import harnesses
+    from .languages.harness import Case, HarnessError, Unit
 
     units, by_name = [], {}
     for mxm in equations:
@@ -266,11 +267,12 @@ def _check(equations: list[Path], vectors: dict[Path, Path] | None, langs: list[
         by_name[unit.name] = (mxm, path, vs)
     if not units:
         return
+    harness = harnesses()
     for lang in langs:
         workdir = tmp / lang
         workdir.mkdir()
         try:
-            outcomes = HARNESSES[lang].run(units, workdir, build_dir)
+            outcomes = harness[lang].run(units, workdir, build_dir)
         except HarnessError as exc:
             report.errors.append(f"{lang}: {exc}")
             continue
@@ -319,7 +321,7 @@ def main(argv: list[str]) -> int:
                     help=f"kept between runs (Cargo's target folder); default "
                          f"{build_directory()}")
     ap.add_argument("--json", metavar="FILE", help="also write the report as JSON")
-    from .cli import add_maxima_options, apply_maxima_options
+    from .options import add_maxima_options, apply_maxima_options
     add_maxima_options(ap)
     opts = ap.parse_args(argv)
     apply_maxima_options(opts)

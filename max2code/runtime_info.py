@@ -18,10 +18,7 @@ from __future__ import annotations
 
 import argparse
 import hashlib
-import importlib.util
-import shutil
 import site
-import subprocess
 import sys
 from pathlib import Path
 
@@ -29,54 +26,14 @@ from . import __version__, cache
 from .output import write_if_changed
 from .paths import PACKAGE, runtime_dir
 
-C_LIBS = ["-lgsl", "-lgslcblas", "-lm"]
-
-
-def _m2_iso_libs() -> list[str]:
-    """gm2's ISO library folder, as DESIGN.md measured: -L<m2iso> -lm2iso -lpthread."""
-    gm2 = shutil.which("gm2")
-    folder = "$(gm2 -print-file-name=m2/m2iso)"
-    if gm2:
-        try:
-            found = subprocess.run([gm2, "-print-file-name=m2/m2iso"], capture_output=True,
-                                   text=True, timeout=30).stdout.strip()
-            folder = found or folder
-        except (OSError, subprocess.SubprocessError):
-            pass
-    return [f"-L{folder}", "-lm2iso", "-lpthread"]
-
-
 def info(lang: str) -> dict[str, str]:
-    """The answers for one language; every value is one line of text ('' when not relevant)."""
-    c_dir = runtime_dir("c")
-    c_source = str(c_dir / "max2code_roots.c")
-    if lang == "c":
-        return {"dir": str(c_dir), "cflags": f"-I{c_dir}", "sources": c_source,
-                "libs": " ".join(C_LIBS),
-                "note": "compile the source into the program; the generated header includes "
-                        "max2code_roots.h"}
-    if lang == "m2":
-        m2 = runtime_dir("m2")
-        return {"dir": str(m2), "cflags": f"-fiso -I{m2}", "sources": c_source,
-                "libs": " ".join(_m2_iso_libs() + C_LIBS),
-                "note": "Max2codeRoots.def binds the C runtime: compile the C source with gcc "
-                        "and link it; compile the generated .mod with gm2 -fiso -fcpp"}
-    if lang == "rust":
-        crate = runtime_dir("rust")
-        return {"dir": str(crate), "cflags": "", "sources": str(crate / "src" / "lib.rs"),
-                "libs": "", "cargo": f'max2code-runtime = {{ path = "{crate.as_posix()}" }}',
-                "note": "a Cargo path dependency: the 'cargo' line goes under [dependencies]"}
-    if lang == "python":
-        folder = runtime_dir("python")
-        spec = importlib.util.find_spec("max2code_runtime")
-        importable = spec is not None and spec.origin is not None
-        where = str(Path(spec.origin).parent) if importable else ""  # type: ignore[union-attr, arg-type]
-        return {"dir": str(folder), "cflags": "", "sources": str(folder / "max2code_runtime"),
-                "libs": "", "importable": "yes" if importable else "no",
-                "module": where,
-                "note": "pure Python: installed with max2code as 'max2code_runtime', else put "
-                        "'dir' on PYTHONPATH"}
-    # a language added to the registry: its runtime folder, and no flags this tool knows of
+    """The answers for one language, from its registry entry; every value is one line of text
+    ('' when not relevant). A language without build flags gets its runtime folder."""
+    from .languages import REGISTRY
+
+    entry = REGISTRY.get(lang)
+    if entry is not None and entry.runtime is not None:
+        return entry.runtime()
     return {"dir": str(runtime_dir(lang)), "cflags": "", "sources": "", "libs": "",
             "note": "no build flags known for this language: its runtime is in 'dir'"}
 

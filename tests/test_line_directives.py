@@ -7,7 +7,7 @@
   generated file's `return` must be right too.
 * gm2 12 with -fcpp maps `#line N` to line N-1 (gcc maps it to N); the Modula-2 printer writes
   N+1. A control test compiles the same module without that correction and expects the quirk,
-  so a gm2 that fixes it is noticed (then the correction must go: max2code/languages/m2.py).
+  so a gm2 that fixes it is noticed (then the correction must go: max2code/languages/m2/printer.py).
 * Rust and Python carry `// file.mxm:LINE` and `# file.mxm:LINE` comments.
 
 Tools: gcc, gm2, gdb, objdump. Under CI (CI set) a missing tool fails; elsewhere it skips.

@@ -33,9 +33,9 @@ from max2code.diagnostics import Pos
 from max2code.emit import context
 from max2code.generate import generate, load
 from max2code.languages import LANGUAGES
-from max2code.languages.m2 import M2_FORMALS
-from max2code.languages.python import PY_PREDECLARED
-from max2code.languages.rust import RUST_FUNCTIONS
+from max2code.languages.m2.printer import M2_FORMALS
+from max2code.languages.python.printer import PY_PREDECLARED
+from max2code.languages.rust.printer import RUST_FUNCTIONS
 from max2code.names import choose
 
 ORDINARY = "p c i k n t0 tmax degree result variant x q t1 tmin value c0 c1".split()

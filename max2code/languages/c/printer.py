@@ -5,8 +5,8 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 
-from ..diagnostics import Pos
-from .base import Language
+from ...diagnostics import Pos
+from ..base import Language
 
 # Keywords of C (C89 to C23, with GNU's) and of C++, since a C header is often included from C++.
 C_KEYWORDS = frozenset("""

@@ -6,9 +6,9 @@ import textwrap
 
 from dataclasses import dataclass
 
-from ..diagnostics import Pos
-from ..expr import Add, Expr
-from .base import P_ATOM, Language
+from ...diagnostics import Pos
+from ...expr import Add, Expr
+from ..base import P_ATOM, Language
 
 # Python's hard keywords (soft ones, `match`, `case`, `type`, `_`, are ordinary names). Written
 # out rather than read from `keyword`, so that the output does not depend on the Python running.

@@ -6,8 +6,8 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from ..paths import runtime_dir
-from .base import Harness, Outcome, Unit, parse_lines, run
+from ...paths import runtime_dir
+from ..harness import Harness, Outcome, Unit, parse_lines, run
 
 
 class PythonHarness(Harness):

@@ -12,9 +12,9 @@ import shutil
 import struct
 from pathlib import Path
 
-from ..paths import runtime_dir
-from .base import Harness, Outcome, Unit, parse_lines, run, tool
-from .c import LIBS, runtime_object
+from ...paths import runtime_dir
+from ..harness import Harness, Outcome, Unit, parse_lines, run, tool
+from ..c.harness import LIBS, runtime_object
 
 
 def halves(x: float) -> tuple[int, int]:

@@ -10,9 +10,9 @@ import hashlib
 import os
 from pathlib import Path
 
-from ..output import write_if_changed
-from ..paths import runtime_dir
-from .base import Harness, Outcome, Unit, bits_hex, from_bits_hex, parse_lines, run, tool
+from ...output import write_if_changed
+from ...paths import runtime_dir
+from ..harness import Harness, Outcome, Unit, bits_hex, from_bits_hex, parse_lines, run, tool
 
 
 class RustHarness(Harness):

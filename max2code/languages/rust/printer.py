@@ -13,8 +13,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from ..diagnostics import Pos
-from .m2 import SignedOperands
+from ...diagnostics import Pos
+from ..signed import SignedOperands
 
 # Strict and reserved keywords (all editions; weak ones such as `union` are ordinary names).
 RUST_KEYWORDS = frozenset("""

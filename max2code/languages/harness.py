@@ -16,7 +16,7 @@ from typing import Callable
 
 from ..emit import module_name, template
 from ..generate import generate
-from ..languages import LANGUAGES
+from . import LANGUAGES
 from ..poly import Polynomial
 from ..spec import Spec
 from ..variants import DEFAULT_STRATEGY

@@ -5,11 +5,11 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..paths import runtime_dir
-from .base import Harness, Outcome, Unit, parse_lines, run, tool
+from ...paths import runtime_dir
+from ..harness import Harness, Outcome, Unit, parse_lines, run, tool
+from .runtime import LIBS
 
 CFLAGS = ["-std=c11", "-Wall", "-Wextra", "-Werror", "-pedantic", "-O2"]
-LIBS = ["-lgsl", "-lgslcblas", "-lm"]
 
 
 def runtime_object(gcc: str, workdir: Path) -> Path:
