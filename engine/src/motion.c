@@ -1,4 +1,5 @@
 /* motion.c -- exact evaluation of a body's motion at any time after its reference time. */
+#include <float.h>
 #include <math.h>
 
 #include "engine.h"
@@ -61,15 +62,37 @@ void world_point(const snap *s, const double off[2], double out[2])
 
 /* First time in (0, tmax] at which the coordinate x + v s + a s^2/2 reaches `edge` moving
  * outwards (dir = +1: increasing through it, -1: decreasing), or INFINITY. Just past the edge
- * (rounding, right after crossing it) counts as on it: the next crossing strictly after now. */
+ * (rounding, right after crossing it) counts as on it: the next crossing strictly after now;
+ * on it (or past it) and moving outwards is a crossing now.
+ *
+ * The root finder is always given a finite window: the crossing, if there is one, comes
+ * before twice the closed form's bound below. With tmax = inf the runtime's window rule
+ * misses real roots: 1e-16 + t - 4.905 t^2 had none (issue 33), so a ball one ulp above a cell
+ * boundary never crossed it and never met the floor below. */
 double first_crossing(double x, double v, double a, double edge, int dir, double tmax)
 {
-    double c[3] = {dir * (edge - x), -dir * v, -dir * 0.5 * a};
-    if (c[0] < 0)
-        c[0] = 0;
+    double d = dir * (edge - x), u = dir * v, h = dir * 0.5 * a;   /* u s + h s^2 = d */
+    if (!(d > 0)) {
+        d = 0;
+        if (u > 0 || (u == 0 && h > 0))
+            return 0.0; /* on the edge, leaving: now */
+    }
+    double bound;
+    if (h > 0)
+        bound = (fabs(u) + sqrt(u * u + 4 * h * d)) / h;
+    else if (u > 0)
+        bound = h < 0 ? u / -h : 2 * d / u; /* before the turning point; or linear */
+    else
+        return INFINITY; /* moving inwards and not accelerating outwards: never */
+    double window = fmin(tmax, bound);
+    if (!(window > 0))
+        return INFINITY;
+    if (!(window < INFINITY))
+        window = DBL_MAX;
+    double c[3] = {d, -u, -h};
     double t;
     int graze = 0;
-    if (m2c_first_root_ex(c, 2, tmax, &t, M2C_METHOD_INTERVAL, &graze) == 1 && !graze)
+    if (m2c_first_root_ex(c, 2, window, &t, M2C_METHOD_INTERVAL, &graze) == 1 && !graze)
         return t;
     return INFINITY;
 }

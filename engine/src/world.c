@@ -13,6 +13,7 @@
 
 #include "engine.h"
 
+#define HORIZON 1e6 /* seconds: see horizon() */
 #define SAME_TIME_LIMIT 1000000 /* events at one identical time before the step gives up */
 
 static int fail(m2c_world *w, const char *msg)
@@ -334,6 +335,14 @@ static void visit(m2c_world *w, int i, int j, void *ctx)
         bc->partner = j;
 }
 
+/* How far ahead a body with no other event is searched: a million seconds, or a millionth of
+ * the time now (so that now + horizon is a later time), at most to the largest double. */
+static double horizon(double now)
+{
+    double h = fmax(HORIZON, 1e-6 * fabs(now));
+    return now + h < DBL_MAX ? h : DBL_MAX - now;
+}
+
 void world_predict(m2c_world *w, int i)
 {
     body *b = &w->b[i];
@@ -366,6 +375,12 @@ void world_predict(m2c_world *w, int i)
             ev.t = w->now + tl;
             ev.kind = EV_LEAVE;
         }
+    }
+    if (!(ev.t < INFINITY)) {
+        /* nothing else due: search a finite horizon all the same (the root finder's window
+         * rule misses real roots with tmax = inf, issue 33) and predict again at its end */
+        ev.t = w->now + horizon(w->now);
+        ev.kind = EV_WINDOW;
     }
     best_contact bc;
     memset(&bc, 0, sizeof bc);
