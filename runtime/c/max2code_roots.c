@@ -3373,7 +3373,7 @@ static ALWAYS_INLINE int solve_core(const double c_in[], int degree, double tmax
 {
     if (!input_is_valid(c_in, degree, tmax, t))
         return -1;
-    if (method < M2C_METHOD_INTERVAL || method > M2C_METHOD_CLOSED)
+    if (method < 0 || method >= M2C_METHOD_COUNT)
         return -1;
 #ifdef M2C_NO_GSL
     if (method == M2C_METHOD_GSL)

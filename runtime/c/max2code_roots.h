@@ -216,10 +216,13 @@ extern "C" {
 
 #define M2C_MAX_DEGREE 16
 
-#define M2C_METHOD_INTERVAL 0
-#define M2C_METHOD_INTERVAL_NOGRAZE 1
-#define M2C_METHOD_GSL 2
-#define M2C_METHOD_CLOSED 3
+/* BEGIN methods: written from runtime/methods.toml by scripts/runtime-methods */
+#define M2C_METHOD_INTERVAL 0  /* interval solver with the graze (double root) check: the default */
+#define M2C_METHOD_INTERVAL_NOGRAZE 1  /* interval solver, sign changes only (no graze check) */
+#define M2C_METHOD_GSL 2  /* GSL's companion-matrix solve, as the original tool did (C runtime built with GSL) */
+#define M2C_METHOD_CLOSED 3  /* closed forms up to degree 4, the interval solver above or if a closed form overflows */
+#define M2C_METHOD_COUNT 4  /* valid methods: 0 .. COUNT - 1 */
+/* END methods */
 
 /* Default method (interval solver with graze check). */
 int m2c_first_root(const double c[], int degree, double tmax, double *t);

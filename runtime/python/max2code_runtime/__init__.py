@@ -29,9 +29,11 @@ from . import quartic, solver
 
 __all__ = ["first_root", "first_root_status", "first_roots", "METHODS", "BACKEND", "MAX_DEGREE"]
 
-METHODS = ("interval", "interval-nograze", "closed")
 MAX_DEGREE = solver.MAXN
+# BEGIN methods: written from runtime/methods.toml by scripts/runtime-methods
+METHODS = ("interval", "interval-nograze", "closed")
 _C_METHOD = {"interval": 0, "interval-nograze": 1, "closed": 3}
+# END methods
 REAL_TOL = math.sqrt(2.0**-52)  # |imag| <= REAL_TOL |z| counts as real (closed method)
 
 

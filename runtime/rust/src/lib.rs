@@ -94,18 +94,19 @@ impl std::fmt::Display for InvalidInput {
 
 impl std::error::Error for InvalidInput {}
 
+// BEGIN methods: written from runtime/methods.toml by scripts/runtime-methods
 /// Root-finding method.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Method {
-    /// Interval method with graze detection (the default, used by [`first_root`]).
+    /// Interval solver with the graze (double root) check: the default.
     #[default]
     Interval,
-    /// Interval method, sign changes only.
+    /// Interval solver, sign changes only (no graze check).
     IntervalNoGraze,
-    /// Closed forms up to degree 4 (robust quadratic, Cardano cubic, refined Ferrari quartic);
-    /// the interval method above degree 4 or if a closed form overflows.
+    /// Closed forms up to degree 4, the interval solver above or if a closed form overflows.
     Closed,
 }
+// END methods
 
 /// First root of `sum c[i] t^i` in `(0, tmax]` by the interval method; `None` when there is
 /// no root or the input is invalid (see [`try_first_root`] to tell them apart).
