@@ -48,7 +48,18 @@ enum {
     M2C_EVENT_COLLISION = 1,   /* an impulse between a and b */
     M2C_EVENT_REST = 2,        /* a came to rest on b (the rest rule; time = the analytic limit) */
     M2C_EVENT_WAKE = 3,        /* a, asleep, was woken (hit by b) */
-    M2C_EVENT_TIMER = 4        /* a timer set with m2c_world_add_timer fired (a = its id) */
+    M2C_EVENT_TIMER = 4,       /* a timer set with m2c_world_add_timer fired (a = its id) */
+    M2C_EVENT_SENSOR = 5,      /* a touched sensor b (or b a sensor a): no response */
+    M2C_EVENT_SEPARATE = 6     /* a, resting or sliding on b (the rest rule), left it; only
+                                  with M2C_FLAG_SEPARATE on a or b (a bounce is its own end) */
+};
+
+/* Body flags (m2c_body_def.flags, m2c_world_set_flags). */
+enum {
+    M2C_FLAG_SENSOR = 1,       /* reports contacts (M2C_EVENT_SENSOR) and never responds */
+    M2C_FLAG_PRESOLVE = 2,     /* its contacts go to the pre-solve callback first */
+    M2C_FLAG_SEPARATE = 4      /* report M2C_EVENT_SEPARATE when it leaves a sustained contact
+                                  (or something resting on it leaves it) */
 };
 
 typedef struct {
@@ -66,6 +77,7 @@ typedef struct {
     unsigned int category;     /* the body's category bits (default 1) */
     unsigned int mask;         /* the categories it collides with (default all): a pair collides
                                   when each one's category meets the other's mask */
+    int flags;                 /* M2C_FLAG_* (default 0) */
     int internal;              /* set by m2c_default_body_def(): a def not made by it is refused */
 } m2c_body_def;
 
@@ -172,6 +184,17 @@ M2C_API int m2c_world_apply_impulse(m2c_world *w, int body, double jx, double jy
 /* The body's vertices in its own frame (2 * count numbers, count = its number of vertices;
  * they change when m2c_world_set_mass moves the reference point): the count, or -1. */
 M2C_API int m2c_world_vertices(const m2c_world *w, int body, double *out, int capacity);
+
+/* A body's flags (M2C_FLAG_*), from now on. */
+M2C_API int m2c_world_set_flags(m2c_world *w, int body, int flags);
+
+/* The pre-solve callback: called with a contact of a body flagged M2C_FLAG_PRESOLVE before its
+ * response (the event's normal, point and closing speed filled, impulse 0), at the contact's
+ * time. Returning 0 vetoes it: no impulse, and the pair passes through each other until they
+ * meet again (a new contact of the pair after they parted or crossed: a one-way platform).
+ * It may read the world but not change it (changes fail inside it). */
+typedef int (*m2c_presolve_fn)(void *user, const m2c_event *contact);
+M2C_API void m2c_world_set_presolve(m2c_world *w, m2c_presolve_fn fn, void *user);
 
 /* A timer: an M2C_EVENT_TIMER event (a = the returned id) at time t. */
 M2C_API int m2c_world_add_timer(m2c_world *w, double t);

@@ -33,6 +33,8 @@ static int check_body(m2c_world *w, int i, const char *what)
         return fail(w, what, "no such body");
     if (w->b[i].kind == KIND_REMOVED)
         return fail(w, what, "the body was removed");
+    if (w->in_presolve)
+        return fail(w, what, "no changes inside the pre-solve callback");
     return 0;
 }
 
@@ -135,6 +137,7 @@ int m2c_world_remove_body(m2c_world *w, int i)
     }
     b->kind = KIND_REMOVED;
     b->counter++;
+    ghost_forget(w, i);
     b->ev.t = INFINITY;
     b->ev.kind = EV_NONE;
     if (!w->prepared)
@@ -342,6 +345,22 @@ int m2c_world_apply_impulse(m2c_world *w, int i, double jx, double jy, double px
     b->m.w += (rx * jy - ry * jx) * b->inv_inertia;
     changed(w, i);
     return 0;
+}
+
+int m2c_world_set_flags(m2c_world *w, int i, int flags)
+{
+    if (check_body(w, i, "set_flags") != 0)
+        return -1;
+    if (flags & ~(M2C_FLAG_SENSOR | M2C_FLAG_PRESOLVE | M2C_FLAG_SEPARATE))
+        return fail(w, "set_flags", "unknown flag");
+    w->b[i].flags = flags;
+    return 0;
+}
+
+void m2c_world_set_presolve(m2c_world *w, m2c_presolve_fn fn, void *user)
+{
+    w->presolve = fn;
+    w->presolve_user = user;
 }
 
 int m2c_world_vertices(const m2c_world *w, int i, double *out, int capacity)

@@ -64,6 +64,7 @@ typedef struct {
     int nvert, vert;            /* vertices: w->verts[2 (vert + k)], k < nvert */
     int group;
     unsigned int category, mask; /* collision filter (max2code_engine.h) */
+    int flags;                  /* M2C_FLAG_* */
     double dmass, dinertia;     /* mass and inertia kept for becoming dynamic (0: none given) */
     uint32_t counter;           /* bumped whenever the motion changes */
     int cx, cy;                 /* cell (dynamic bodies) */
@@ -94,6 +95,10 @@ typedef struct {
     int id;
 } timer;
 
+typedef struct {
+    int a, b;                   /* a < b */
+} pair;
+
 struct m2c_world {
     m2c_config cfg;
     double now;
@@ -122,6 +127,11 @@ struct m2c_world {
     int out_n, out_cap;
     m2c_event *pending;         /* reported events that did not fit: given out first */
     int npending, cappending;
+    pair *ghosts;               /* pairs passing through each other (vetoed, sensors) */
+    int nghosts, capghosts;
+    m2c_presolve_fn presolve;
+    void *presolve_user;
+    int in_presolve;            /* inside the pre-solve callback: no changes allowed */
     m2c_stats st;
     char err[256];
 };
@@ -169,6 +179,8 @@ int predict_pair(m2c_world *w, int i, int j, contact *c);
 /* response.c */
 int respond(m2c_world *w, int i, int j, const event *ev);
 void contact_geometry(const m2c_world *w, int i, int j, const event *ev, double n[2], double p[2]);
+void contact_event(const m2c_world *w, int i, int j, const event *ev, int kind, m2c_event *out);
+#define M2C_EVENT_PRESOLVE 0 /* (internal: the kind of the event handed to the pre-solve) */
 
 #define BURST 16 /* collisions in a row, each within t_c of the last: rules 2 and 4 of rest.c */
 #define INSTANT 64 /* collisions in a row at one instant: rule 5 of rest.c */
@@ -194,6 +206,12 @@ double first_crossing(double x, double v, double a, double edge, int dir, double
 double shape_gap(const m2c_world *w, int i, int j);
 /* 1 when the pair may collide: different groups (or none), each category in the other's mask. */
 int pair_filtered(const body *a, const body *b);
+
+/* ghost.c: pairs that pass through each other until they meet again */
+int ghost_find(const m2c_world *w, int i, int j);   /* its index, or -1 */
+int ghost_add(m2c_world *w, int i, int j);
+void ghost_remove_at(m2c_world *w, int k);
+void ghost_forget(m2c_world *w, int i);              /* every pair of a removed body */
 
 /* world.c */
 void world_predict(m2c_world *w, int i);

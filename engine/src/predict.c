@@ -115,6 +115,8 @@ typedef struct {
     double dir[2], len;     /* PL: the edge's unit direction at now (times side), its length */
     int rot_a, rot_b;       /* does rotation move A's point / B's point or line? */
     int no_touch;           /* a two-sided edge's other side: touching now is no contact */
+    int ghost;              /* the pair passes through (a veto, a sensor): touching or
+                               overlapping now is no contact, only a new crossing is */
     double rx, ry;          /* A's reference point minus B's, at the snapshots' time */
 } feat;
 
@@ -243,7 +245,10 @@ static int first_contact(feat *f, double c[MAXC], int n, double tmax, double tol
     double t0 = 0.0;
     if (clearly_apart(c, n, tmax, tolp))
         return 0;
-    if (c[0] <= tolp && f->no_touch) {
+    if (c[0] <= tolp && f->ghost) {
+        if (c[0] >= -tolp)
+            c[0] = 0.0; /* touching: only later roots count; deeper: its crossings, below */
+    } else if (c[0] <= tolp && f->no_touch) {
         c[0] = 0.0; /* on the line, belonging to the other side: only later roots count */
     } else if (c[0] <= tolp) {
         if (c[0] >= -tolp || f->kind == F_PP) {   /* touching (or overlapping: Bannerman) */
@@ -571,7 +576,7 @@ static int solve_rotating(feat *f, double tmax, double tolp, double vthr, double
         }
         if (!after_root && !at_start) {
             mode = g0 > 0 ? ABOVE : INSIDE;
-        } else if (!after_root && fabs(g0) <= tolp && f->no_touch) {
+        } else if (!after_root && fabs(g0) <= tolp && (f->no_touch || f->ghost)) {
             mode = g1 < 0 ? INSIDE : ABOVE;
             after_root = 1;
         } else if (!after_root && fabs(g0) <= tolp) {
@@ -798,6 +803,7 @@ int predict_pair(m2c_world *w, int i, int j, contact *c)
     f.b = motion_at(&B->m, w->now);
     relative_position(A, B, w->now, &f.rx, &f.ry);
     f.no_touch = 0;
+    f.ghost = w->nghosts > 0 && ghost_find(w, i, j) >= 0;
     f.dir[0] = f.dir[1] = f.len = 0.0;
     /* the cheapest test first: can the bounding circles about the reference points meet before
      * the current best at all? (1-norm bounds of the relative speed and acceleration; a wall's

@@ -61,6 +61,20 @@ void contact_geometry(const m2c_world *w, int i, int j, const event *ev, double 
     }
 }
 
+/* The contact as a reported event before any response (kind left to the caller): normal from
+ * i to j, point, closing speed along the normal. */
+void contact_event(const m2c_world *w, int i, int j, const event *ev, int kind, m2c_event *out)
+{
+    double n[2], p[2];
+    contact_geometry(w, i, j, ev, n, p);
+    snap a = motion_at(&w->b[i].m, w->now), b = motion_at(&w->b[j].m, w->now);
+    double ra[2] = {p[0] - a.x, p[1] - a.y}, rb[2] = {p[0] - b.x, p[1] - b.y};
+    double va[2] = {a.vx - a.w * ra[1], a.vy + a.w * ra[0]};
+    double vb[2] = {b.vx - b.w * rb[1], b.vy + b.w * rb[0]};
+    double closing = -((vb[0] - va[0]) * n[0] + (vb[1] - va[1]) * n[1]);
+    *out = (m2c_event){w->now, kind, i, j, n[0], n[1], p[0], p[1], closing, 0.0};
+}
+
 /* Moving under the impulses: dynamic, neither asleep nor stopped to fall asleep. */
 static int dynamic_awake(const body *b)
 {

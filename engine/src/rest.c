@@ -246,12 +246,24 @@ static void collect(m2c_world *w, int k, int j, void *ctx)
     }
 }
 
+/* A sustained contact ends: body k leaves its support (M2C_FLAG_SEPARATE on either). */
+static void report_separate(m2c_world *w, int k)
+{
+    const body *K = &w->b[k];
+    int s = K->support;
+    if (s < 0 || !((K->flags | w->b[s].flags) & M2C_FLAG_SEPARATE))
+        return;
+    m2c_event e = {w->now, M2C_EVENT_SEPARATE, k, s, 0, 0, 0, 0, 0, 0};
+    world_emit(w, &e);
+}
+
 void rest_restore(m2c_world *w, int k)
 {
     body *K = &w->b[k];
     if (K->state == AWAKE)
         return;
     body_commit(K, w->now);
+    report_separate(w, k);
     K->state = AWAKE;
     K->m.ax = K->gx;
     K->m.ay = K->gy;
@@ -392,6 +404,7 @@ int wake_island(m2c_world *w, int i, int *woken, int cap)
         if (!still(K))
             continue;
         body_commit(K, w->now);
+        report_separate(w, k);
         K->state = AWAKE;
         K->m.t = w->now;
         K->m.ax = K->gx;

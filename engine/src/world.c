@@ -50,6 +50,7 @@ void m2c_world_free(m2c_world *w)
     free(w->members);
     free(w->pending);
     free(w->timers);
+    free(w->ghosts);
     grid_free(&w->g);
     free(w);
 }
@@ -123,6 +124,8 @@ static int check_def(m2c_world *w, const m2c_body_def *d)
         return fail(w, "restitution must be between 0 and 1");
     if (d->friction < 0)
         return fail(w, "friction must not be negative");
+    if (d->flags & ~(M2C_FLAG_SENSOR | M2C_FLAG_PRESOLVE | M2C_FLAG_SEPARATE))
+        return fail(w, "unknown flag");
     if (d->kind == M2C_DYNAMIC && !(d->mass > 0 && d->inertia > 0 && isfinite(d->mass)
                                     && isfinite(d->inertia)))
         return fail(w, "a dynamic body needs a positive mass and moment of inertia");
@@ -219,6 +222,8 @@ int m2c_world_add_body(m2c_world *w, const m2c_body_def *d)
 {
     if (!w || !d)
         return -1;
+    if (w->in_presolve)
+        return fail(w, "add_body: no changes inside the pre-solve callback");
     if (check_def(w, d) != 0)
         return -1;
     if (grow(w, d->nvertices) != 0)
@@ -247,6 +252,7 @@ int m2c_world_add_body(m2c_world *w, const m2c_body_def *d)
     b->group = d->group;
     b->category = d->category;
     b->mask = d->mask;
+    b->flags = d->flags;
     if (d->mass > 0 && d->inertia > 0 && isfinite(d->mass) && isfinite(d->inertia)) {
         b->dmass = d->mass;
         b->dinertia = d->inertia;
@@ -408,6 +414,30 @@ void world_predict(m2c_world *w, int i)
     heap_update(w, i);
 }
 
+/* A contact with a sensor is reported and passes through; one of a body flagged for the
+ * pre-solve goes to the callback first, which may veto it (then it passes through). */
+static int passes_through(m2c_world *w, int i, int j, const event *ev)
+{
+    int flags = w->b[i].flags | w->b[j].flags;
+    m2c_event e;
+    if (flags & M2C_FLAG_SENSOR) {
+        contact_event(w, i, j, ev, M2C_EVENT_SENSOR, &e);
+        world_emit(w, &e);
+        ghost_add(w, i, j);
+        return 1;
+    }
+    if (!(flags & M2C_FLAG_PRESOLVE) || !w->presolve)
+        return 0;
+    contact_event(w, i, j, ev, M2C_EVENT_PRESOLVE, &e);
+    w->in_presolve = 1;
+    int keep = w->presolve(w->presolve_user, &e);
+    w->in_presolve = 0;
+    if (keep)
+        return 0;
+    ghost_add(w, i, j);
+    return 1;
+}
+
 static void process(m2c_world *w, int i)
 {
     event ev = w->b[i].ev;
@@ -423,6 +453,15 @@ static void process(m2c_world *w, int i)
         if (w->b[j].counter != ev.partner_counter) {
             w->st.stale++;
             world_predict(w, i);
+            break;
+        }
+        int g = w->nghosts > 0 ? ghost_find(w, i, j) : -1;
+        if (g >= 0)
+            ghost_remove_at(w, g); /* they met again: a contact like any other */
+        if (passes_through(w, i, j, &ev)) {
+            world_predict(w, i);
+            if (w->b[j].kind == M2C_DYNAMIC)
+                world_predict(w, j);
             break;
         }
         int woken = respond(w, i, j, &ev);
@@ -472,6 +511,8 @@ int m2c_world_step(m2c_world *w, double until, m2c_event *events, int capacity, 
         return fail(w, "the time to step to must be a finite number");
     if (capacity < 4 || !events)
         return fail(w, "the event buffer needs room for at least 4 events");
+    if (w->in_presolve)
+        return fail(w, "step: no changes inside the pre-solve callback");
     if (w->broken)
         return -1;
     w->out = events;
@@ -610,6 +651,8 @@ int m2c_world_add_timer(m2c_world *w, double t)
 {
     if (!(t >= w->now) || !isfinite(t))
         return fail(w, "a timer must be at a finite time not before now");
+    if (w->in_presolve)
+        return fail(w, "add_timer: no changes inside the pre-solve callback");
     if (w->ntimers == w->captimers) {
         int cap = w->captimers ? 2 * w->captimers : 8;
         timer *n = realloc(w->timers, sizeof(timer) * (size_t)cap);

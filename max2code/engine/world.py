@@ -7,11 +7,13 @@ from dataclasses import dataclass, replace
 from typing import Callable, Iterable, Sequence
 
 from .binding import load
+from .handlers import FLAG_SENSOR, CollisionHandler, Handlers
 from .shapes import mass_properties, polygon_area
 
 Vec = tuple[float, float]
 KINDS = {"static": 0, "kinematic": 1, "dynamic": 2}
-EVENT_KINDS = {1: "collision", 2: "rest", 3: "wake", 4: "timer"}
+EVENT_KINDS = {0: "presolve", 1: "collision", 2: "rest", 3: "wake", 4: "timer", 5: "sensor",
+               6: "separate"}
 BUFFER = 1024
 
 
@@ -38,6 +40,8 @@ class BodyInfo:
     mask: int = 0xFFFFFFFF
     data: object = None
     alive: bool = True
+    collision_type: int = 0
+    sensor: bool = False
 
     @property
     def shape(self) -> str:
@@ -49,7 +53,8 @@ class BodyInfo:
 class Event:
     """One reported event. `normal` points from body a towards body b; `speed` is the closing
     speed along it before the response and `impulse` the normal impulse given to b (-impulse
-    to a). Timers have a = the timer's id and b = -1."""
+    to a). Timers have a = the timer's id and b = -1. `data` is the two bodies' user data
+    (add_body's data=; a timer's: the data given to add_timer)."""
     time: float
     kind: str
     a: int
@@ -58,11 +63,13 @@ class Event:
     point: Vec
     speed: float
     impulse: float
+    data: tuple[object, object] = (None, None)
 
 
 @dataclass
 class _Timer:
     callback: Callable[["World", Event], None] | None
+    data: object = None
 
 
 class World:
@@ -87,7 +94,12 @@ class World:
         self.bodies: list[BodyInfo] = []
         self._names: dict[str, int] = {}
         self._groups: dict[str, int] = {}
-        self._callbacks: list[Callable[["World", Event], None]] = []
+        self._handlers = Handlers()
+        self._flag_key: object = None
+        self._failure: BaseException | None = None
+        self._presolve_c = self._ffi.callback("int(void *, const m2c_event *)", self._presolve,
+                                              onerror=self._presolve_error)
+        self._lib.m2c_world_set_presolve(self._w, self._presolve_c, self._ffi.NULL)
         self._timers: dict[int, _Timer] = {}
         self._density: list[float] = []
         self._gravity: list[Vec] = []
@@ -105,7 +117,8 @@ class World:
                  density: float = 1.0, inertia: float | None = None, restitution: float = 1.0,
                  group: str | None = None, name: str | None = None,
                  color: str | None = None, friction: float = 0.0, category: int = 1,
-                 mask: int = 0xFFFFFFFF, data: object = None) -> int:
+                 mask: int = 0xFFFFFFFF, data: object = None, collision_type: int = 0,
+                 sensor: bool = False) -> int:
         """Add a body; returns its id. `vertices` are offsets from `position` in the body's
         frame (turned by `angle`): one vertex and a radius make a circle, two a segment (a
         capsule with a radius), three or more a convex polygon, in either winding (kept
@@ -113,7 +126,9 @@ class World:
         vertices with it: see `bodies`). `gravity` overrides the world's for this body (static
         bodies have none). `friction` is a Coulomb coefficient, at impacts only (a contact uses
         sqrt(fa fb); README). A pair collides when neither `group` is shared and each body's
-        `category` bits meet the other's `mask`. `data` is yours (`bodies[id].data`)."""
+        `category` bits meet the other's `mask`. `data` is yours (`bodies[id].data`, and
+        every event's `data`). `collision_type` selects collision handlers; a `sensor` reports
+        its contacts ("sensor" events) and never responds."""
         if kind not in KINDS:
             raise EngineError(f"kind must be one of {', '.join(KINDS)}, not {kind!r}")
         verts = [(float(x), float(y)) for x, y in vertices]
@@ -160,6 +175,7 @@ class World:
         d.vertices = flat
         d.group = gid
         d.category, d.mask = category, mask
+        d.flags = (FLAG_SENSOR if sensor else 0) | self._handlers.flags_for(len(self.bodies), collision_type)
         i = self._lib.m2c_world_add_body(self._w, d)
         if i < 0:
             raise EngineError(self.error())
@@ -168,7 +184,7 @@ class World:
                                     m if kind == "dynamic" else math.inf,
                                     I if kind == "dynamic" else math.inf,
                                     float(restitution), group, color, float(friction),
-                                    category, mask, data))
+                                    category, mask, data, True, int(collision_type), bool(sensor)))
         self._names[name] = i
         self._density.append(float(density))
         self._gravity.append(own)
@@ -193,17 +209,81 @@ class World:
     def time(self) -> float:
         return float(self._lib.m2c_world_time(self._w))
 
-    def on_collision(self, callback: Callable[["World", Event], None]) -> None:
-        """callback(world, event) for every reported event (collision, rest, wake), in order,
-        at the event's time (the world's time is then the event's)."""
-        self._callbacks.append(callback)
+    def on_collision(self, callback: Callable[["World", Event], None], body: int | None = None) -> None:
+        """callback(world, event) for every reported event (collision, sensor, rest, wake,
+        separate), or only those of `body`, in order, at the event's time (the world's time is
+        then the event's; the callback may change the world: remove, set_velocity, ...)."""
+        if body is None:
+            self._handlers.every.append(callback)
+        else:
+            self._handlers.per_body.setdefault(body, []).append(callback)
 
-    def add_timer(self, t: float, callback: Callable[["World", Event], None] | None = None) -> int:
-        """A timer event at time t (reported, and passed to callback(world, event))."""
+    def on_collision_with(self, a: int, b: int, callback: Callable[["World", Event], None]) -> None:
+        """callback(world, event) for the events between bodies a and b (PGE's
+        on_collision_with)."""
+        self._handlers.per_pair.setdefault((min(a, b), max(a, b)), []).append(callback)
+
+    def on_pre_solve(self, body: int, callback: Callable[["World", Event], object]) -> None:
+        """callback(world, event) before the response to each contact of `body` (kind
+        "presolve": normal, point and closing speed; no impulse yet). Returning False vetoes it:
+        the pair passes through each other until they next meet (one-way platforms). It may
+        read the world, not change it."""
+        self._handlers.pre_solve_body.setdefault(body, []).append(callback)
+
+    def collision_handler(self, a: int, b: int | None = None) -> CollisionHandler:
+        """pymunk's handler for collision types a and b (b None: a with anything): set its
+        begin, pre_solve, post_solve and separate (see CollisionHandler)."""
+        for h in self._handlers.typed:
+            if (h.a, h.b) in ((a, b), (b, a)):
+                return h
+        h = CollisionHandler(a, b)
+        self._handlers.typed.append(h)
+        return h
+
+    def _refresh_flags(self) -> None:
+        """The core's per-body flags for the handlers (pre-solve, separate), when they changed."""
+        hs = self._handlers
+        key = (tuple((h.a, h.b, bool(h.begin or h.pre_solve), bool(h.separate)) for h in hs.typed),
+               tuple(sorted(hs.pre_solve_body)), len(self.bodies))
+        if key == self._flag_key:
+            return
+        self._flag_key = key
+        for info in self.bodies:
+            if info.alive:
+                flags = (FLAG_SENSOR if info.sensor else 0) | hs.flags_for(info.id, info.collision_type)
+                self._call(self._lib.m2c_world_set_flags(self._w, info.id, flags))
+
+    def _event(self, e) -> Event:
+        data = (self.bodies[e.a].data if 0 <= e.a < len(self.bodies) and e.kind != 4 else None,
+                self.bodies[e.b].data if 0 <= e.b < len(self.bodies) else None)
+        if e.kind == 4:
+            timer = self._timers.get(e.a)
+            data = (timer.data if timer else None, None)
+        return Event(e.time, EVENT_KINDS.get(e.kind, str(e.kind)), e.a, e.b, (e.nx, e.ny),
+                     (e.px, e.py), e.speed, e.impulse, data)
+
+    def _types(self, ev: Event) -> tuple[int, int]:
+        return (self.bodies[ev.a].collision_type, self.bodies[ev.b].collision_type)
+
+    def _presolve(self, user, e) -> int:
+        """The core's pre-solve callback (through cffi): 1 keeps the contact, 0 vetoes it."""
+        if self._failure is not None:
+            return 1
+        ev = self._event(e)
+        return 1 if self._handlers.pre_solve(self, ev, self._types(ev)) else 0
+
+    def _presolve_error(self, exc_type, exc, tb) -> int:
+        self._failure = exc  # raised by step_to once the core returns
+        return 1
+
+    def add_timer(self, t: float, callback: Callable[["World", Event], None] | None = None,
+                  data: object = None) -> int:
+        """A timer event at time t (reported, and passed to callback(world, event); the event's
+        data is (data, None)); returns its id, for cancel_timer."""
         k = self._lib.m2c_world_add_timer(self._w, float(t))
         if k < 0:
             raise EngineError(self.error())
-        self._timers[k] = _Timer(callback)
+        self._timers[k] = _Timer(callback, data)
         return k
 
     def cancel_timer(self, timer: int) -> None:
@@ -218,19 +298,22 @@ class World:
         out: list[Event] = []
         # with callbacks the core stops after each reported event, so that a callback sees the
         # world at its event's time (and may change it: set_velocity, add_timer)
-        room = 4 if self._callbacks or any(tm.callback for tm in self._timers.values()) else BUFFER
+        listening = self._handlers.any()
+        self._refresh_flags()
+        room = 4 if listening or any(tm.callback for tm in self._timers.values()) else BUFFER
         while True:
             status = self._lib.m2c_world_step(self._w, float(t), self._buf, room, self._count)
+            if self._failure is not None:
+                failure, self._failure = self._failure, None
+                raise failure
             if status < 0:
                 raise EngineError(self.error())
-            if not events and not self._callbacks and not self._timers:
+            if not events and not listening and not self._timers:
                 if status == 0:
                     return out
                 continue
             for k in range(self._count[0]):
-                e = self._buf[k]
-                ev = Event(e.time, EVENT_KINDS.get(e.kind, str(e.kind)), e.a, e.b, (e.nx, e.ny),
-                           (e.px, e.py), e.speed, e.impulse)
+                ev = self._event(self._buf[k])
                 if events:
                     out.append(ev)
                 self._dispatch(ev)
@@ -243,8 +326,7 @@ class World:
             if timer and timer.callback:
                 timer.callback(self, ev)
             return
-        for cb in self._callbacks:
-            cb(self, ev)
+        self._handlers.dispatch(self, ev, self._types(ev) if ev.b >= 0 else (0, 0))
 
     # -- changing bodies now (also from callbacks; effective at once for prediction) ---------
 

@@ -1,0 +1,44 @@
+/* ghost.c -- pairs that pass through each other: a contact vetoed by the pre-solve callback
+ * (a one-way platform) or touching a sensor. Until the pair's next contact event (a new
+ * crossing of one of its features' gaps), touching or overlapping is no contact for it
+ * (predict.c: feat.ghost). A short list: few pairs pass through at once. */
+#include <stdlib.h>
+
+#include "engine.h"
+
+int ghost_find(const m2c_world *w, int i, int j)
+{
+    int a = i < j ? i : j, b = i < j ? j : i;
+    for (int k = 0; k < w->nghosts; k++)
+        if (w->ghosts[k].a == a && w->ghosts[k].b == b)
+            return k;
+    return -1;
+}
+
+int ghost_add(m2c_world *w, int i, int j)
+{
+    if (ghost_find(w, i, j) >= 0)
+        return 0;
+    if (w->nghosts == w->capghosts) {
+        int cap = w->capghosts ? 2 * w->capghosts : 16;
+        pair *p = realloc(w->ghosts, sizeof(pair) * (size_t)cap);
+        if (!p)
+            return -1;
+        w->ghosts = p;
+        w->capghosts = cap;
+    }
+    w->ghosts[w->nghosts++] = (pair){i < j ? i : j, i < j ? j : i};
+    return 0;
+}
+
+void ghost_remove_at(m2c_world *w, int k)
+{
+    w->ghosts[k] = w->ghosts[--w->nghosts];
+}
+
+void ghost_forget(m2c_world *w, int i)
+{
+    for (int k = w->nghosts - 1; k >= 0; k--)
+        if (w->ghosts[k].a == i || w->ghosts[k].b == i)
+            ghost_remove_at(w, k);
+}
