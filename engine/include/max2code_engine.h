@@ -206,6 +206,14 @@ M2C_API int m2c_world_cancel_timer(m2c_world *w, int id);
  * the event loop uses (`max2code scene` shows it per pair). */
 M2C_API int m2c_world_first_contact(m2c_world *w, int i, int j, double tmax, double *t);
 
+/* Snapshots (rollback, planning, pickle): m2c_world_save writes the world's whole state to
+ * buf (when capacity allows) and returns its size in bytes (call with capacity 0 to learn it);
+ * m2c_world_load makes a world from such bytes that goes on exactly as the saved one would
+ * (the same future events, bit for bit), or NULL for bytes it cannot take (another library
+ * build's, truncated, inconsistent). The pre-solve callback is not saved. */
+M2C_API long long m2c_world_save(const m2c_world *w, void *buf, long long capacity);
+M2C_API m2c_world *m2c_world_load(const void *buf, long long size);
+
 /* Energy: kinetic + potential (-m a.x) of the dynamic bodies at time t. */
 M2C_API double m2c_world_energy(const m2c_world *w, double t);
 /* 1 when the body is asleep (the rest rule), else 0. */

@@ -72,6 +72,9 @@ class _Timer:
     data: object = None
 
 
+_NATIVE = frozenset({"_ffi", "_lib", "_w", "_buf", "_count", "_pose", "_poses", "_presolve_c"})
+
+
 class World:
     """A world of rigid bodies (see the package docstring for the whole API)."""
 
@@ -88,7 +91,7 @@ class World:
         ptr = self._lib.m2c_world_new(cfg)
         if ptr == self._ffi.NULL:
             raise MemoryError("m2c_world_new")
-        self._w = self._ffi.gc(ptr, self._lib.m2c_world_free)
+        self._attach(ptr)
         self.gravity = (float(gravity[0]), float(gravity[1]))
         self.tolerance = tolerance
         self.bodies: list[BodyInfo] = []
@@ -97,17 +100,54 @@ class World:
         self._handlers = Handlers()
         self._flag_key: object = None
         self._failure: BaseException | None = None
-        self._presolve_c = self._ffi.callback("int(void *, const m2c_event *)", self._presolve,
-                                              onerror=self._presolve_error)
-        self._lib.m2c_world_set_presolve(self._w, self._presolve_c, self._ffi.NULL)
         self._timers: dict[int, _Timer] = {}
         self._density: list[float] = []
         self._gravity: list[Vec] = []
         self._dormant: dict[int, tuple[float, float]] = {}
+
+    def _attach(self, ptr) -> None:
+        """Own the core's world `ptr` (new or loaded from a snapshot): buffers and callback."""
+        self._w = self._ffi.gc(ptr, self._lib.m2c_world_free)
+        self._presolve_c = self._ffi.callback("int(void *, const m2c_event *)", self._presolve,
+                                              onerror=self._presolve_error)
+        self._lib.m2c_world_set_presolve(self._w, self._presolve_c, self._ffi.NULL)
         self._buf = self._ffi.new("m2c_event[]", BUFFER)
         self._count = self._ffi.new("int *")
         self._pose = self._ffi.new("double[3]")
         self._poses = self._ffi.new("double[]", 0)
+
+    # -- snapshots: pickle, copy.deepcopy, restore ----------------------------------------------
+
+    def _core_bytes(self) -> bytes:
+        """The core's whole state (m2c_world_save)."""
+        n = self._lib.m2c_world_save(self._w, self._ffi.NULL, 0)
+        buf = self._ffi.new("char[]", n)
+        self._lib.m2c_world_save(self._w, buf, n)
+        return bytes(self._ffi.buffer(buf, n))
+
+    def __getstate__(self) -> dict:
+        """For pickle and copy.deepcopy: the core's state as bytes, the rest as it is
+        (callbacks included: pickle needs them to be picklable, module-level functions)."""
+        state = {k: v for k, v in self.__dict__.items() if k not in _NATIVE}
+        state["_core"] = self._core_bytes()
+        return state
+
+    def __setstate__(self, state: dict) -> None:
+        state = dict(state)
+        core = state.pop("_core")
+        self.__dict__.update(state)
+        self._ffi, self._lib = load()
+        ptr = self._lib.m2c_world_load(core, len(core))
+        if ptr == self._ffi.NULL:
+            raise EngineError("restore: the snapshot is not this engine build's, or damaged")
+        self._attach(ptr)
+
+    def restore(self, snapshot: "World") -> None:
+        """Put this world back into the state of `snapshot` (a copy.deepcopy of a World taken
+        earlier: rollback); the snapshot stays usable."""
+        import copy
+        self.__dict__.clear()
+        self.__setstate__(copy.deepcopy(snapshot.__getstate__()))
 
     # -- building ---------------------------------------------------------------------------
 
