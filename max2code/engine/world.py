@@ -8,6 +8,7 @@ from typing import Callable, Iterable, Sequence
 
 from .binding import load
 from .handlers import FLAG_SENSOR, CollisionHandler, Handlers
+from .inputs import Input
 from .shapes import mass_properties, polygon_area
 
 Vec = tuple[float, float]
@@ -70,6 +71,7 @@ class Event:
 class _Timer:
     callback: Callable[["World", Event], None] | None
     data: object = None
+    is_input: bool = False
 
 
 _NATIVE = frozenset({"_ffi", "_lib", "_w", "_buf", "_count", "_pose", "_poses", "_presolve_c"})
@@ -104,6 +106,8 @@ class World:
         self._density: list[float] = []
         self._gravity: list[Vec] = []
         self._dormant: dict[int, tuple[float, float]] = {}
+        self._input_callbacks: list[Callable[["World", Event], None]] = []
+        self.inputs: list[Input] = []   # the inputs that happened, in order (write_script)
 
     def _attach(self, ptr) -> None:
         """Own the core's world `ptr` (new or loaded from a snapshot): buffers and callback."""
@@ -296,10 +300,13 @@ class World:
     def _event(self, e) -> Event:
         data = (self.bodies[e.a].data if 0 <= e.a < len(self.bodies) and e.kind != 4 else None,
                 self.bodies[e.b].data if 0 <= e.b < len(self.bodies) else None)
+        kind = EVENT_KINDS.get(e.kind, str(e.kind))
         if e.kind == 4:
             timer = self._timers.get(e.a)
             data = (timer.data if timer else None, None)
-        return Event(e.time, EVENT_KINDS.get(e.kind, str(e.kind)), e.a, e.b, (e.nx, e.ny),
+            if timer and timer.is_input:
+                kind = "input"
+        return Event(e.time, kind, e.a, e.b, (e.nx, e.ny),
                      (e.px, e.py), e.speed, e.impulse, data)
 
     def _types(self, ev: Event) -> tuple[int, int]:
@@ -326,6 +333,20 @@ class World:
         self._timers[k] = _Timer(callback, data)
         return k
 
+    def add_input(self, event: Input) -> int:
+        """Queue an input event (a key, the mouse) at its time (>= now): an "input" event then,
+        its data (event, None), passed to the on_input callbacks. Equal times keep the order
+        they were queued in: the same timed input gives the same run, live or from a script."""
+        k = self._lib.m2c_world_add_timer(self._w, float(event.time))
+        if k < 0:
+            raise EngineError(self.error())
+        self._timers[k] = _Timer(None, event, True)
+        return k
+
+    def on_input(self, callback: Callable[["World", Event], None]) -> None:
+        """callback(world, event) for every input event at its time (event.data[0]: Input)."""
+        self._input_callbacks.append(callback)
+
     def cancel_timer(self, timer: int) -> None:
         """Cancel a pending timer (PGE's at_cancel): an EngineError when it already fired or
         was cancelled."""
@@ -340,7 +361,7 @@ class World:
         # world at its event's time (and may change it: set_velocity, add_timer)
         listening = self._handlers.any()
         self._refresh_flags()
-        room = 4 if listening or any(tm.callback for tm in self._timers.values()) else BUFFER
+        room = 4 if listening or any(tm.callback or tm.is_input for tm in self._timers.values()) else BUFFER
         while True:
             status = self._lib.m2c_world_step(self._w, float(t), self._buf, room, self._count)
             if self._failure is not None:
@@ -361,6 +382,12 @@ class World:
                 return out
 
     def _dispatch(self, ev: Event) -> None:
+        if ev.kind == "input":
+            self._timers.pop(ev.a, None)
+            self.inputs.append(ev.data[0])
+            for cb in list(self._input_callbacks):
+                cb(self, ev)
+            return
         if ev.kind == "timer":
             timer = self._timers.pop(ev.a, None)
             if timer and timer.callback:
