@@ -206,6 +206,22 @@ M2C_API int m2c_world_cancel_timer(m2c_world *w, int id);
  * the event loop uses (`max2code scene` shows it per pair). */
 M2C_API int m2c_world_first_contact(m2c_world *w, int i, int j, double tmax, double *t);
 
+/* Queries at time t >= now (each body where its motion puts it then; nothing changes). Only
+ * bodies whose category meets `mask` are seen (~0u: all). Point and box: the ids of the bodies
+ * whose shape contains the point or meets the box go to out[0..capacity); the return value is
+ * how many there are (more than capacity: call again with more room), or -1. */
+M2C_API int m2c_world_query_point(m2c_world *w, double t, double x, double y, unsigned int mask,
+                                  int *out, int capacity);
+M2C_API int m2c_world_query_box(m2c_world *w, double t, double x0, double y0, double x1,
+                                double y1, unsigned int mask, int *out, int capacity);
+/* The first shape the segment from (x0, y0) to (x1, y1) enters at time t: 1 with the fraction
+ * of the segment travelled, the body and the surface normal there; 0 when it hits nothing; -1.
+ * Exact: the smallest root of each feature's crossing (quadratics for rounded corners and
+ * circles, lines for edges). A shape containing the start is not hit (as Box2D). */
+M2C_API int m2c_world_cast_ray(m2c_world *w, double t, double x0, double y0, double x1,
+                               double y1, unsigned int mask, double *fraction, int *body,
+                               double normal[2]);
+
 /* Snapshots (rollback, planning, pickle): m2c_world_save writes the world's whole state to
  * buf (when capacity allows) and returns its size in bytes (call with capacity 0 to learn it);
  * m2c_world_load makes a world from such bytes that goes on exactly as the saved one would

@@ -2,6 +2,8 @@
  * before it moves a body), and the collision filter. Prediction never uses these: it finds
  * contacts as roots of the contact polynomials (predict.c). */
 #include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
 
 #include "engine.h"
 
@@ -12,9 +14,51 @@ int pair_filtered(const body *a, const body *b)
     return (a->category & b->mask) != 0 && (b->category & a->mask) != 0;
 }
 
-static int nedges(const body *b)
+/* Shapes as world-frame vertex lists: n points, anticlockwise when n >= 3, and a radius. */
+typedef struct {
+    double *v;
+    int n;
+    double r;
+} shape;
+
+/* Room for the world-frame vertices of the largest body (NULL when out of memory). */
+static double *scratch(const m2c_world *w)
 {
-    return b->nvert >= 3 ? b->nvert : b->nvert - 1;
+    int most = 1;
+    for (int i = 0; i < w->n; i++)
+        if (w->b[i].nvert > most)
+            most = w->b[i].nvert;
+    return malloc(sizeof(double) * 2 * (size_t)most);
+}
+
+/* Body i's shape at time t (>= its reference time), its vertices into buf. */
+static int shape_at(const m2c_world *w, int i, double t, shape *out, double *buf)
+{
+    const body *b = &w->b[i];
+    out->v = buf;
+    snap s = motion_at(&b->m, t < b->m.t ? b->m.t : t);
+    for (int k = 0; k < b->nvert; k++)
+        world_point(&s, &w->verts[2 * (b->vert + k)], &out->v[2 * k]);
+    out->n = b->nvert;
+    out->r = b->radius;
+    return 0;
+}
+
+static int nedges_of(const shape *s)
+{
+    return s->n >= 3 ? s->n : s->n - 1;
+}
+
+/* Edge k of a shape: start q, unit direction d, length; 0 when degenerate. */
+static double edge_of(const shape *s, int k, double q[2], double d[2])
+{
+    const double *p = &s->v[2 * k], *e = &s->v[2 * ((k + 1) % s->n)];
+    double len = hypot(e[0] - p[0], e[1] - p[1]);
+    q[0] = p[0];
+    q[1] = p[1];
+    d[0] = len > 0 ? (e[0] - p[0]) / len : 0.0;
+    d[1] = len > 0 ? (e[1] - p[1]) / len : 0.0;
+    return len;
 }
 
 /* Distance from point c to segment q + s d, s in [0, len]. */
@@ -28,67 +72,230 @@ static double point_segment(const double c[2], const double q[2], const double d
     return fabs((c[0] - q[0]) * d[1] - (c[1] - q[1]) * d[0]);
 }
 
-/* Is c strictly inside polygon E (anticlockwise, three or more vertices)? */
-static int inside(const m2c_world *w, const body *E, const snap *se, const double c[2])
+/* Is c strictly inside the polygon (three or more vertices, anticlockwise)? */
+static int inside_shape(const shape *s, const double c[2])
 {
-    if (E->nvert < 3)
+    if (s->n < 3)
         return 0;
-    for (int u = 0; u < E->nvert; u++) {
+    for (int k = 0; k < s->n; k++) {
         double q[2], d[2];
-        world_point(se, &w->verts[2 * (E->vert + u)], q);
-        world_vector(se, &w->edges[3 * (E->vert + u)], d);
+        edge_of(s, k, q, d);
         if ((c[0] - q[0]) * d[1] - (c[1] - q[1]) * d[0] >= 0) /* on the right of an edge */
             return 0;
     }
     return 1;
 }
 
-/* Do segments p + s d (s in [0, lp]) and q + r e (r in [0, lq]) cross? */
-static int crossing(const double p[2], const double d[2], double lp, const double q[2],
-                    const double e[2], double lq)
+/* Distance between the cores (vertex lists) of two shapes; -1 when they intersect. */
+static double core_distance(const shape *A, const shape *B)
 {
-    double den = d[0] * e[1] - d[1] * e[0];
-    if (den == 0)
-        return 0;
-    double qp[2] = {q[0] - p[0], q[1] - p[1]};
-    double s = (qp[0] * e[1] - qp[1] * e[0]) / den, r = (qp[0] * d[1] - qp[1] * d[0]) / den;
-    return s > 0 && s < lp && r > 0 && r < lq;
-}
-
-double shape_gap(const m2c_world *w, int i, int j)
-{
-    const body *B[2] = {&w->b[i], &w->b[j]};
-    snap s[2] = {motion_at(&B[0]->m, w->now), motion_at(&B[1]->m, w->now)};
+    const shape *S[2] = {A, B};
     double best = INFINITY;
-    int overlap = 0;
     for (int side = 0; side < 2; side++) {
-        const body *P = B[side], *E = B[1 - side];
-        const snap *sp = &s[side], *se = &s[1 - side];
-        for (int v = 0; v < P->nvert; v++) {
-            double c[2];
-            world_point(sp, &w->verts[2 * (P->vert + v)], c);
-            if (inside(w, E, se, c))
-                overlap = 1;
-            for (int u = 0; u < E->nvert; u++) {
-                double q[2], d[2];
-                world_point(se, &w->verts[2 * (E->vert + u)], q);
-                if (u < nedges(E)) {
-                    const double *e = &w->edges[3 * (E->vert + u)];
-                    world_vector(se, e, d);
-                    best = fmin(best, point_segment(c, q, d, e[2]));
-                    if (side == 0 && v < nedges(P)) {
-                        double pd[2];
-                        const double *pe = &w->edges[3 * (P->vert + v)];
-                        world_vector(sp, pe, pd);
-                        if (crossing(c, pd, pe[2], q, d, e[2]))
-                            overlap = 1;
+        const shape *P = S[side], *E = S[1 - side];
+        for (int v = 0; v < P->n; v++) {
+            const double *c = &P->v[2 * v];
+            if (inside_shape(E, c))
+                return -1;
+            if (E->n == 1)
+                best = fmin(best, hypot(c[0] - E->v[0], c[1] - E->v[1]));
+            for (int u = 0; u < nedges_of(E); u++) {
+                double q[2], d[2], len = edge_of(E, u, q, d);
+                best = fmin(best, point_segment(c, q, d, len));
+                if (side == 0 && v < nedges_of(P)) { /* crossing edges */
+                    double pq[2], pd[2], lp = edge_of(P, v, pq, pd);
+                    double den = pd[0] * d[1] - pd[1] * d[0];
+                    if (den != 0) {
+                        double r[2] = {q[0] - pq[0], q[1] - pq[1]};
+                        double a = (r[0] * d[1] - r[1] * d[0]) / den, b = (r[0] * pd[1] - r[1] * pd[0]) / den;
+                        if (a > 0 && a < lp && b > 0 && b < len)
+                            return -1;
                     }
-                } else {
-                    best = fmin(best, hypot(c[0] - q[0], c[1] - q[1]));
                 }
             }
         }
     }
-    double gap = best - B[0]->radius - B[1]->radius;
-    return overlap ? -(best + B[0]->radius + B[1]->radius) : gap;
+    return best;
+}
+
+double shape_gap(const m2c_world *w, int i, int j)
+{
+    shape A, B;
+    double *va = malloc(sizeof(double) * 2 * (size_t)w->b[i].nvert);
+    double *vb = malloc(sizeof(double) * 2 * (size_t)w->b[j].nvert);
+    double gap = -INFINITY; /* out of memory: refuse rather than guess */
+    if (va && vb) {
+        shape_at(w, i, w->now, &A, va);
+        shape_at(w, j, w->now, &B, vb);
+        double d = core_distance(&A, &B);
+        gap = d < 0 ? -(A.r + B.r) - 1.0 : d - A.r - B.r;
+    }
+    free(va);
+    free(vb);
+    return gap;
+}
+
+/* ------------------------------------------------------------------------------------------ */
+/* Queries at a time t >= now (max2code_engine.h)                                              */
+/* ------------------------------------------------------------------------------------------ */
+
+static int query_ok(m2c_world *w, double t)
+{
+    if (w->broken)
+        return 0;
+    if (!(t >= w->now) || !isfinite(t)) {
+        snprintf(w->err, sizeof w->err, "query: the time must be finite and not before now");
+        return 0;
+    }
+    return 1;
+}
+
+static int selectable(const body *b, unsigned int mask)
+{
+    return b->kind != KIND_REMOVED && (b->category & mask) != 0;
+}
+
+int m2c_world_query_point(m2c_world *w, double t, double x, double y, unsigned int mask,
+                          int *out, int capacity)
+{
+    if (!query_ok(w, t))
+        return -1;
+    int count = 0;
+    double c[2] = {x, y};
+    double *buf = scratch(w);
+    if (!buf)
+        return -1;
+    for (int i = 0; i < w->n; i++) {
+        shape s;
+        if (!selectable(&w->b[i], mask))
+            continue;
+        shape_at(w, i, t, &s, buf);
+        shape p = {c, 1, 0.0};
+        double d = core_distance(&s, &p);
+        if (d <= s.r || inside_shape(&s, c)) {
+            if (count < capacity)
+                out[count] = i;
+            count++;
+        }
+    }
+    free(buf);
+    return count;
+}
+
+int m2c_world_query_box(m2c_world *w, double t, double x0, double y0, double x1, double y1,
+                        unsigned int mask, int *out, int capacity)
+{
+    if (!query_ok(w, t))
+        return -1;
+    if (!(x0 <= x1 && y0 <= y1)) {
+        snprintf(w->err, sizeof w->err, "query_box: needs x0 <= x1 and y0 <= y1");
+        return -1;
+    }
+    double corners[8] = {x0, y0, x1, y0, x1, y1, x0, y1};
+    shape box = {corners, 4, 0.0};
+    if (x0 == x1 || y0 == y1) { /* a degenerate box: a segment or a point */
+        box.n = x0 == x1 && y0 == y1 ? 1 : 2;
+        corners[2] = x1;
+        corners[3] = y1;
+    }
+    int count = 0;
+    double *buf = scratch(w);
+    if (!buf)
+        return -1;
+    for (int i = 0; i < w->n; i++) {
+        shape s;
+        if (!selectable(&w->b[i], mask))
+            continue;
+        shape_at(w, i, t, &s, buf);
+        if (core_distance(&s, &box) <= s.r) {
+            if (count < capacity)
+                out[count] = i;
+            count++;
+        }
+    }
+    free(buf);
+    return count;
+}
+
+/* The smallest s in [0, 1] at which p + s d enters the disc (c, r), or INFINITY. */
+static double ray_disc(const double p[2], const double d[2], const double c[2], double r)
+{
+    double f[2] = {p[0] - c[0], p[1] - c[1]};
+    double a = d[0] * d[0] + d[1] * d[1], b = f[0] * d[0] + f[1] * d[1];
+    double cc = f[0] * f[0] + f[1] * f[1] - r * r;
+    if (cc <= 0 || b >= 0 || a == 0)
+        return INFINITY; /* inside already, or moving away */
+    double disc = b * b - a * cc;
+    if (disc < 0)
+        return INFINITY;
+    double s = cc / (-b + sqrt(disc)); /* the smaller root, without cancellation */
+    return s <= 1 ? s : INFINITY;
+}
+
+int m2c_world_cast_ray(m2c_world *w, double t, double x0, double y0, double x1, double y1,
+                       unsigned int mask, double *fraction, int *body, double normal[2])
+{
+    if (!query_ok(w, t))
+        return -1;
+    double p[2] = {x0, y0}, d[2] = {x1 - x0, y1 - y0};
+    double best = INFINITY;
+    int hit = -1;
+    double bn[2] = {0, 0};
+    double *buf = scratch(w);
+    if (!buf)
+        return -1;
+    for (int i = 0; i < w->n; i++) {
+        shape s;
+        if (!selectable(&w->b[i], mask))
+            continue;
+        shape_at(w, i, t, &s, buf);
+        shape start = {p, 1, 0.0};
+        double d0 = core_distance(&s, &start);
+        if (d0 < s.r || (d0 < 0)) /* the ray starts inside it: not a hit (as Box2D) */
+            continue;
+        if (s.r > 0)
+            for (int k = 0; k < s.n; k++) {
+                double c[2] = {s.v[2 * k], s.v[2 * k + 1]};
+                double f = ray_disc(p, d, c, s.r);
+                if (f < best) {
+                    double h[2] = {p[0] + f * d[0] - c[0], p[1] + f * d[1] - c[1]};
+                    double hl = hypot(h[0], h[1]);
+                    best = f;
+                    hit = i;
+                    bn[0] = h[0] / hl;
+                    bn[1] = h[1] / hl;
+                }
+            }
+        for (int k = 0; k < nedges_of(&s); k++) {
+            double q[2], e[2], len = edge_of(&s, k, q, e);
+            for (int side = 1; side >= (s.n >= 3 ? 1 : -1); side -= 2) {
+                double n[2] = {side * e[1], -side * e[0]}; /* outward (right of an anticlockwise edge) */
+                double dn = d[0] * n[0] + d[1] * n[1];
+                if (!(dn < 0))
+                    continue;
+                double h = (p[0] - q[0]) * n[0] + (p[1] - q[1]) * n[1] - s.r; /* height above the face */
+                if (h < 0)
+                    continue;
+                double f = h / -dn;
+                if (!(f <= 1) || !(f < best))
+                    continue;
+                double at[2] = {p[0] + f * d[0] - q[0], p[1] + f * d[1] - q[1]};
+                double along = at[0] * e[0] + at[1] * e[1];
+                if (along < 0 || along > len)
+                    continue;
+                best = f;
+                hit = i;
+                bn[0] = n[0];
+                bn[1] = n[1];
+            }
+        }
+    }
+    free(buf);
+    if (hit < 0)
+        return 0;
+    *fraction = best;
+    *body = hit;
+    normal[0] = bn[0];
+    normal[1] = bn[1];
+    return 1;
 }

@@ -52,6 +52,8 @@ Scenes: `max2code.engine.scenefile.load(path)` reads a scene file (TOML or JSON,
 that module and the README) and `build_world(scene)` makes its World; `max2code sim` runs one.
 """
 
-from .world import BodyInfo, EngineError, Event, World
+from .handlers import CollisionHandler
+from .inputs import Input
+from .world import BodyInfo, EngineError, Event, RayHit, World
 
-__all__ = ["BodyInfo", "EngineError", "Event", "World"]
+__all__ = ["BodyInfo", "CollisionHandler", "EngineError", "Event", "Input", "RayHit", "World"]

@@ -67,6 +67,16 @@ class Event:
     data: tuple[object, object] = (None, None)
 
 
+@dataclass(frozen=True)
+class RayHit:
+    """The first shape a ray enters: its body, the point, the surface normal there and the
+    fraction of the ray travelled (0..1)."""
+    body: int
+    point: Vec
+    normal: Vec
+    fraction: float
+
+
 @dataclass
 class _Timer:
     callback: Callable[["World", Event], None] | None
@@ -550,6 +560,47 @@ class World:
         such as a cell crossing): no reported event comes before it; inf when nothing is
         queued. A server sleeps until then (or until input arrives)."""
         return float(self._lib.m2c_world_next_time(self._w))
+
+    # -- queries at any time >= now -----------------------------------------------------------
+
+    def _ids(self, fill) -> list[int]:
+        cap = max(16, len(self.bodies))
+        out = self._ffi.new("int[]", cap)
+        n = fill(out, cap)
+        if n < 0:
+            raise EngineError(self.error())
+        return [out[k] for k in range(min(n, cap))]
+
+    def query_point(self, point: Vec, t: float | None = None, mask: int = 0xFFFFFFFF) -> list[int]:
+        """The bodies whose shape contains `point` at time t (default now), in id order;
+        only those whose category meets `mask`."""
+        at = self.time if t is None else float(t)
+        return self._ids(lambda out, cap: self._lib.m2c_world_query_point(
+            self._w, at, float(point[0]), float(point[1]), mask, out, cap))
+
+    def query_box(self, lower: Vec, upper: Vec, t: float | None = None,
+                  mask: int = 0xFFFFFFFF) -> list[int]:
+        """The bodies whose shape meets the axis-aligned box [lower, upper] at time t."""
+        at = self.time if t is None else float(t)
+        return self._ids(lambda out, cap: self._lib.m2c_world_query_box(
+            self._w, at, float(lower[0]), float(lower[1]), float(upper[0]), float(upper[1]), mask,
+            out, cap))
+
+    def cast_ray(self, start: Vec, end: Vec, t: float | None = None,
+                 mask: int = 0xFFFFFFFF) -> RayHit | None:
+        """The first shape the segment start -> end enters at time t (exact: the smallest root
+        of each feature's crossing), or None. A shape containing `start` is not hit."""
+        at = self.time if t is None else float(t)
+        f, b, n = self._ffi.new("double *"), self._ffi.new("int *"), self._ffi.new("double[2]")
+        r = self._lib.m2c_world_cast_ray(self._w, at, float(start[0]), float(start[1]),
+                                         float(end[0]), float(end[1]), mask, f, b, n)
+        if r < 0:
+            raise EngineError(self.error())
+        if r == 0:
+            return None
+        x = start[0] + f[0] * (end[0] - start[0])
+        y = start[1] + f[0] * (end[1] - start[1])
+        return RayHit(b[0], (x, y), (n[0], n[1]), f[0])
 
     def first_contact(self, a: int, b: int, horizon: float) -> float | None:
         """When bodies a and b would first touch within `horizon` from now, were they alone
