@@ -46,7 +46,7 @@ def test_ray_casts(engine) -> None:
     w, floor, ball, box, cap = _world(engine)
     hit = w.cast_ray((0.0, 10.0), (0.0, -10.0))
     assert (hit.body, hit.point, hit.normal, hit.fraction) == (ball, (0.0, 2.5), (0.0, 1.0), 0.375)
-    hit = w.cast_ray((-2.0, 5.0), (-2.0, -5.0))            # the end of the capsule.s flat side
+    hit = w.cast_ray((-2.0, 5.0), (-2.0, -5.0))            # the end of the capsule's flat side
     assert hit.body == cap and hit.point[1] == pytest.approx(3.25, rel=1e-15)
     hit = w.cast_ray((-1.9, 5.0), (-1.9, -5.0))
     assert hit.body == cap and hit.point[1] == pytest.approx(3.0 + math.sqrt(0.25 ** 2 - 0.1 ** 2), rel=1e-15)
