@@ -36,6 +36,8 @@ from collections import Counter
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
+from .jsonsafe import json_safe
+
 
 # ---------------------------------------------------------------------------
 # Scenes
@@ -130,7 +132,7 @@ def load_scene(path: str | Path) -> Scene:
     if not c.errors:
         _overlapping(c, bodies)
     if c.errors:
-        raise SceneError(c.errors)
+        raise SceneError(c.diagnostics())
     return Scene(tuple(b for _, b in bodies), horizon, tol, name)
 
 
@@ -138,20 +140,21 @@ def _overlapping(c, bodies: list[tuple[int, Body]]) -> None:
     """Bodies of different groups (or none) overlapping at 0, located at the later one (their
     positions at 0 are centre + offset; the circles near each other by the grid of
     engine.scenefile.near_pairs)."""
-    from .engine.scenefile import near_pairs, report_overlaps
+    from .engine.scenefile import MAX_OVERLAPS, near_pairs, report_overlaps
 
     circles = [(*b.position(0.0), b.radius) for _, b in bodies]
     found = []
-    for ka, kb in near_pairs(circles):
+    for ka, kb in near_pairs(circles, [b.group for _, b in bodies]):
         (ia, a), (ib, b) = bodies[ka], bodies[kb]
-        if a.group is not None and a.group == b.group:
-            continue
         (xa, ya, ra), (xb, yb, rb) = circles[ka], circles[kb]
         gap = math.hypot(xb - xa, yb - ya) - (ra + rb)
         # (circles placed to touch may round into each other: a few ulps of the figures, as
         # sim's check allows its tolerance)
         if gap < -16 * sys.float_info.epsilon * (abs(xa) + abs(ya) + abs(xb) + abs(yb) + ra + rb):
             found.append(((ia, a.name), (ib, b.name), -gap))
+            if len(found) == MAX_OVERLAPS:
+                c.stopped = f"the overlap check stopped after {MAX_OVERLAPS} overlapping pairs"
+                break
     report_overlaps(c, found, ": a contact under way has no first time")
 
 
@@ -388,7 +391,8 @@ def main(argv: list[str]) -> int:
             print(d, file=sys.stderr)
         return 1
     report = run(scene, check=args.check)
-    print(json.dumps(report.as_dict(), indent=1) if args.json else report.text())
+    print(json.dumps(json_safe(report.as_dict()), indent=1, allow_nan=False) if args.json
+          else report.text())
     if args.check and not report.as_dict()["within_tolerance"]:
         return 1
     return 0

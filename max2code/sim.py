@@ -19,12 +19,15 @@ import math
 import sys
 import time
 
+from .jsonsafe import json_safe
 from .output import write_if_changed
 
 
 # Frames a run with pictures may ask for: every frame is kept until the end (the view is fit to
 # every body in every frame), about 13 kB each for examples/scenes/pile.toml's 66 bodies.
 MAX_FRAMES = 100_000
+# The slowest frame rate pictures are made at (--fps 1e-300 overflowed the GIF's delay field).
+MIN_PICTURE_FPS = 0.01
 
 
 def event_record(world, ev) -> dict:
@@ -41,7 +44,8 @@ def event_record(world, ev) -> dict:
 
 
 def event_log(world, events) -> str:
-    return "".join(json.dumps(event_record(world, e), separators=(",", ":")) + "\n" for e in events)
+    return "".join(json.dumps(json_safe(event_record(world, e)), separators=(",", ":"),
+                              allow_nan=False) + "\n" for e in events)
 
 
 def _size(text: str) -> tuple[int, int]:
@@ -86,6 +90,10 @@ def main(argv: list[str]) -> int:
               file=sys.stderr)
         return 1
     pictures = args.gif or args.mp4 or args.png_dir or args.svg or args.png or args.live
+    if pictures and fps < MIN_PICTURE_FPS:
+        print(f"max2code sim: error: --fps {fps:g} is below {MIN_PICTURE_FPS:g} for pictures (a "
+              "frame every 100 s at most: a GIF holds a frame's delay up to 655 s)", file=sys.stderr)
+        return 1
     if pictures and until * fps + 1 > MAX_FRAMES:
         print(f"max2code sim: error: --until {until:g} at --fps {fps:g} asks for "
               f"{until * fps + 1:.0f} frames; at most {MAX_FRAMES} (each is kept, to fit the "
@@ -105,6 +113,10 @@ def main(argv: list[str]) -> int:
             log = world.step_to(until)
         seconds = time.perf_counter() - start
         e1 = world.energy(until)
+    except SceneError as exc:  # a body the engine refused, at its place in the file
+        for d in exc.diagnostics:
+            print(d, file=sys.stderr)
+        return 1
     except EngineError as exc:
         print(f"{args.scene}: error: engine: {exc}", file=sys.stderr)
         return 1
@@ -124,7 +136,7 @@ def main(argv: list[str]) -> int:
                "energy_drift": (e1 - e0) / abs(e0) if e0 else e1 - e0,
                "stats": stats}
     if args.json:
-        print(json.dumps(summary, indent=1))
+        print(json.dumps(json_safe(summary), indent=1, allow_nan=False))
     else:
         print(f"{scene.name}: {len(world.bodies)} bodies, {until:g} s simulated in {seconds:.3f} s: "
               f"{stats['collisions']} collisions, {stats['events']} events "

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import json
 import re
+import sys
 from dataclasses import dataclass, field
 
 Path = tuple  # of str (keys) and int (array indices)
@@ -84,7 +85,7 @@ class _JsonReader:
         m = _NUMBER.match(self.text, self.i)
         if m and m.end() > self.i:
             self.i = m.end()
-            return json.loads(m.group())
+            return _number(m.group())
         for word, val in (("true", True), ("false", False), ("null", None)):
             if self.text.startswith(word, self.i):
                 self.i += len(word)
@@ -95,8 +96,13 @@ class _JsonReader:
         m = _STRING.match(self.text, self.i)
         if not m:
             raise self.fail("a bad string (unterminated, or a control character in it)")
+        text = json.loads(m.group())
+        bad = unpaired_surrogate(text)
+        if bad is not None:
+            raise self.fail(f"a string with an unpaired surrogate escape \\u{ord(bad):04x} "
+                            "(not Unicode text)")
         self.i = m.end()
-        return json.loads(m.group())
+        return text
 
     def obj(self, path: Path) -> dict:
         self.i += 1
@@ -149,6 +155,26 @@ class _JsonReader:
             raise self.fail("expected ',' or ']'")
 
 
+# Integers longer than this are read as floats (an int of 100 000 digits is data, and Python's
+# int() refuses more than 4300 digits): as a float it is infinite, and the checker refuses it.
+_INT_DIGITS = 400
+
+
+def _number(text: str) -> int | float:
+    """A JSON number: an int when it is written as one and short, else a float (possibly
+    infinite, as 1e400 is: the scene checker refuses it with its place)."""
+    if re.fullmatch(r"-?\d+", text) and len(text) <= _INT_DIGITS:
+        return int(text)
+    return float(text)
+
+
+def unpaired_surrogate(text: str) -> str | None:
+    """The first lone surrogate (a \\ud800 escape without its pair) in text, else None: such a
+    string cannot be written out as UTF-8, so it is refused where it is read."""
+    m = re.search("[\ud800-\udfff]", text)
+    return m.group() if m else None
+
+
 def parse_json(text: str) -> Located:
     r = _JsonReader(text)
     data = r.value(())
@@ -185,6 +211,13 @@ def parse_toml(text: str) -> Located:
         m = re.search(r"\(at line (\d+), column (\d+)\)", str(exc))
         line, col = (int(m.group(1)), int(m.group(2))) if m else (1, 1)
         raise TextError(line, col, re.sub(r"\s*\(at line.*\)", "", str(exc))) from exc
+    except ValueError as exc:  # an integer too long for int() (tomllib gives no position)
+        m = max(re.finditer(r"[0-9A-Za-z_]+", text), key=lambda m: len(m.group()), default=None)
+        offset = m.start() if m else 0
+        line = text.count("\n", 0, offset) + 1
+        col = offset - (text.rfind("\n", 0, offset) + 1) + 1
+        raise TextError(line, col, f"a number too long to read (more than "
+                        f"{sys.get_int_max_str_digits()} digits)") from exc
     positions: dict[Path, tuple[int, int]] = {}
     table: Path = ()
     counts: dict[tuple[str, ...], int] = {}

@@ -40,11 +40,12 @@ def mass_properties(vertices: list[Vec], radius: float) -> MassProperties:
         if radius == 0:  # a thin rod
             return MassProperties(0.0, centre, length * length / 12)
         rect, disc = 2 * radius * length, math.pi * radius * radius
-        i_rect = rect * (length ** 2 + (2 * radius) ** 2) / 12
+        i_rect = rect * (length * length + 4 * radius * radius) / 12
         # two half-discs: a disc's r^2/2 about its centre, moved to the ends (parallel axis,
         # from each half-disc's own centroid 4r/3pi beyond the end)
         d = 4 * radius / (3 * math.pi)
-        i_half = disc / 2 * (radius * radius / 2 - d * d) + disc / 2 * (length / 2 + d) ** 2
+        arm = length / 2 + d
+        i_half = disc / 2 * (radius * radius / 2 - d * d) + disc / 2 * arm * arm
         area = rect + disc
         return MassProperties(area, centre, (i_rect + 2 * i_half) / area)
     area = polygon_area(vertices)
