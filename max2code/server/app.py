@@ -25,8 +25,9 @@ from .protocol import Hello, Key, Ping, Point, ProtocolError, RateLimit
 from .room import Room
 
 STATIC = {"/": ("index.html", "text/html; charset=utf-8"),
-          "/client.js": ("client.js", "text/javascript; charset=utf-8")}
-SECURITY_HEADERS = [("Content-Security-Policy", "default-src 'self'; connect-src 'self'"),
+          "/client.js": ("client.js", "text/javascript; charset=utf-8"),
+          "/style.css": ("style.css", "text/css; charset=utf-8")}
+SECURITY_HEADERS = [("Content-Security-Policy", "default-src 'self'; connect-src 'self'; img-src 'self' data:"),
                     ("X-Content-Type-Options", "nosniff"), ("Cache-Control", "no-cache")]
 HELLO_TIMEOUT = 10.0
 
