@@ -91,3 +91,23 @@ def publish(out: Path, name: str, text: str) -> Path:
     print(text)
     print(f"wrote {path}")
     return path
+
+
+def cpu() -> str:
+    """The CPU's model name (from /proc/cpuinfo), else the architecture: what a result and a
+    chart name as the machine it was measured on."""
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    import platform
+    return platform.machine()
+
+
+def machine_and_date() -> str:
+    """'CPU model, N cores, YYYY-MM-DD': the line every bench chart carries under its title."""
+    import datetime
+    import os
+    return f"{cpu()}, {os.cpu_count()} cores, {datetime.date.today().isoformat()}"

@@ -3,7 +3,9 @@
 Every file is written to a temporary name beside it and renamed (output.replaced_atomically), so
 an interrupted or failed run leaves the previous file as it was. Frames may come from a generator:
 MP4 and PNG folders are written as they come; a GIF is held in memory (Pillow writes it whole),
-as palette images, about width x height bytes per frame.
+as palette images, about width x height bytes per frame. A simulation's animations are drawn by
+one raster.FrameDrawer (the same pixels as frame_image, several times faster), and a GIF's
+frames share one palette (render.palette).
 
 Timing. An MP4 has `fps` frames per second, exactly. A GIF stores delays in hundredths of a
 second and browsers treat delays under 0.02 s as 0.1 s, so above 50 frames per second every k-th
@@ -47,6 +49,9 @@ def _imports() -> tuple[object, object]:
     return raster, Image
 
 
+GIF_PALETTE_SAMPLES = 4   # frames whose colours choose a GIF's palette, evenly spaced
+
+
 def _check_fps(fps: float) -> float:
     if isinstance(fps, bool) or not isinstance(fps, (int, float)) or not (math.isfinite(fps) and fps > 0):
         raise RenderModelError(f"fps must be a positive number, not {fps!r}")
@@ -62,7 +67,7 @@ def write_png_dir(folder: str | os.PathLike, bodies: Sequence[Body], frames: Ite
                   view: View) -> list[Path]:
     """The frames as a folder of PNGs (png_dir_of below)."""
     raster, _ = _imports()
-    return png_dir_of(folder, frames, lambda f: raster.frame_image(bodies, f, view))
+    return png_dir_of(folder, frames, raster.FrameDrawer(bodies, view).image)
 
 
 def _save_png(path: str | os.PathLike, image) -> None:
@@ -124,26 +129,34 @@ def write_gif(path: str | os.PathLike, bodies: Sequence[Body], frames: Iterable[
               fps: float) -> int:
     """An animated GIF that loops; returns the number of frames kept (see the module's timing)."""
     raster, _ = _imports()
-    return gif_of(path, frames, lambda f: raster.frame_image(bodies, f, view), fps)
+    drawer = raster.FrameDrawer(bodies, view)
+    return gif_of(path, frames, drawer.pixels, fps, raster.scene_colours(bodies, view),
+                  lambda: drawer.changed)
 
 
-def gif_of(path: str | os.PathLike, frames: Iterable[F], draw: Callable[[F], object], fps: float) -> int:
-    """An animated GIF of draw(frame) (an RGB Pillow image) for each frame: frames that the
-    timing drops are never drawn."""
-    _, Image = _imports()
+def gif_of(path: str | os.PathLike, frames: Iterable[F], draw: Callable[[F], object], fps: float,
+           keys: Sequence[str] = (), changed: Callable[[], list | None] = lambda: None) -> int:
+    """An animated GIF of draw(frame) (an RGB Pillow image, or its bytes) for each frame: frames
+    that the timing drops are never drawn. One palette for all (render.palette): the colours
+    `keys` exactly, and the blends in GIF_PALETTE_SAMPLES kept frames drawn ahead (draw must
+    depend on its frame only). changed(): the boxes where the last drawing may differ from
+    the one before (None: anywhere), so only those are mapped to the palette again."""
+    _imports()
+    from . import palette
     fps = _check_fps(fps)
-    step = max(1, math.ceil(fps / GIF_MAX_FPS - 1e-9))
-    images = []
-    count = 0
-    for i, frame in enumerate(frames):
-        count += 1
-        if i % step == 0:
-            rgb = draw(frame)
-            images.append(rgb.quantize(colors=256, method=Image.Quantize.MEDIANCUT,
-                                       dither=Image.Dither.NONE))
-    if not images:
+    frames = list(frames)   # (Frame objects are small; their pictures are not kept)
+    step, delays = gif_timing(len(frames), fps)
+    kept = frames[::step]
+    if not kept:
         raise RenderModelError("an animation needs at least one frame")
-    _, delays = gif_timing(count, fps)
+    picks = sorted({round(i * (len(kept) - 1) / max(GIF_PALETTE_SAMPLES - 1, 1))
+                    for i in range(GIF_PALETTE_SAMPLES)})
+    # (.copy(): FrameDrawer.pixels reuses its buffer)
+    mapper = palette.Mapper(palette.choose(keys, [draw(kept[i]).copy() for i in picks]))
+    images = []
+    for i, frame in enumerate(kept):
+        pixels = draw(frame)
+        images.append(mapper.mapped(pixels, changed() if i else None))
     with replaced_atomically(os.fspath(path)) as tmp:
         images[0].save(tmp, format="GIF", save_all=True, append_images=images[1:], duration=delays,
                        loop=0, disposal=1, optimize=False)
@@ -154,7 +167,7 @@ def write_mp4(path: str | os.PathLike, bodies: Sequence[Body], frames: Iterable[
               fps: float, quality: float = 8.0) -> int:
     """An H.264 MP4 of the frames (mp4_of below)."""
     raster, _ = _imports()
-    return mp4_of(path, frames, lambda f: raster.frame_image(bodies, f, view), fps,
+    return mp4_of(path, frames, raster.FrameDrawer(bodies, view).pixels, fps,
                   view.background, quality)
 
 

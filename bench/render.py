@@ -1,0 +1,150 @@
+"""How fast pictures of a simulation are drawn: frames per second at 640x480, per example scene.
+
+    python bench/render.py             # writes bench/results/render.md
+    python bench/render.py --seconds 1 # shorter runs
+
+Each scene is run for SECONDS at 30 frames per second and its frames drawn three ways, each
+against the old path, kept here as the named baseline `frame_image` and measured in the same
+run: the frames alone (raster.frame_image, which paints every body on a fresh canvas, vs
+raster.FrameDrawer), an animated GIF (per frame: frame_image and a median cut to 256 colours,
+as write_gif did, vs write_gif), and an MP4 (write_mp4 with frame_image vs as it is). Frames
+and GIF are timed in CPU seconds of this process (the machine is shared: its wall clock
+measures the neighbours too); MP4 in wall seconds, as ffmpeg encodes in a process of its own.
+The drawer's frames are checked to be the baseline's, byte for byte, before anything is timed.
+"""
+
+from __future__ import annotations
+
+import argparse
+import io
+import os
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+from benchtools import command_line, machine_and_date, publish
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT))
+
+import numpy as np  # noqa: E402
+from PIL import Image  # noqa: E402
+
+from max2code.engine.frames import render_bodies, run_frames  # noqa: E402
+from max2code.engine.scenefile import build_world, load  # noqa: E402
+from max2code.render import raster, write  # noqa: E402
+from max2code.sim import picture_view  # noqa: E402
+
+SCENES = ("billiards-break", "bullet", "idle-orbit", "paddles", "pile", "pinball")
+FPS = 30.0
+SIZE = (640, 480)
+
+
+class BaselineDrawer:
+    """The old drawing path behind FrameDrawer's interface: every frame from scratch."""
+
+    def __init__(self, bodies, view) -> None:
+        self.bodies, self.view = bodies, view
+
+    def image(self, frame) -> Image.Image:
+        return raster.frame_image(self.bodies, frame, self.view)
+
+    def pixels(self, frame) -> np.ndarray:
+        return np.asarray(self.image(frame))
+
+
+def baseline_gif(bodies, frames, view) -> bytes:
+    """write_gif as it was: each frame drawn by frame_image and cut to its own 256 colours."""
+    step, delays = write.gif_timing(len(frames), FPS)
+    images = [raster.frame_image(bodies, f, view).quantize(
+        colors=256, method=Image.Quantize.MEDIANCUT, dither=Image.Dither.NONE) for f in frames[::step]]
+    out = io.BytesIO()
+    images[0].save(out, format="GIF", save_all=True, append_images=images[1:], duration=delays,
+                   loop=0, disposal=1, optimize=False)
+    return out.getvalue()
+
+
+def timed(run) -> tuple[float, float]:
+    """(CPU seconds, wall seconds) of run()."""
+    c0, w0 = time.process_time(), time.perf_counter()
+    run()
+    return time.process_time() - c0, time.perf_counter() - w0
+
+
+def scene_frames(name: str, seconds: float):
+    scene = load(str(ROOT / "examples" / "scenes" / f"{name}.toml"))
+    world = build_world(scene)
+    frames = list(run_frames(world, seconds, FPS))
+    bodies = render_bodies(world)
+    return bodies, frames, picture_view(scene, bodies, frames, *SIZE)
+
+
+def mp4_with(drawer_class, bodies, frames, view, path: str) -> None:
+    """write_mp4 drawing with `drawer_class` (the baseline's, or FrameDrawer)."""
+    saved = raster.FrameDrawer
+    raster.FrameDrawer = drawer_class
+    try:
+        write.write_mp4(path, bodies, frames, view, FPS)
+    finally:
+        raster.FrameDrawer = saved
+
+
+def measure(name: str, seconds: float, tmp: str) -> dict[str, tuple[float, float]]:
+    """fps of each path: {'frames': (baseline, new), 'gif': ..., 'mp4': ...}."""
+    bodies, frames, view = scene_frames(name, seconds)
+    drawer = raster.FrameDrawer(bodies, view)
+    for f in frames:
+        if drawer.image(f).tobytes() != raster.frame_image(bodies, f, view).tobytes():
+            sys.exit(f"render: {name}: FrameDrawer's frame at t={f.time} is not frame_image's")
+    n = len(frames)
+    gif = os.path.join(tmp, "a.gif")
+    mp4 = os.path.join(tmp, "a.mp4")
+    base_frames = timed(lambda: [raster.frame_image(bodies, f, view) for f in frames])[0]
+    new_frames = timed(lambda: [d.pixels(f) for d in [raster.FrameDrawer(bodies, view)] for f in frames])[0]
+    base_gif = timed(lambda: baseline_gif(bodies, frames, view))[0]
+    new_gif = timed(lambda: write.write_gif(gif, bodies, frames, view, FPS))[0]
+    base_mp4 = timed(lambda: mp4_with(BaselineDrawer, bodies, frames, view, mp4))[1]
+    new_mp4 = timed(lambda: mp4_with(raster.FrameDrawer, bodies, frames, view, mp4))[1]
+    return {"frames": (n / base_frames, n / new_frames), "gif": (n / base_gif, n / new_gif),
+            "mp4": (n / base_mp4, n / new_mp4), "count": n, "bodies": len(bodies)}
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--seconds", type=float, default=3.0, help="simulated seconds per scene")
+    ap.add_argument("--scenes", nargs="*", default=list(SCENES), help="example scenes")
+    args = ap.parse_args()
+    if os.environ.get("MAX2CODE_BENCH_SMOKE"):
+        args.seconds, args.scenes = 0.3, args.scenes[:2]
+    lines = ["# Drawing pictures of a simulation", "",
+             f"Machine: {machine_and_date()} (shared). Command: "
+             f"`{command_line('bench/render.py', args, {'seconds': 3.0})}`. "
+             f"Each example scene {args.seconds:g} s at {FPS:g} frames per second, "
+             f"{SIZE[0]}x{SIZE[1]}; frames per second of each path, and the new path's speed-up "
+             "against the old one (`frame_image`: every frame painted from scratch; GIF: each "
+             "frame also cut to its own 256 colours), both measured in this run. Frames and GIF "
+             "in CPU seconds of the process, MP4 in wall seconds (ffmpeg runs beside it). "
+             "FrameDrawer's frames are checked equal to frame_image's, byte for byte, first.", "",
+             "| scene | bodies | frames | frames: old / new fps | speed-up | GIF: old / new fps "
+             "| speed-up | MP4: old / new fps | speed-up |",
+             "|---|---|---|---|---|---|---|---|---|"]
+    totals = {"frames": [0.0, 0.0], "gif": [0.0, 0.0], "mp4": [0.0, 0.0]}
+    with tempfile.TemporaryDirectory() as tmp:
+        for name in args.scenes:
+            r = measure(name, args.seconds, tmp)
+            cells = []
+            for kind in ("frames", "gif", "mp4"):
+                old, new = r[kind]
+                totals[kind][0] += r["count"] / old
+                totals[kind][1] += r["count"] / new
+                cells.append(f"{old:.1f} / {new:.1f} | {new / old:.1f}x")
+            lines.append(f"| {name} | {r['bodies']} | {r['count']} | " + " | ".join(cells) + " |")
+    lines += ["", "All scenes together (total time old / new): " + ", ".join(
+        f"{kind} {old / new:.1f}x" for kind, (old, new) in totals.items()) + "."]
+    publish(ROOT / "bench" / "results", "render.md", "\n".join(lines) + "\n")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,97 @@
+"""One 256-colour palette for a whole GIF, and frames mapped onto it.
+
+A GIF frame holds at most 256 colours. Choosing them per frame (median cut) cost twice as long
+as drawing the frame, and let a colour shift from frame to frame. The pictures here have few
+colours: the scene's own (background, fills, strokes, contacts, text), which are kept exactly,
+and their anti-aliased blends, which a median cut of the distinct colours of a few sample
+frames covers (each colour counted once: a median cut of the pixels themselves spends its
+entries on the background's area, and took as long as drawing 20 frames). Each frame is
+then mapped to its nearest palette entry, without dithering (dither noise would
+differ from frame to frame and make the GIF flicker and grow).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+
+import numpy as np
+from PIL import Image
+
+COLOURS = 256
+MOST_KEYS = 64   # the scene's own colours kept exactly; the rest of the palette is blends
+
+
+def _rgb(colour: str) -> tuple[int, int, int]:
+    """'#rrggbb[aa]' (checked by the model) to bytes; alpha is ignored."""
+    return tuple(int(colour[i:i + 2], 16) for i in (1, 3, 5))  # type: ignore[return-value]
+
+
+def _packed(pixels: np.ndarray) -> np.ndarray:
+    """RGB bytes (..., 3) as one 24-bit number each."""
+    return ((pixels[..., 0].astype(np.uint32) << 16) | (pixels[..., 1].astype(np.uint32) << 8)
+            | pixels[..., 2])
+
+
+def choose(keys: Iterable[str], samples: Sequence[Image.Image | np.ndarray]) -> np.ndarray:
+    """COLOURS entries (uint8, COLOURS x 3): the distinct `keys` colours first, then the median
+    cut of the samples' distinct colours into the entries left."""
+    fixed = list(dict.fromkeys(_rgb(c) for c in keys))[:MOST_KEYS]
+    entries = list(fixed)
+    if samples:
+        seen = np.zeros(1 << 24, dtype=bool)   # (a sort of a million pixels took 60 ms)
+        for sample in samples:
+            seen[_packed(np.asarray(sample))] = True
+        packed = np.flatnonzero(seen).astype(np.uint32)
+        distinct = np.stack([packed >> 16, (packed >> 8) & 255, packed & 255], axis=1)
+        strip = Image.fromarray(distinct.astype(np.uint8)[None, :, :], "RGB")
+        cut = strip.quantize(colors=COLOURS - len(fixed), method=Image.Quantize.MEDIANCUT,
+                             dither=Image.Dither.NONE)
+        flat = cut.getpalette()[:3 * (COLOURS - len(fixed))]
+        used = sorted({c for _, c in cut.getcolors(COLOURS)})
+        entries += [tuple(flat[3 * i:3 * i + 3]) for i in used]
+    entries += [entries[-1] if entries else (0, 0, 0)] * (COLOURS - len(entries))
+    return np.array(entries, dtype=np.uint8)
+
+
+class Mapper:
+    """Frames onto one palette, each pixel to its nearest entry (in RGB), exactly: a palette
+    colour maps to itself. (Pillow's own mapping looks colours up at reduced precision: white
+    came out as 253, 253, 253.) Nearest entries are remembered per colour in a table of all
+    2^24 colours, allocated lazily by the OS, so each new colour is looked up once."""
+
+    def __init__(self, entries: np.ndarray) -> None:
+        self.entries = entries
+        self.flat = [int(v) for v in entries.ravel()]
+        self.table = np.zeros(1 << 24, dtype=np.uint16)   # entry + 1; 0: not looked up yet
+        self.index: np.ndarray | None = None               # the last image's entries
+
+    def _learn(self, colours: np.ndarray) -> None:
+        """Nearest entries of new colours: |c - e|^2 = |c|^2 - 2 c.e + |e|^2, and |c|^2 is the
+        same for every entry (a product of matrices, exact in float64)."""
+        rgb = np.stack([colours >> 16, (colours >> 8) & 255, colours & 255], axis=1).astype(np.float64)
+        entries = self.entries.astype(np.float64)
+        d = (entries * entries).sum(axis=1)[None, :] - 2.0 * rgb @ entries.T
+        self.table[colours] = np.argmin(d, axis=1) + 1
+
+    def _entries(self, pixels: np.ndarray) -> np.ndarray:
+        keys = _packed(pixels)
+        index = self.table[keys]
+        if not index.all():
+            self._learn(np.unique(keys[index == 0]))
+            index = self.table[keys]
+        return (index - 1).astype(np.uint8)
+
+    def mapped(self, image: Image.Image | np.ndarray,
+               changed: list[tuple[int, int, int, int]] | None = None) -> Image.Image:
+        """`image` (RGB, or its bytes) as a 'P' image on the palette. `changed`: the boxes
+        (rows j0:j1, columns i0:i1) outside which `image` is the previous one mapped
+        (FrameDrawer.changed); None: map every pixel."""
+        pixels = np.asarray(image)
+        if changed is None or self.index is None or self.index.shape != pixels.shape[:2]:
+            self.index = self._entries(pixels)
+        else:
+            for j0, j1, i0, i1 in changed:
+                self.index[j0:j1, i0:i1] = self._entries(pixels[j0:j1, i0:i1])
+        out = Image.fromarray(self.index.copy(), "P")   # (a 'P' image would share the array)
+        out.putpalette(self.flat)
+        return out
