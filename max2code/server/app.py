@@ -100,7 +100,7 @@ class Server:
             room = self.room(msg.room)
             if len(room.clients) >= self.options.max_clients:
                 raise ProtocolError(f"room {msg.room!r} is full")
-            client, world = room.join(_sender(ws), msg.name)
+            client, world = room.join(_sender(ws), msg.name, msg.play)
             await ws.send(world)
             async for frame in ws:
                 if not limit.allow(loop.time()):

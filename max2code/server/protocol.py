@@ -50,6 +50,7 @@ class Hello:
     seq: int
     room: str
     name: str
+    play: bool = True     # false: watch only (never given a body)
 
 
 @dataclass(frozen=True)
@@ -98,7 +99,7 @@ def _str(v: object, what: str, pattern: re.Pattern) -> str:
 
 NAME = re.compile(r"[\w .-]{0,32}")
 _FIELDS = {
-    "hello": {"type", "seq", "v", "room", "name"},
+    "hello": {"type", "seq", "v", "room", "name", "play"},
     "ping": {"type", "seq", "id", "c"},
     "key": {"type", "seq", "body", "key", "down"},
     "point": {"type", "seq", "body", "x", "y"},
@@ -146,8 +147,11 @@ def parse(frame: str | bytes, expected_seq: int) -> Message:
     if kind == "hello":
         if data["v"] != VERSION or isinstance(data["v"], bool):
             raise ProtocolError(f"protocol version {VERSION} only")
+        play = data.get("play", True)
+        if not isinstance(play, bool):
+            raise ProtocolError("play must be true or false")
         return Hello(seq, _str(data.get("room", "main"), "room", ROOM),
-                     _str(data.get("name", ""), "name", NAME))
+                     _str(data.get("name", ""), "name", NAME), play)
     if kind == "ping":
         return Ping(seq, _int(data["id"], "id", 0, _BIG), _num(data["c"], "c"))
     body = _int(data["body"], "body", 0, 2 ** 31 - 1)

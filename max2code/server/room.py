@@ -140,12 +140,12 @@ class Room:
 
     # -- clients ----------------------------------------------------------------------------
 
-    def join(self, send: Callable[[str], None], name: str) -> tuple[Client, str]:
+    def join(self, send: Callable[[str], None], name: str, play: bool = True) -> tuple[Client, str]:
         """A new client: the bodies it controls (the first free player body, if any) and the
         world message it starts from (every body's shape, style and segment now)."""
         taken = {b for c in self.clients for b in c.controls}
         free = [b for b in self.players if b not in taken]
-        client = Client(send, name, tuple(free[:1]))
+        client = Client(send, name, tuple(free[:1]) if play else ())
         self.advance(self.clock())
         t = self.world.time
         motions, _ = self.world.motions()

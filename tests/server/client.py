@@ -21,10 +21,10 @@ class Client:
         self.n = 0
 
     @classmethod
-    async def join(cls, url: str, room: str = "main", **kw) -> "Client":
+    async def join(cls, url: str, room: str = "main", play: bool = True, **kw) -> "Client":
         ws = await connect(url, **kw)
         c = cls(ws)
-        await c.send({"type": "hello", "v": 1, "room": room})
+        await c.send({"type": "hello", "v": 1, "room": room, "play": play})
         c.world = json.loads(await ws.recv())
         assert c.world["type"] == "world", c.world
         c.n = c.world["n"]

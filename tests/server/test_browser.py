@@ -4,15 +4,21 @@ the server's world says it is at the frame's time; two browsers share one world.
 
 from __future__ import annotations
 
+import asyncio
 import io
 import math
 import os
-import shutil
+import re
+import subprocess
+import sys
+import threading
+import time
 
 import pytest
 
 from conftest import require_module
-from .conftest import ARENA, start
+from .client import Client
+from .conftest import ARENA
 
 CHROMIUM = "/usr/bin/chromium"
 
@@ -31,11 +37,54 @@ def browser():
         b.close()
 
 
+class Served:
+    """`max2code serve` in a process of its own (as a player starts it), and a protocol client
+    (tests/server/client.py) in the same room: what the server says, message by message."""
+
+    def __init__(self) -> None:
+        self.process = subprocess.Popen(
+            [sys.executable, "-m", "max2code", "serve", str(ARENA), "--port", "0"],
+            stderr=subprocess.PIPE, text=True)
+        line = self.process.stderr.readline()
+        m = re.search(r"http://127\.0\.0\.1:(\d+)/", line)
+        assert m, line
+        self.port = int(m.group(1))
+        self.watcher: Client | None = None
+        self.done = threading.Event()
+        self.thread = threading.Thread(target=lambda: asyncio.run(self._watch()), daemon=True)
+        self.thread.start()
+        for _ in range(300):
+            if self.watcher is not None:
+                break
+            time.sleep(0.1)
+        assert self.watcher is not None, "the watcher did not join"
+
+    async def _watch(self) -> None:
+        # (a thread and loop of its own: Playwright's synchronous API owns the main thread's)
+        self.watcher = await Client.join(f"ws://127.0.0.1:{self.port}/ws", play=False)
+        while not self.done.is_set():
+            await self.watcher.receive(0.05)
+        await self.watcher.ws.close()
+
+    def catch_up(self, n: int) -> None:
+        """Wait until the watcher has message n."""
+        for _ in range(300):
+            if self.watcher.n >= n:
+                return
+            time.sleep(0.02)
+
+    def stop(self) -> None:
+        self.done.set()
+        self.thread.join(30)
+        self.process.terminate()
+        self.process.wait(30)
+
+
 @pytest.fixture
 def server():
-    running = start(ARENA)
-    yield running
-    running.stop()
+    served = Served()
+    yield served
+    served.stop()
 
 
 def open_page(browser, server):
@@ -50,26 +99,23 @@ def open_page(browser, server):
 
 
 def probe(page, server, bodies):
-    """Freeze every page's drawing at one server time T (all messages up to T received), and
-    return, per body, the canvas pixel where the server's world puts the body at T and that
-    pixel's colour in the page's canvas."""
-    def now():
-        room = server.server.rooms["main"]
-        room.advance(room.clock())
-        t = room.world.time
-        return t, room.seq, {b: room.world.pose(b, t) for b in bodies}
-    t, seq, poses = server.call(now)
-    page.wait_for_function(f"m2c.state.n >= {seq}", timeout=10000)
-    page.evaluate(f"m2c.freeze({t!r})")
+    """Freeze the page's drawing at its server time T, once it and the watcher hold the same
+    messages, and return per body: the canvas pixel where the server's segments put the body
+    at T, and that pixel's colour in the page's canvas."""
+    t = page.evaluate("m2c.freeze(m2c.serverNow())")
+    n = page.evaluate("m2c.state.n")
+    server.catch_up(n)
+    assert server.watcher.n == n
     from PIL import Image
     image = Image.open(io.BytesIO(page.locator("#view").screenshot())).convert("RGB")
     out = {}
-    for b, (x, y, a) in poses.items():
+    for b in bodies:
+        x, y, a = server.watcher.pose(b, t)
         # half a radius behind the centre, away from the spoke (drawn from the centre along
         # the body's angle): a pixel only the body's fill covers
         r = page.evaluate(f"m2c.state.bodies[{b}].shape.r") / 2
         px, py = page.evaluate(f"m2c.toPixel({x - r * math.cos(a)!r}, {y - r * math.sin(a)!r})")
-        out[b] = ((px, py), image.getpixel((int(px), int(py))), image)
+        out[b] = ((px, py), image.getpixel((int(px), int(py))), image, (x, y))
     page.evaluate("m2c.thaw()")
     return t, out
 
@@ -94,15 +140,15 @@ def test_page_joins_plays_and_draws_where_the_server_says(browser, server, tmp_p
     page.keyboard.up("ArrowUp")
     page.wait_for_timeout(200)
     t, found = probe(page, server, [4])
-    (px, py), colour, image = found[4]
+    (px, py), colour, image, _ = found[4]
     image.save(tmp_path / "probe.png")
     assert colour == hex_rgb("#c44e52"), (t, px, py, colour)
     # the player left its start: the start pixel is no longer red
     sx, sy = page.evaluate("m2c.toPixel(-1.0, 0.0)")
     assert image.getpixel((int(sx), int(sy))) != hex_rgb("#c44e52")
     # the keys reached the server as input events for player1, and nothing was refused
-    inputs = server.call(lambda: server.server.rooms["main"].stats.inputs)
-    assert inputs >= 4
+    inputs = [e for m in server.watcher.messages if m["type"] == "ev" for e in m["ev"] if e[0] == 5]
+    assert len(inputs) >= 4 and {e[1] for e in inputs} == {4}
     assert page.evaluate("m2c.state.refused") == [] and errors == []
     assert page.evaluate("m2c.state.closed") is None
 
@@ -121,6 +167,5 @@ def test_two_browsers_share_one_world(browser, server):
         assert found[4][1] == hex_rgb("#c44e52"), (t, found[4][:2])
         assert found[5][1] == hex_rgb("#4c72b0"), (t, found[5][:2])
     # player2 went left, player1 down: both moved in both pages' world
-    pos = server.call(lambda: {k: server.server.rooms["main"].world.pose(k) for k in (4, 5)})
-    assert pos[4][1] < -0.05 and pos[5][0] < 0.95
+    assert found[4][3][1] < -0.05 and found[5][3][0] < 0.95
     assert errors_a == errors_b == []

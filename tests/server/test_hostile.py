@@ -27,6 +27,7 @@ BAD_FIRST = {
     "seq not zero": json.dumps({**HELLO, "seq": 1}),
     "unknown field": json.dumps({**HELLO, "admin": True}),
     "bad room": json.dumps({**HELLO, "room": "../../etc"}),
+    "play not bool": json.dumps({**HELLO, "play": "yes"}),
     "NaN": '{"type": "hello", "v": 1, "seq": NaN}',
     "deep nesting": "[" * 500 + "]" * 500,
     "oversized": json.dumps({**HELLO, "name": "x" * 2000}),

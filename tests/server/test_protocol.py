@@ -96,10 +96,11 @@ def test_nothing_is_sent_while_nothing_happens(tmp_path):
 
 def test_input_moves_only_your_body(arena):
     async def go():
+        watcher = await Client.join(arena.url, play=False)
         a = await Client.join(arena.url)
         b = await Client.join(arena.url)
         c = await Client.join(arena.url)
-        assert (a.world["you"], b.world["you"], c.world["you"]) == ([4], [5], [])
+        assert (watcher.world["you"], a.world["you"], b.world["you"], c.world["you"]) == ([], [4], [5], [])
         await b.send({"type": "key", "body": 4, "key": "left", "down": True})
         refused = await b.until(lambda m: m["type"] == "refused")
         await c.send({"type": "point", "body": 5, "x": 0, "y": 0})
