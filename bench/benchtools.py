@@ -17,6 +17,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
+from max2code.machine import cpu, machine_and_date  # noqa: E402,F401  (charts' and results' machine line)
 from max2code.output import write_if_changed  # noqa: E402  (temporary file, then rename)
 
 
@@ -92,22 +93,3 @@ def publish(out: Path, name: str, text: str) -> Path:
     print(f"wrote {path}")
     return path
 
-
-def cpu() -> str:
-    """The CPU's model name (from /proc/cpuinfo), else the architecture: what a result and a
-    chart name as the machine it was measured on."""
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    import platform
-    return platform.machine()
-
-
-def machine_and_date() -> str:
-    """'CPU model, N cores, YYYY-MM-DD': the line every bench chart carries under its title."""
-    import datetime
-    import os
-    return f"{cpu()}, {os.cpu_count()} cores, {datetime.date.today().isoformat()}"

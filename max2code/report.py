@@ -172,40 +172,79 @@ def markdown(equations: list[EquationReport], fig6: list[Figure6Row]) -> str:
     return "\n".join(out)
 
 
-def chart(eq: EquationReport) -> str:
+CHART_FONT = 13          # px, every text of the chart
+CHART_CHAR = 7.4         # px a character at 13 px (sans-serif, generous): the label column's room
+STRATEGY_COLOURS = (("expanded", "#c0504d"), ("optimised", "#4f81bd"))
+HATCH = ('<defs><pattern id="nov" width="6" height="6" patternUnits="userSpaceOnUse" '
+         'patternTransform="rotate(45)"><path d="M0 0V6" stroke="#888" stroke-width="2"/>'
+         '</pattern></defs>')
+
+
+def chart(eq: EquationReport, made: str | None = None) -> str:
     """An SVG bar chart of the operations of each variant under both strategies: largest first,
     ties by label (a set's order differs from run to run, and an unchanged report must be the
-    same bytes); the label column as wide as the longest label needs (about 6.2 px a character
-    at 11 px: long role names were cut off at the left edge)."""
-    rows = {s: {v.label: v.add + v.mul + v.div for v in eq.variants[s]} for s in STRATEGIES}
+    same bytes). Each row says the variant's degree; a strategy without that variant gets a
+    hatched 'no variant' mark, never an empty place that reads as zero operations. Title, then
+    the machine and date (`made`, default machine.machine_and_date()); every text 13 px, the
+    label column as wide as the longest label needs (long role names were cut off)."""
+    from .machine import machine_and_date
+    made = machine_and_date() if made is None else made
+    rows = {s: {v.label: v for v in eq.variants[s]} for s in STRATEGIES}
+
+    def cost(v: VariantRow | None) -> int:
+        return 0 if v is None else v.add + v.mul + v.div
+
     labels = sorted(set(rows["optimised"]) | set(rows["expanded"]),
-                    key=lambda l: (-max(rows["expanded"].get(l, 0), rows["optimised"].get(l, 0)), l))
-    top = max(max(r.values()) for r in rows.values()) or 1
-    x0 = max(330, math.ceil(6.2 * max(len(l) for l in labels)) + 15)
-    width_all = x0 + 490
-    height = 22 * len(labels) + 30
-    bars = []
+                    key=lambda l: (-max(cost(rows[s].get(l)) for s in STRATEGIES), l))
+    top = max(cost(v) for r in rows.values() for v in r.values()) if labels else 1
+    top = top or 1
+    degrees = {l: sorted({rows[s][l].degree for s in STRATEGIES if l in rows[s]}) for l in labels}
+    x0 = max(330, math.ceil(CHART_CHAR * max((len(l) for l in labels), default=0)) + 15)
+    xd = x0 + 8                       # the degree column
+    xb = xd + 80                      # the bars
+    span = 420
+    width_all = xb + span + 60
+    head = 3 * (CHART_FONT + 7) + 10
+    row_h = 2 * (CHART_FONT + 3) + 10
+    height = head + row_h * len(labels) + 8
+    out = []
     for i, label in enumerate(labels):
-        y = 20 + 22 * i
-        for j, (strategy, colour) in enumerate((("expanded", "#c0504d"), ("optimised", "#4f81bd"))):
-            value = rows[strategy].get(label)
-            if value is None:
+        y = head + row_h * i
+        out.append(f'<text x="{x0 - 5}" y="{y + CHART_FONT + 8}" font-size="{CHART_FONT}" '
+                   f'text-anchor="end">{escape(label)}</text>')
+        out.append(f'<text class="degree" x="{xd}" y="{y + CHART_FONT + 8}" '
+                   f'font-size="{CHART_FONT}">degree {"/".join(map(str, degrees[label]))}</text>')
+        for j, (strategy, colour) in enumerate(STRATEGY_COLOURS):
+            v = rows[strategy].get(label)
+            yb = y + j * (CHART_FONT + 3)
+            if v is None:
+                out.append(f'<rect class="missing" x="{xb}" y="{yb}" width="90" '
+                           f'height="{CHART_FONT + 1}" fill="url(#nov)" stroke="{colour}">'
+                           f'<title>{escape(label)}: no {strategy} variant</title></rect>'
+                           f'<text x="{xb + 96}" y="{yb + CHART_FONT - 1}" font-size="{CHART_FONT}" '
+                           f'fill="#555">no {strategy} variant</text>')
                 continue
-            width = 420 * value / top
-            bars.append(f'<rect class="{strategy}" x="{x0}" y="{y + 9 * j}" width="{width:.1f}" '
-                        f'height="8" fill="{colour}"><title>{escape(label)}, {strategy}: {value} '
-                        f'operations</title></rect>'
-                        f'<text x="{x0 + 5 + width:.1f}" y="{y + 8 + 9 * j}" font-size="9">{value}</text>')
-        bars.append(f'<text x="{x0 - 5}" y="{y + 13}" font-size="11" text-anchor="end">'
-                    f'{escape(label)}</text>')
+            value = cost(v)
+            width = span * value / top
+            out.append(f'<rect class="{strategy}" x="{xb}" y="{yb}" width="{width:.1f}" '
+                       f'height="{CHART_FONT + 1}" fill="{colour}"><title>{escape(label)}, '
+                       f'{strategy}: {value} operations, degree {v.degree}</title></rect>'
+                       f'<text x="{xb + 5 + width:.1f}" y="{yb + CHART_FONT - 1}" '
+                       f'font-size="{CHART_FONT}">{value}</text>')
+    legend = " ".join(f'<tspan fill="{c}">&#9632; {s}</tspan>' for s, c in STRATEGY_COLOURS)
+    title = f"Operations per variant (add + mul + div): {eq.source}"
     return (f'<figure><svg role="img" width="{width_all}" height="{height}" '
-            f'viewBox="0 0 {width_all} {height}" '
-            f'xmlns="http://www.w3.org/2000/svg"><title>Operations per variant of '
-            f'{escape(eq.source)}</title>'
-            f'<text x="{x0}" y="12" font-size="11"><tspan fill="#c0504d">expanded</tspan> / '
-            f'<tspan fill="#4f81bd">optimised</tspan> (add + mul + div)</text>'
-            + "".join(bars) + "</svg><figcaption>Operations per variant (add + mul + div), "
-            "expanded and optimised.</figcaption></figure>")
+            f'viewBox="0 0 {width_all} {height}" font-family="sans-serif" '
+            f'xmlns="http://www.w3.org/2000/svg"><title>{escape(title)}</title>{HATCH}'
+            f'<text class="title" x="8" y="{CHART_FONT + 4}" font-size="{CHART_FONT + 2}" '
+            f'font-weight="bold">{escape(title)}</text>'
+            f'<text class="made" x="8" y="{2 * (CHART_FONT + 7)}" font-size="{CHART_FONT}" '
+            f'fill="#555">{escape(made)}</text>'
+            f'<text x="{xb}" y="{3 * (CHART_FONT + 7)}" font-size="{CHART_FONT}">{legend} '
+            f'<tspan fill="#555">(hatched: the strategy has no such variant)</tspan></text>'
+            + "".join(out) + "</svg><figcaption>Operations per variant (add + mul + div), "
+            "expanded and optimised, with each variant's degree; a hatched mark where a "
+            "strategy has no such variant.</figcaption></figure>")
 
 
 def _inline(text: str) -> str:

@@ -47,7 +47,8 @@ class Page(HTMLParser):
         super().__init__()
         self.headings: list[tuple[str, str]] = []
         self.tables: list[dict] = []
-        self.charts: list[int] = []
+        self.charts: list[int] = []       # bars per chart
+        self.missing: list[int] = []      # 'no variant' marks per chart
         self.external: list[str] = []
         self._heading: str | None = None
         self._cell: str | None = None
@@ -64,8 +65,12 @@ class Page(HTMLParser):
             self.tables[-1]["rows"] += 1
         elif tag == "svg":
             self.charts.append(0)
+            self.missing.append(0)
         elif tag == "rect" and self.charts:
-            self.charts[-1] += 1
+            if values.get("class") == "missing":
+                self.missing[-1] += 1
+            else:
+                self.charts[-1] += 1
         for name in ("src", "href"):
             if values.get(name):
                 self.external.append(str(values[name]))
@@ -140,6 +145,10 @@ def test_the_html_report_renders(shipped_report: Path, tmp_path: Path) -> None:
     # One chart per equation, a bar per variant and strategy.
     assert parsed.charts == [len(e["variants"]["optimised"]) + len(e["variants"]["expanded"])
                              for e in equations]
+    # and a 'no variant' mark where one strategy has a variant the other has not
+    assert parsed.missing == [
+        len({v["label"] for v in e["variants"]["optimised"]} ^ {v["label"] for v in e["variants"]["expanded"]})
+        for e in equations]
     assert parsed.external == []  # self-contained: nothing to fail to load
     shot = tmp_path / "report.png"
     chromium(page, tmp_path, "--window-size=1200,3000", f"--screenshot={shot}")
@@ -240,10 +249,10 @@ def test_long_variant_labels_fit_the_chart(tmp_path: Path, maxima_exe: str) -> N
                         str(mxm)], cwd=ROOT, capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
     page = (tmp_path / "r" / "report.html").read_text()
-    labels = re.findall(r'<text x="([\d.]+)" y="[\d.]+" font-size="11" text-anchor="end">([^<]+)</text>', page)
+    labels = re.findall(r'<text x="([\d.]+)" y="[\d.]+" font-size="13" text-anchor="end">([^<]+)</text>', page)
     assert labels and any(len(text) > 60 for _, text in labels)
-    for x, text in labels:  # about 6.2 px a character at 11 px: room left of the anchor
-        assert float(x) >= 6.2 * len(text.replace("&amp;", "&")), (x, text)
+    for x, text in labels:  # about 7.4 px a character at 13 px: room left of the anchor
+        assert float(x) >= 7.4 * len(text.replace("&amp;", "&")), (x, text)
 
 
 def test_markdown_outputs_hold_paths_as_text(tmp_path: Path, maxima_exe: str) -> None:
@@ -273,3 +282,42 @@ def test_markdown_outputs_hold_paths_as_text(tmp_path: Path, maxima_exe: str) ->
                 unescaped = len(re.findall(r"(?<!\\)\|", line))
                 assert unescaped == header.count("|") or "report" in str(md), (line, header)
         assert "a\\|b.mxm" in out
+
+
+def _equation(expanded: list[tuple[str, int, int]], optimised: list[tuple[str, int, int]]):
+    """An EquationReport from (label, degree, operations) rows, no Maxima needed."""
+    from max2code.report import EquationReport, VariantRow
+    rows = lambda vs: [VariantRow(i, l, [], d, ops, 0, 0) for i, (l, d, ops) in enumerate(vs)]  # noqa: E731
+    return EquationReport("eq.mxm", 4, ["a"], 0.5, {"expanded": rows(expanded),
+                                                    "optimised": rows(optimised)}, {})
+
+
+def test_the_chart_marks_a_missing_variant_and_shows_degrees() -> None:
+    """A strategy without a variant left an empty place that read as zero operations: now a
+    hatched 'no variant' mark; each row names its degree; every text is 13 px or more; the
+    chart has a title, the machine and the date."""
+    import re
+
+    from max2code.report import chart
+
+    eq = _equation([("general", 4, 90), ("no flat", 3, 40), ("only expanded", 2, 12)],
+                   [("general", 4, 50), ("no flat", 3, 20), ("only optimised", 1, 7)])
+    svg = chart(eq, made="Test CPU, 2 cores, 2026-01-02")
+    missing = re.findall(r'<rect class="missing"[^>]*><title>([^<]+)</title>', svg)
+    assert missing == ["only expanded: no optimised variant", "only optimised: no expanded variant"]
+    bars = re.findall(r'<rect class="(expanded|optimised)"[^>]*width="([\d.]+)"', svg)
+    assert len(bars) == 6 and all(float(w) > 0 for _, w in bars)
+    degrees = re.findall(r'<text class="degree"[^>]*>degree ([\d/]+)</text>', svg)
+    assert degrees == ["4", "3", "2", "1"]     # rows largest first: general, no flat, 12, 7
+    sizes = [int(x) for x in re.findall(r'font-size="(\d+)"', svg)]
+    assert sizes and min(sizes) >= 13
+    assert "Operations per variant (add + mul + div): eq.mxm" in svg
+    assert "Test CPU, 2 cores, 2026-01-02" in svg
+
+
+def test_the_chart_names_this_machine_and_today_by_default() -> None:
+    from max2code.machine import cpu, today
+    from max2code.report import chart
+
+    svg = chart(_equation([("general", 4, 9)], [("general", 4, 5)]))
+    assert cpu() in svg and today() in svg and 'class="missing"' not in svg
