@@ -304,17 +304,13 @@ static double root_bound(const int e[], const int nz[], const double c[], int n)
     return b >= DBL_MIN_EXP - 1 ? pow2(b) : ldexp(1.0, b);
 }
 
-/* |a| T^j <= k |b| (a, b, k nonzero; T = 2^et, or T itself when et is
- * INT_MIN), without leaving the double range: mantissas in [1, 2),
- * exponents apart.  (Rare: only where the plain products leave the normal
- * range.) */
-static int scaled_le(double a, double T, int et, int j, double k, double b)
+/* |a| T^j <= k |b| (a, b, k nonzero, T > 0 finite), without leaving the
+ * double range: mantissas in [1, 2), exponents apart.  (Rare: only where
+ * the plain products leave the normal range.) */
+static int scaled_le(double a, double T, int j, double k, double b)
 {
-    double mt = 1;
-    if (et == INT_MIN) {
-        et = exponent_of(T);
-        mt = ldexp(T, -et);
-    }
+    int et = exponent_of(T);
+    double mt = ldexp(T, -et);
     int ea = exponent_of(a), eb = exponent_of(b), ek = exponent_of(k);
     double ma = ldexp(fabs(a), -ea);
     double mb = ldexp(fabs(b), -eb) * ldexp(k, -ek);
@@ -357,26 +353,24 @@ static int leading_far(const int e[], const int nz[], int n, double T, int emax)
 /* Is the leading term negligible over [0, T] (see header)?  Compared term by
  * term as |c_n| T^(n-i) <= k |c_i|; where a side leaves the normal range
  * (T^2 underflowed to 0 for T = 2^-1020, and every leading term looked
- * negligible; a bound beyond 2^1024 was taken as DBL_MAX), in exponents
- * (scaled_le).  Almost always no term comes near: when the exponents alone
- * show |c_n| T^(n-i) above k |c_i| by a factor 8 for every i (beyond all the
- * roundings of the comparison), the answer is no without the loop. */
+ * negligible), in exponents (scaled_le).  Almost always no term comes
+ * near: when the exponents alone show |c_n| T^(n-i) above k |c_i| by a
+ * factor 8 for every i (beyond all the roundings of the comparison), the
+ * answer is no without the loop.
+ * tmax = inf: never.  The window is then (0, B] with B the Fujiwara bound
+ * of the whole polynomial c_0..c_n, which holds every root, and over it
+ * |c_n| B^(n-i) >= 2^(n-i) |c_i| > k |c_i| for every i: the leading term
+ * is never negligible there.  (Until issue 33, B was the bound of c_0..c_m,
+ * the rest without the leading term: circular, as the roots that the
+ * leading term makes lie beyond it.  1e-16 + t - 4.905 t^2, whose rest
+ * has its root at -1e-16, lost its root 0.2039 to it, and the engine's
+ * falling bodies their floors.) */
 static int leading_negligible(const double c[], const int e[], const int nz[],
                               int n, double tmax, int emax)
 {
     double T = tmax;
-    int et = INT_MIN; /* T's exponent when T is a power of two beyond range */
-    if (isinf(T)) {
-        int m = n - 1;
-        while (m > 0 && c[m] == 0)
-            m--;
-        if (m == 0)
-            return 0; /* the rest is a constant: no scale to compare with */
-        et = root_bound_exponent(e, nz, NULL, m);
-        T = et >= DBL_MAX_EXP       ? INFINITY
-            : et >= DBL_MIN_EXP - 1 ? pow2(et)
-                                    : 0; /* (the exponents then) */
-    }
+    if (isinf(T))
+        return 0;
     double k = 4.0 * n * DBL_EPSILON;
     if (leading_far(e, nz, n, T, emax))
         return 0;
@@ -389,7 +383,7 @@ static int leading_negligible(const double c[], const int e[], const int nz[],
         if (Tp >= DBL_MIN && Tp <= DBL_MAX && lhs >= DBL_MIN && lhs <= DBL_MAX &&
                     rhs >= DBL_MIN
                 ? lhs <= rhs
-                : scaled_le(c[n], T, et, n - i, k, c[i]))
+                : scaled_le(c[n], T, n - i, k, c[i]))
             return 1;
     }
     return 0;

@@ -26,13 +26,15 @@
  *      by t: we want the next root strictly after 0.
  *   3. A leading coefficient is dropped when it is negligible over the
  *      window [0, T]:  |c_n| T^n <= 4 n DBL_EPSILON max_{i<n} |c_i| T^i,
- *      with T = tmax when tmax is finite, and otherwise T = a Fujiwara bound
- *      on the roots of the remaining polynomial c_0..c_{n-1}
- *      (2 max_i |c_i / c_m|^(1/(m-i)), rounded up to a power of two).  So with
- *      tmax = +INFINITY a root that only exists because of a term that is
- *      negligible wherever the other roots live (|t| ~ 1/(4 n eps) times
- *      their scale and beyond) is treated as "no root".  There is no absolute
- *      threshold anywhere.
+ *      with T = tmax.  With tmax = +INFINITY the window is (0, B], B the
+ *      Fujiwara bound of the whole polynomial (2 max_i |c_i / c_n|^(1/(n-i)),
+ *      which holds every root), and over it |c_n| B^(n-i) >= 2^(n-i) |c_i|:
+ *      nothing is dropped, and every root of the coefficients as given
+ *      counts, however small c_0 (1e-16 + t - 4.905 t^2 has its root 0.2039
+ *      with tmax = inf as with tmax = 10; until issue 33 B was the bound of
+ *      the rest c_0..c_{n-1}, whose own root -1e-16 made the t^2 term look
+ *      negligible, and the root was lost).  There is no absolute threshold
+ *      anywhere.
  *   Steps 1-3 repeat until nothing changes; then the coefficients are scaled
  *   by a power of two (exact) so that the largest has magnitude in [1/2, 1).
  *   4. Extremes only: when the nonzero coefficients span more than 2^1021
@@ -78,9 +80,7 @@
  *        positive ones a and b with |c_i| (1 + e) / (1 - e) < 2 sqrt(a b)
  *        (e twice the noise factor; a positive coefficient with two
  *        negative neighbours lends half of itself to each): the neighbours
- *        outweigh it for every t > 0 (AM-GM), so q > 0 on (0, inf).  (A
- *        root that only the preparation's dropping of a negligible leading
- *        term would make is no root here either.)
+ *        outweigh it for every t > 0 (AM-GM), so q > 0 on (0, inf).
  *        Else, with tmax finite, no skin, degree >= 3 and the preparation
  *        bound to keep every term (the exponents show it): d's lower bound
  *        on q from its Taylor coefficients at 0 -- q(0) beats every

@@ -303,18 +303,15 @@ def _log2(x: float) -> float:
 
 def _lead_negligible(c: list[float], tmax: float) -> bool:
     """The header's step 3, "a leading coefficient is dropped when it is negligible over the
-    window [0, T]": |c_n| T^(n-i) <= 4 n eps |c_i| for some i < n, T = tmax or, for tmax = inf,
-    the Fujiwara bound 2 max |c_i / c_m|^(1/(m-i)) of c_0..c_m (the rest).  Written from the
-    header, not the code, in logarithms, and lenient (the runtimes round T up to a power of
-    two, which can only keep more terms)."""
+    window [0, T]": |c_n| T^(n-i) <= 4 n eps |c_i| for some i < n, T = tmax.  With tmax = inf
+    never (issue 33): the window is then bounded by the whole polynomial's Fujiwara bound, over
+    which the leading term outweighs every other.  Written from the header, not the code, in
+    logarithms, and lenient (the runtimes round T up to a power of two, which can only keep
+    more terms)."""
     n = len(c) - 1
-    if math.isfinite(tmax):
-        lt = _log2(tmax)
-    else:
-        m = max((i for i in range(n) if c[i] != 0), default=0)
-        if m == 0:
-            return False
-        lt = 1 + max((_log2(c[i]) - _log2(c[m])) / (m - i) for i in range(m) if c[i] != 0)
+    if not math.isfinite(tmax):
+        return False
+    lt = _log2(tmax)
     k = _log2(4 * n * 2.0**-52)
     return any(c[i] != 0 and _log2(c[n]) + (n - i) * lt <= k + _log2(c[i]) + 1e-9 for i in range(n))
 

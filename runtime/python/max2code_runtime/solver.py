@@ -113,13 +113,10 @@ def root_bound(c: Sequence[float], n: int, positive: bool = False) -> float:
     return math.ldexp(1.0, e)
 
 
-def _scaled_le(a: float, T: float, et: int | None, j: int, k: float, b: float) -> bool:
-    """|a| T^j <= k |b|, T = 2^et (or T itself when et is None), in mantissas and exponents
-    (C scaled_le)."""
-    mt = 1.0
-    if et is None:
-        et = ilogb(T)
-        mt = math.ldexp(T, -et)
+def _scaled_le(a: float, T: float, j: int, k: float, b: float) -> bool:
+    """|a| T^j <= k |b| (T > 0 finite), in mantissas and exponents (C scaled_le)."""
+    et = ilogb(T)
+    mt = math.ldexp(T, -et)
     ea, eb, ek = ilogb(a), ilogb(b), ilogb(k)
     ma = math.ldexp(abs(a), -ea)
     mb = math.ldexp(abs(b), -eb) * math.ldexp(k, -ek)
@@ -153,16 +150,11 @@ def _leading_far(e: Sequence[int], nz: Sequence[bool], n: int, T: float) -> bool
 
 def _leading_negligible(c: Coeffs, n: int, tmax: float) -> bool:
     """C leading_negligible (in exponents where a side leaves the normal range; no loop where
-    _leading_far shows the answer, as C)."""
-    T, et = tmax, None
+    _leading_far shows the answer, as C).  tmax = inf: never (the window is then bounded by
+    the whole polynomial's Fujiwara bound B, and |c_n| B^(n-i) >= 2^(n-i) |c_i|: issue 33)."""
+    T = tmax
     if math.isinf(T):
-        m = n - 1
-        while m > 0 and c[m] == 0:
-            m -= 1
-        if m == 0:
-            return False
-        et = _root_bound_exponent(c, m) or 0
-        T = INF if et >= 1024 else math.ldexp(1.0, et) if et >= -1022 else 0.0
+        return False
     k = 4.0 * n * EPS
     e, nz, _, _ = exponents(c, n)
     if _leading_far(e, nz, n, T):
@@ -174,7 +166,7 @@ def _leading_negligible(c: Coeffs, n: int, tmax: float) -> bool:
             continue
         lhs, rhs = abs(c[n]) * Tp, k * abs(c[i])
         normal = DBL_MIN <= Tp <= DBL_MAX and DBL_MIN <= lhs <= DBL_MAX and rhs >= DBL_MIN
-        if (lhs <= rhs) if normal else _scaled_le(c[n], T, et, n - i, k, c[i]):
+        if (lhs <= rhs) if normal else _scaled_le(c[n], T, n - i, k, c[i]):
             return True
     return False
 

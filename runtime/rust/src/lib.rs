@@ -28,8 +28,9 @@
 //! coefficients as given, scaled as below: where it holds there is no root, before the rest of
 //! the preparation (a third of a "no root in the window" solve's work).
 //! Leading coefficients that are exactly 0, or negligible over the window
-//! (`|c_n| T^n <= 4 n eps max_{i<n} |c_i| T^i`, `T = tmax`, or a Fujiwara bound on the roots
-//! of the rest when `tmax` is infinite), are dropped; `c[0] == 0` (touching now) divides by
+//! (`|c_n| T^n <= 4 n eps max_{i<n} |c_i| T^i`, `T = tmax`; with `tmax` infinite never: the
+//! window is then bounded by the whole polynomial's Fujiwara bound, over which the leading
+//! term outweighs every other), are dropped; `c[0] == 0` (touching now) divides by
 //! `t`; the coefficients are scaled by a power of two.  At the extremes (coefficients spanning
 //! more than `2^1021`) the variable is rescaled by the power of two that spreads them least and
 //! terms still below `2^-1022` of the largest are dropped (the documented tolerance).

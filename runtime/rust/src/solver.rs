@@ -193,17 +193,11 @@ pub(crate) fn root_bound(e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], c: Option<&
     }
 }
 
-/// C `scaled_le`: |a| T^j <= k |b| with T = 2^et (or T itself when et is `None`), in
-/// mantissas and exponents.
+/// C `scaled_le`: |a| T^j <= k |b| (T > 0 finite), in mantissas and exponents.
 #[cold]
-fn scaled_le(a: f64, t: f64, et: Option<i32>, j: usize, k: f64, b: f64) -> bool {
-    let (mt, et) = match et {
-        Some(et) => (1.0, et),
-        None => {
-            let et = exponent_of(t);
-            (ldexp(t, -i64::from(et)), et)
-        }
-    };
+fn scaled_le(a: f64, t: f64, j: usize, k: f64, b: f64) -> bool {
+    let et = exponent_of(t);
+    let mt = ldexp(t, -i64::from(et));
     let (mut ea, mut eb, ek) = (exponent_of(a), exponent_of(b), exponent_of(k));
     let mut ma = ldexp(a.abs(), -i64::from(ea));
     let mut mb = ldexp(b.abs(), -i64::from(eb)) * ldexp(k, -i64::from(ek));
@@ -251,28 +245,12 @@ fn leading_far(e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n: usize, t: f64, ema
 /// C `leading_negligible` (in exponents where a side leaves the normal range).  e, nz: the
 /// exponents of c (`load_coefficients`).  When the exponents alone show |c_n| T^(n-i) above
 /// k |c_i| by a factor 8 for every i (`leading_far`), the answer is no without the
-/// floating-point loop.
+/// floating-point loop.  tmax = inf: never (the window is then bounded by the whole
+/// polynomial's Fujiwara bound B, and |c_n| B^(n-i) >= 2^(n-i) |c_i|: issue 33).
 fn leading_negligible(c: &Coeffs, e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n: usize, tmax: f64, emax: i32) -> bool {
-    let mut t = tmax;
-    let mut et = None; // T's exponent when T is a power of two beyond range
+    let t = tmax;
     if t.is_infinite() {
-        let mut m = n - 1;
-        while m > 0 && c[m] == 0.0 {
-            m -= 1;
-        }
-        if m == 0 {
-            return false;
-        }
-        // (never None: reduce calls this with c[0] != 0)
-        let b = root_bound_exponent(e, nz, None, m).unwrap_or(0);
-        et = Some(b);
-        t = if b >= 1024 {
-            f64::INFINITY
-        } else if b >= -1022 {
-            pow2(b)
-        } else {
-            0.0
-        };
+        return false;
     }
     let k = 4.0 * n as f64 * f64::EPSILON;
     if leading_far(e, nz, n, t, emax) {
@@ -288,7 +266,7 @@ fn leading_negligible(c: &Coeffs, e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n:
         let normal = (f64::MIN_POSITIVE..=f64::MAX).contains(&tp)
             && (f64::MIN_POSITIVE..=f64::MAX).contains(&lhs)
             && rhs >= f64::MIN_POSITIVE;
-        if if normal { lhs <= rhs } else { scaled_le(c[n], t, et, n - i, k, c[i]) } {
+        if if normal { lhs <= rhs } else { scaled_le(c[n], t, n - i, k, c[i]) } {
             return true;
         }
     }

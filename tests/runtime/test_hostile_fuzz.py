@@ -1,0 +1,201 @@
+"""The runtimes' own fuzz against the exact oracle (issue 33): infinite windows, constant terms
+within an ulp of 0, clustered roots -- in every runtime (C, Modula-2 through gm2, Rust, Python
+on both backends).
+
+Three classes of vectors, drawn by hypothesis (derandomized: the same vectors in every run):
+
+* ``infinite``: polynomials built from exact roots (positive, negative, complex pairs, of any
+  magnitude from 1e-6 to 1e6), rounded once, tmax = inf;
+* ``ulp``: throws (c_0 + v t + a t^2, maybe a cubic term) and the polynomials above, with a
+  constant term within a few ulps of 0 (a body an ulp from a boundary: the smallest
+  subnormal, an ulp of the other terms' scale, 1e-16), tmax = inf or finite;
+* ``cluster``: two to five roots within 1e-3..1e-16 relative of each other (a triple root
+  plus a small perturbation among them), next to roots 1e6-1e12 times larger or smaller (huge
+  scale separation), an optional ulp nudge of c_0, any window.
+
+Every answer is judged by exact_roots.judge (integer arithmetic on the doubles themselves:
+nothing of the runtimes' code): no miss, no false root, the first root within the documented
+tolerance.  WINDOW_FUZZ_COUNT sets the vectors per class and runtime (300 by default, as in
+CI; the pure-Python port gets a third of them, being ~100 times slower); e.g.
+WINDOW_FUZZ_COUNT=30000 for a long run.
+
+test_never_later_than_the_exact_first_root (item 11) asks more of the cluster class: no answer
+later than the exact first root of the double coefficients by more than 8 ulps.  Inside the
+rounding band of a cluster the solver can still polish to a later root of the cluster (the
+judge's tolerance, 64 n u kappa, excuses it: kappa is huge there), so it is an expected failure
+until the solver answers the earliest point it cannot exclude (strict: it will say when it
+holds).
+"""
+from __future__ import annotations
+
+import math
+import os
+from collections import Counter
+from fractions import Fraction
+from pathlib import Path
+
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from . import every_runtime as er
+from . import exact_roots as ex
+from . import test_fuzz_runtimes as tf
+from . import test_m2_runtime as m2
+
+drivers = m2.drivers  # (the Modula-2 driver, for "m2")
+
+COUNT = int(os.environ.get("WINDOW_FUZZ_COUNT", "300"))
+BATCH = 50
+U = 2.0**-53
+LATE_ULPS = 8
+
+TALLY: Counter = Counter()  # (class, runtime, "tried" | "held") -> count, for the summary
+
+
+def _mag(lo: float, hi: float) -> st.SearchStrategy[Fraction]:
+    """10^x for x uniform in [lo, hi], as an exact rational of the double."""
+    return st.floats(lo, hi).map(lambda x: Fraction(10.0**x))
+
+
+signs = st.sampled_from((1, -1))
+reals = st.tuples(_mag(-6, 6), signs).map(lambda m: m[0] * m[1])
+pairs = st.tuples(_mag(-6, 6), st.floats(-1, 1), st.floats(0.01, 1))
+
+
+def _from_roots(roots: list[Fraction], cpairs: list[tuple[Fraction, float, float]],
+                lead: Fraction) -> tuple[float, ...]:
+    """lead * prod (t - r) * prod of the complex pairs' quadratics, exact, rounded once."""
+    c = [Fraction(1)]
+
+    def times(f: list[Fraction]) -> None:
+        nonlocal c
+        out = [Fraction(0)] * (len(c) + len(f) - 1)
+        for i, a in enumerate(c):
+            for j, b in enumerate(f):
+                out[i + j] += a * b
+        c = out
+    for r in roots:
+        times([-r, Fraction(1)])
+    for m, re, im in cpairs:
+        x, y = m * Fraction(re), m * Fraction(im)
+        times([x * x + y * y, -2 * x, Fraction(1)])
+    return tuple(float(v * lead) for v in c)
+
+
+@st.composite
+def infinite(draw: st.DrawFn) -> er.Vector:
+    roots = draw(st.lists(reals, min_size=1, max_size=6))
+    cp = draw(st.lists(pairs, max_size=(8 - len(roots)) // 2))
+    return _from_roots(roots, cp, draw(st.tuples(_mag(-3, 3), signs)).__getitem__(0)), math.inf
+
+
+def _ulp_constant(draw: st.DrawFn, scale: float) -> float:
+    tiny = draw(st.sampled_from(("subnormal", "ulp", "ulp2", "1e-16", "zero-ish")))
+    value = {"subnormal": 5e-324, "ulp": math.ulp(scale) * draw(st.integers(1, 4)),
+             "ulp2": math.ulp(math.ulp(scale)), "1e-16": 1e-16,
+             "zero-ish": scale * 2.0 ** -draw(st.integers(45, 60))}[tiny]
+    return value * draw(signs)
+
+
+@st.composite
+def ulp(draw: st.DrawFn) -> er.Vector:
+    """Half of them a throw (c_0 + v t + a t^2, sometimes a small cubic term: a body an ulp
+    from a boundary under gravity, the engine's cell-crossing polynomial), half a polynomial
+    of infinite()'s with its c_0 so replaced."""
+    if draw(st.booleans()):
+        c = [0.0, float(draw(reals)), float(draw(reals))]
+        if draw(st.booleans()):
+            c.append(float(draw(reals)) * 1e-3)
+    else:
+        c = list(draw(infinite())[0])
+    c[0] = _ulp_constant(draw, max(abs(x) for x in c[1:]))
+    tmax = draw(st.sampled_from((math.inf, math.inf, 1.0, 1e3, 1e-3)))
+    return tuple(c), tmax
+
+
+@st.composite
+def cluster(draw: st.DrawFn) -> er.Vector:
+    a = draw(_mag(-2, 2))
+    k = draw(st.integers(2, 5))
+    deltas = draw(st.lists(st.tuples(st.floats(3, 16), st.sampled_from((0, 1, -1))),
+                           min_size=k, max_size=k))
+    roots = [a * (1 + s * Fraction(10.0**-d)) for d, s in deltas]
+    far = draw(st.lists(st.tuples(st.floats(6, 12), signs, st.sampled_from((1, -1))),
+                        max_size=2))  # huge scale separation
+    roots += [a * Fraction(10.0 ** (e * d)) * s for d, s, e in far]
+    roots += draw(st.lists(reals, max_size=max(0, 7 - len(roots))))
+    c = list(_from_roots(roots, [], draw(st.tuples(_mag(-3, 3), signs)).__getitem__(0)))
+    if draw(st.booleans()):
+        c[0] += math.ulp(c[0]) * draw(st.integers(-4, 4))
+    tmax = draw(st.sampled_from((math.inf, float(a) * 2, float(a) * 1.0001, 1e3)))
+    return tuple(c), tmax
+
+
+CLASSES = {"infinite": infinite(), "ulp": ulp(), "cluster": cluster()}
+
+
+@pytest.fixture(scope="module")
+def c_exe(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    return tf.build_driver(tmp_path_factory.mktemp("hostile") / "roots_driver")
+
+
+def _examples(runtime: str) -> int:
+    share = 3 if runtime == "python" else 1
+    return max(1, COUNT // BATCH // share)
+
+
+def _run(runtime: str, vecs: list[er.Vector], tmp: Path, request: pytest.FixtureRequest
+         ) -> list[er.Answer]:
+    m2_exe = request.getfixturevalue("drivers")[0] if runtime == "m2" else None
+    c_exe = request.getfixturevalue("c_exe") if runtime == "c" else None
+    with pytest.MonkeyPatch.context() as mp:
+        return er.answers(runtime, vecs, tmp, mp, m2_exe, c_exe)
+
+
+def _late(c: tuple[float, ...], tmax: float, answer: er.Answer) -> bool:
+    """A root later than the exact first root by more than LATE_ULPS ulps."""
+    st_, t, _ = answer
+    if st_ != 1:
+        return False
+    truth = ex.first_root(c, tmax)
+    return truth.kind != "none" and Fraction(t) > truth.hi * (1 + Fraction(LATE_ULPS * U))
+
+
+@pytest.mark.parametrize("runtime", er.RUNTIMES)
+@pytest.mark.parametrize("kind", list(CLASSES))
+def test_against_the_exact_oracle(kind: str, runtime: str, tmp_path_factory: pytest.TempPathFactory,
+                                  request: pytest.FixtureRequest) -> None:
+    tmp = tmp_path_factory.mktemp(f"{kind}-{runtime}")
+
+    @settings(max_examples=_examples(runtime), deadline=None, derandomize=True, database=None,
+              suppress_health_check=list(HealthCheck))
+    @given(st.lists(CLASSES[kind], min_size=BATCH, max_size=BATCH))
+    def batch(vecs: list[er.Vector]) -> None:
+        got = _run(runtime, vecs, tmp, request)
+        bad = [f"{ex.judge(c, t, *a)}: {a} for c={c!r}, tmax={t!r}" for (c, t), a in zip(vecs, got)
+               if not ex.judge(c, t, *a).startswith("ok")]
+        TALLY[kind, runtime, "tried"] += len(vecs)
+        TALLY[kind, runtime, "held"] += len(vecs) - len(bad)
+        assert not bad, f"{len(bad)} of {len(vecs)}:\n" + "\n".join(bad[:6])
+    batch()
+    print(f"\n{kind} {runtime}: {TALLY[kind, runtime, 'held']} of "
+          f"{TALLY[kind, runtime, 'tried']} held")
+
+
+@pytest.mark.xfail(strict=True, reason="issue 33 item 11: a root inside a cluster's rounding "
+                   "band may come out later than the exact first root")
+def test_never_later_than_the_exact_first_root(c_exe: Path, tmp_path: Path) -> None:
+    """Item 11 on the C runtime (the others give its bits: test_fuzz_runtimes)."""
+    late: list[str] = []
+
+    @settings(max_examples=max(1, COUNT // BATCH), deadline=None, derandomize=True,
+              database=None, suppress_health_check=list(HealthCheck))
+    @given(st.lists(cluster(), min_size=BATCH, max_size=BATCH))
+    def batch(vecs: list[er.Vector]) -> None:
+        with pytest.MonkeyPatch.context() as mp:
+            got = er.answers("c", vecs, tmp_path, mp, c_exe=c_exe)
+        late.extend(f"{a} for c={c!r}, tmax={t!r}" for (c, t), a in zip(vecs, got) if _late(c, t, a))
+    batch()
+    print(f"\nlater than the exact first root by > {LATE_ULPS} ulps: {len(late)}")
+    assert not late, f"{len(late)} late:\n" + "\n".join(late[:6])
