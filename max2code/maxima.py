@@ -18,7 +18,7 @@ import tempfile
 import time
 from dataclasses import dataclass
 
-from . import cache, children, confine, depfile, lockdown
+from . import cache, children, confine, depfile, lockdown, maxima_names
 from .diagnostics import Pos, error
 from .maxima_text import advance
 from .spec import Statement
@@ -63,14 +63,20 @@ def marker(tag: str, arg: object = "") -> str:
     return f':lisp (format t "~%{MARK}-{tag} {arg}~%")\n'
 
 
-def program_script(statements: tuple[Statement, ...], names: frozenset[str] = frozenset()) -> str:
+def program_script(statements: tuple[Statement, ...], names: frozenset[str] = frozenset(),
+                   renamed: bool = False) -> str:
     """The user's statements, each announced by a marker naming its index; unless unsafe
     Maxima is allowed, checked first and preceded by the lock-down (lockdown.py); `names` are
-    the .mxm's own (declared) names, symbols even when Maxima has a function of that name."""
-    _no_own_names(statements)
+    the .mxm's own (declared) names, symbols even when Maxima has a function of that name.
+    `renamed`: the oracle's copy, whose parameters it renamed to its own o__ names (the
+    user's program was checked before)."""
+    if not renamed:
+        _no_own_names(statements)
     parts = ["display2d:false$\nlinel:1000000$\n", search_path(statements)]
     if not _policy.allow_unsafe:
         parts.append(lockdown.prelude(lockdown.check(statements, names), f"~%{MARK}-"))
+    if not renamed:  # (after the lock-down's refusals, which matter more)
+        maxima_names.check_program(statements)
     for index, stmt in enumerate(statements):
         parts.append(marker("STMT", index))
         parts.append(stmt.text + "\n")

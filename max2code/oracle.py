@@ -16,7 +16,7 @@ import re
 from fractions import Fraction
 from typing import Any, Sequence
 
-from . import maxima
+from . import maxima, maxima_names
 from .diagnostics import Pos, error
 from .spec import Spec
 
@@ -46,14 +46,20 @@ def exact_coefficients(spec: Spec, names: Sequence[str], samples: Sequence[Seque
     """For each sample (values of `names`), the exact coefficients of the equation, c[k]
     multiplying t^k; None where Maxima cannot evaluate it there (a division by zero)."""
     t = spec.variable
-    lines = [maxima.program_script(spec.program.statements, spec.own_names),
+    # The parameters get the oracle's own names before the program runs: a parameter named
+    # like one of Maxima's variables (fpprec, expop) is then a symbol here whatever the
+    # generator's checks say (maxima_names), so the oracle cannot share that blind spot.
+    mangled = {n: f"o__p{k}" for k, n in enumerate(names)}
+    statements = maxima_names.rename(spec.program.statements, mangled)
+    own = frozenset(mangled.get(n, n) for n in spec.own_names)
+    lines = [maxima.program_script(statements, own, renamed=True),
              "o__e: %$", "o__e: ev(o__e, nouns)$",
              'o__e: if not atom(o__e) and op(o__e) = "=" then lhs(o__e) - rhs(o__e) else o__e$',
              "errormsg: false$", f"fpprec: {BIGFLOAT_DIGITS}$",
              # A coefficient with %pi (or another constant) in it is given to BIGFLOAT_DIGITS.
              "o__num(o__c) := if ratnump(o__c) then o__c else bfloat(o__c)$"]
     for i, sample in enumerate(samples):
-        subst = ", ".join(f"{n} = {_rational(v)}" for n, v in zip(names, sample))
+        subst = ", ".join(f"{mangled[n]} = {_rational(v)}" for n, v in zip(names, sample))
         lines.append(f"o__x: errcatch(ratexpand(subst([{subst}], o__e)))$")
         lines.append(f'if o__x = [] then printf(true, "~%ORACLE {i} NONE~%") else '
                      f'printf(true, "~%ORACLE {i} ~a~%", string(makelist(o__num(ratcoef('

@@ -11,6 +11,7 @@ from importlib import resources
 from lark import Lark, Token, Tree
 from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
 
+from . import maxima_names
 from .diagnostics import Max2CodeError, Pos, error
 from .maxima_text import split_statements, string_end
 from .spec import CodeBlock, Declared, Program, Role, Spec, Term
@@ -243,6 +244,8 @@ class _Builder:
                     raise error(self.pos(node), f"duplicate '{_keyword(kind)}' declaration "
                                 f"(first at line {seen[kind].line})")
                 seen[kind] = self.pos(node)
+            if kind in _NAMED:
+                self.check_names(node.children, _NAMED[kind])
             if kind == "terms_decl":
                 count = int(node.children[0])
                 if count < 1:
@@ -281,6 +284,16 @@ class _Builder:
         self.check_terms(terms, fields.get("terms_declared"))  # type: ignore[arg-type]
         return Spec(path=self.path, program=program, initialise=tuple(initialise),
                     terms=tuple(terms), finalise=tuple(finalise), roles=tuple(roles), **fields)  # type: ignore[arg-type]
+
+    def check_names(self, tokens: list, symbols_from: int | None) -> None:
+        """Declared names: at most MAX_NAME characters (a C string literal of a 5000-character
+        parameter name broke -pedantic's 4095), and a symbol of the equation (from index
+        `symbols_from` on) must not be a name Maxima gives a value (maxima_names)."""
+        for tok in tokens:
+            if len(tok) > MAX_NAME:
+                raise error(self.pos(tok), f"a name of {len(tok)} characters; at most {MAX_NAME}")
+        if symbols_from is not None:
+            maxima_names.check_declared([(str(t), self.pos(t)) for t in tokens[symbols_from:]])
 
     def tagged(self, children: list) -> tuple[str | None, Token]:
         if len(children) == 2:
@@ -330,6 +343,15 @@ class _Builder:
             body, offset = raw[1:-1], 1
         start = Pos(self.path, tok.line or 1, (tok.column or 1) + offset)
         return Program(split_statements(body, start), self.pos(tok))
+
+
+# The longest name a .mxm may declare (C's string literals must fit 4095 characters; C99 only
+# promises 63 significant characters of an identifier, gcc and the others take any length).
+MAX_NAME = 255
+# declarations naming things -> the index from which their names are symbols of the equation
+# (None: no symbol, a module's or a role's own name)
+_NAMED: dict[str, int | None] = {"function_decl": None, "parameters_decl": 0,
+                                 "variable_decl": 0, "role_decl": 1}
 
 
 def _keyword(kind: str) -> str:

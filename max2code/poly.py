@@ -222,8 +222,12 @@ def _parameters(spec: Spec, coefficients: list[Expr]) -> tuple[str, ...]:
     missing = sorted(used - set(declared))
     if missing:
         assert spec.parameters is not None
+        hint = ""
+        if {"true", "false"} & set(missing):
+            hint = (" (true and false are values: a name Maxima gives one, such as a flag read "
+                    "as a variable, leaves them in the equation)")
         raise error(spec.parameters.pos, f"the equation uses {', '.join(missing)}, not listed in "
-                    f"'parameters'")
+                    f"'parameters'{hint}")
     return declared
 
 

@@ -37,6 +37,9 @@ NO_MAXIMA_NEEDED = {  # diagnosed before Maxima runs
     "duplicate-declaration", "parameter-twice", "unknown-language-tag", "unterminated-string",
     "unterminated-comment", "unterminated-statement", "empty-program", "header-garbage",
     "no-maxima",
+    # names Maxima gives a value (maxima_names.py), a name too long
+    "parameter-maxima-option", "maxima-option-read", "parameter-maxima-flag",
+    "maxima-system-variable", "name-too-long",
     # refused by the lock-down before Maxima runs (lockdown.py)
     "unsafe-backslash", "unsafe-eval-string", "unsafe-lisp", "unsafe-lisp-after-comment",
     "unsafe-load-computed", "unsafe-load-lisp", "unsafe-load-outside", "unsafe-load-parent",
