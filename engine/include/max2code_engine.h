@@ -130,7 +130,10 @@ M2C_API int m2c_world_body_count(const m2c_world *w);
 
 /* Process every event up to time `until` (inclusive, finite), writing reported events to
  * events[0..capacity). Returns 0 when the world reached `until`; 1 when the buffer filled up
- * first (the world's time is that of the last event written: call again); -1 on error.  A
+ * first, or the call's work budget (some 4,000 events or 2 million root solves) ran out
+ * (the world's time is that of the last event processed; *count may be 0: call again -- a
+ * caller can honour signals between calls); -1 on error (a world stuck at one instant, more
+ * than 100,000 events within 1e-6 (1 + |t|) s of one time t, is an error too).  A
  * step is one call that returns 0 or -1 and the calls to the same `until` before it that
  * returned 1: max_events counts the events of the whole step. */
 M2C_API int m2c_world_step(m2c_world *w, double until, m2c_event *events, int capacity, int *count);

@@ -142,6 +142,11 @@ void body_commit(body *b, double t);        /* make time t the body's reference 
 void world_point(const snap *s, const double off[2], double out[2]);  /* s + R off */
 void world_vector(const snap *s, const double v[2], double out[2]);   /* R v */
 
+/* timers.c: a min-heap of (time, id); w->timers[0] is the next one due */
+int timer_push(m2c_world *w, double t, int id);
+void timer_pop(m2c_world *w);
+int timer_remove(m2c_world *w, int id);   /* 0, or -1 when no such timer is pending */
+
 /* heap.c */
 int heap_init(m2c_world *w, int capacity);
 void heap_insert(m2c_world *w, int i);

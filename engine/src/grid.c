@@ -25,8 +25,9 @@ void grid_free(grid *g)
 void grid_cell_of(const grid *g, double x, double y, int *cx, int *cy)
 {
     double fx = floor((x - g->x0) / g->size), fy = floor((y - g->y0) / g->size);
-    *cx = fx < 0 ? 0 : fx >= g->nx ? g->nx - 1 : (int)fx;
-    *cy = fy < 0 ? 0 : fy >= g->ny ? g->ny - 1 : (int)fy;
+    /* (NaN -- an infinite box's one cell -- is cell 0: never converted to int) */
+    *cx = !(fx > 0) ? 0 : fx >= g->nx ? g->nx - 1 : (int)fx;
+    *cy = !(fy > 0) ? 0 : fy >= g->ny ? g->ny - 1 : (int)fy;
 }
 
 static void link(m2c_world *w, int i)
@@ -172,6 +173,13 @@ int grid_build(m2c_world *w)
     g->ny = (int)fmax(1, ceil(height / size));
     g->x0 = box[0];
     g->y0 = box[1];
+    if (!(isfinite(width) && isfinite(height) && isfinite(size))) {
+        /* bodies (or a tolerance) near the largest double: the box overflows; one cell holds
+         * everything (no crossings, every static body listed) */
+        g->size = INFINITY;
+        g->nx = g->ny = 1;
+        g->x0 = g->y0 = 0.0;
+    }
     int ncells = g->nx * g->ny;
     g->head = malloc(sizeof(int) * (size_t)ncells);
     g->fixed_start = calloc((size_t)ncells + 1, sizeof(int));
@@ -210,7 +218,7 @@ int grid_build(m2c_world *w)
             for (int cy = y0; cy <= y1; cy++)
                 for (int cx = x0; cx <= x1; cx++) {
                     double mx = g->x0 + (cx + 0.5) * size, my = g->y0 + (cy + 0.5) * size;
-                    if (shape_distance(w, b, mx, my) > reach + half_diagonal)
+                    if (ncells > 1 && shape_distance(w, b, mx, my) > reach + half_diagonal)
                         continue;
                     int c = cy * g->nx + cx;
                     if (pass == 0)

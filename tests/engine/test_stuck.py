@@ -1,0 +1,121 @@
+"""Impossible configurations end in a named error, and a long step honours signals (issue 33,
+item 4).
+
+A kinematic piston crushing an e = 1 ball against a wall makes infinitely many bounces before
+the crush (Zeno); a rotation too fast for doubles makes windows that advance time by nothing.
+Both ran for ever (600k collisions/s, memory growing). Now a run of 100,000 events within
+1e-6 s (relative) of one time is the error "stuck: ...". And a step that reports nothing (a
+fast orbit's window events) never returned to Python, so `max2code sim` ignored SIGTERM and
+SIGINT: each call of the core now returns after a bounded amount of work.
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+
+import pytest
+
+from conftest import ROOT
+
+PISTON = """
+w = World()
+w.add_segment((0, -1), (0, 1))
+ball = w.add_circle((1, 0), 0.1, velocity=(-3, 0))
+w.add_body([(0, -1), (0, 1)], kind="kinematic", position=(2, 0), velocity=(-1, 0))
+"""
+HEAVY_ON_LIGHT = """
+w = World()
+w.add_segment((-5, 0), (5, 0))
+w.add_circle((0, 0.5), 0.5, mass=1e-300, inertia=1e-300)
+w.add_circle((0, 1.6), 0.5, mass=1e300, inertia=1e300, velocity=(0, -1))
+w.add_body([(-5, 0), (5, 0)], kind="kinematic", position=(0, 3), velocity=(0, -0.5))
+"""
+FAST_SPIN = """
+w = World()
+w.add_segment((-5, 0), (5, 0))
+w.add_polygon([(-1, -1), (1, -1), (1, 1), (-1, 1)], position=(0, 3), omega=1e308)
+"""
+
+
+def run(script: str, timeout: float = 120) -> subprocess.CompletedProcess:
+    code = "from max2code.engine import World, EngineError\n" + script + textwrap.dedent("""
+        try:
+            w.step_to(10.0, events=False)
+            print("done", w.time)
+        except EngineError as exc:
+            print("error", exc)
+        """)
+    return subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          timeout=timeout, cwd=ROOT)
+
+
+@pytest.mark.parametrize("scene", [PISTON, HEAVY_ON_LIGHT, FAST_SPIN],
+                         ids=["piston", "heavy-on-light", "fast-spin"])
+def test_impossible_scene_ends_in_a_named_error(engine, scene):
+    start = time.monotonic()
+    proc = run(scene)
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stdout.startswith("error stuck: more than 100000 events within"), proc.stdout
+    assert time.monotonic() - start < 100
+
+
+SPIN_SCENE = """\
+name = "fast-orbit"
+until = 1e6
+
+[[bodies]]
+name = "moon"
+kind = "kinematic"
+shape = "circle"
+position = [0, 0]
+offset = [1.0, 0.0]
+omega = 1e6
+radius = 0.12
+
+[[bodies]]
+name = "ball"
+shape = "circle"
+position = [0, 0]
+radius = 0.1
+"""
+
+
+@pytest.mark.parametrize("signum, status", [(signal.SIGTERM, 143), (signal.SIGINT, 130)])
+def test_sim_honours_signals_during_a_long_step(engine, tmp_path, signum, status):
+    """A moon orbiting at 1e6 rad/s around a ball it never meets: a window event every
+    microsecond of simulated time, none reported, for 10^6 s."""
+    scene = tmp_path / "spin.toml"
+    scene.write_text(SPIN_SCENE)
+    proc = subprocess.Popen([sys.executable, "-m", "max2code", "sim", str(scene)], cwd=ROOT,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            start_new_session=True)
+    try:
+        # wait until it is inside the step: several seconds of CPU time (startup is < 1 s)
+        deadline = time.monotonic() + 60
+        while time.monotonic() < deadline and cpu_seconds(proc.pid) < 3.0:
+            assert proc.poll() is None, proc.stderr.read()
+            time.sleep(0.1)
+        sent = time.monotonic()
+        proc.send_signal(signum)
+        rc = proc.wait(timeout=30)
+        assert time.monotonic() - sent < 5, "the signal took long to be honoured"
+        assert rc == status
+    finally:
+        if proc.poll() is None:
+            os.killpg(proc.pid, signal.SIGKILL)
+            proc.wait()
+    assert not os.path.exists(f"/proc/{proc.pid}"), "a process was left behind"
+
+
+def cpu_seconds(pid: int) -> float:
+    try:
+        with open(f"/proc/{pid}/stat") as f:
+            fields = f.read().rsplit(")", 1)[1].split()
+    except OSError:
+        return 0.0
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
