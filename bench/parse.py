@@ -88,7 +88,15 @@ def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--max-mb", type=float, default=50.0)
     ap.add_argument("--checkout", type=Path, default=ROOT, help="the max2code checkout to time")
+    ap.add_argument("--chart-only", action="store_true",
+                    help="redraw parse.png from bench/results/parse.json, run nothing")
     opts = ap.parse_args()
+    if opts.chart_only:
+        data = json.loads((RESULTS / "parse.json").read_text())
+        chart(data["rows"] if isinstance(data, dict) else data,
+              data.get("made", "machine and date not recorded") if isinstance(data, dict) else
+              "measured 2026-12-01 (machine not recorded)")
+        return 0
     rows = []
     for name in FAMILIES:
         for mb in SIZES_MB:
@@ -105,7 +113,9 @@ def main() -> int:
 
 def write(rows: list[dict], opts: argparse.Namespace) -> None:
     RESULTS.mkdir(parents=True, exist_ok=True)
-    (RESULTS / "parse.json").write_text(json.dumps(rows, indent=1) + "\n")
+    from max2code.machine import machine_and_date
+    made = machine_and_date()
+    (RESULTS / "parse.json").write_text(json.dumps({"made": made, "rows": rows}, indent=1) + "\n")
     lines = ["# Parse time against size", "",
              f"`python bench/parse.py --max-mb {opts.max_mb:g}`; each input parsed once in a fresh "
              "interpreter (`parse_text`, no size limit; the command line refuses files above "
@@ -116,6 +126,11 @@ def write(rows: list[dict], opts: argparse.Namespace) -> None:
         lines.append(f"| {r['family']} | {r['bytes'] / 1e6:.2f} MB | {r['seconds']:.3f} | "
                      f"{r['seconds'] / r['bytes'] * 1e6:.3f} | {r['peak_mb']:.0f} MB | {r['outcome']} |")
     (RESULTS / "parse.md").write_text("\n".join(lines) + "\n")
+    chart(rows, made)
+
+
+def chart(rows: list[dict], made: str) -> None:
+    """parse.png: time against size per input family, log-log; `made`: machine and date."""
     try:
         import matplotlib
         matplotlib.use("Agg")
@@ -129,7 +144,8 @@ def write(rows: list[dict], opts: argparse.Namespace) -> None:
             ax.loglog(*zip(*pts), marker="o", label=name)
     ax.set_xlabel("input size (bytes)")
     ax.set_ylabel("parse time (s)")
-    ax.set_title("max2code .mxm parser: time against size (log-log; slope 1 is linear)")
+    ax.set_title("max2code .mxm parser: time against size (log-log; slope 1 is linear)\n"
+                 + made, fontsize=10)
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8)
     fig.tight_layout()

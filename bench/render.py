@@ -23,7 +23,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from benchtools import command_line, machine_and_date, publish
+from benchtools import command_line, machine_and_date, publish, results_dir, smoke
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
@@ -115,7 +115,7 @@ def main() -> int:
     ap.add_argument("--seconds", type=float, default=3.0, help="simulated seconds per scene")
     ap.add_argument("--scenes", nargs="*", default=list(SCENES), help="example scenes")
     args = ap.parse_args()
-    if os.environ.get("MAX2CODE_BENCH_SMOKE"):
+    if smoke():
         args.seconds, args.scenes = 0.3, args.scenes[:2]
     lines = ["# Drawing pictures of a simulation", "",
              f"Machine: {machine_and_date()} (shared). Command: "
@@ -142,7 +142,7 @@ def main() -> int:
             lines.append(f"| {name} | {r['bodies']} | {r['count']} | " + " | ".join(cells) + " |")
     lines += ["", "All scenes together (total time old / new): " + ", ".join(
         f"{kind} {old / new:.1f}x" for kind, (old, new) in totals.items()) + "."]
-    publish(ROOT / "bench" / "results", "render.md", "\n".join(lines) + "\n")
+    publish(results_dir(ROOT / "bench" / "results"), "render.md", "\n".join(lines) + "\n")
     return 0
 
 
