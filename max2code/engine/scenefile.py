@@ -588,9 +588,13 @@ def check(doc: Located, shown: str, stem: str = "scene") -> Scene:
                 and v[0] < v[2] and v[1] < v[3]
                 and all(limits.finite(x) for x in (*v, v[2] - v[0], v[3] - v[1]))):
             view = tuple(float(x) for x in v)
+            problem = next(filter(None, map(limits.magnitude_problem, view)), None)
+            if problem:
+                c.error(("view",), problem)
+                view = None
         else:
             c.error(("view",), f"expected [xmin, ymin, xmax, ymax], finite, with xmin < xmax, "
-                    f"ymin < ymax, got {v!r}")
+                    f"ymin < ymax, got {_shown(v)}")
     eng = data.get("engine", {})
     if not isinstance(eng, dict):
         c.error(("engine",), "expected a table")
