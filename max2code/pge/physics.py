@@ -2,8 +2,8 @@
 
 PGE lets a game change anything at any time: remove an object (a brick that was hit), fix or
 unfix it, give it a mass after it was made, add objects while the game runs. Changes the World
-takes in place (a dynamic body's new velocity) go straight to it. Structural changes (remove,
-fix/unfix, mass, acceleration, a new object) mark the world stale: every body's exact state is
+takes in place (a dynamic body's new velocity, a removal) go straight to it. Other structural
+changes (fix/unfix, mass, acceleration, a new object) mark the world stale: every body's exact state is
 read out at that instant, and the world is rebuilt from those states before time moves on
 (O(bodies) once per change, at the change's exact time, so nothing is approximated). Game time
 is the rebuilt world's time plus the time it was rebuilt at.
@@ -121,7 +121,15 @@ class Physics:
         self.stale = True
 
     def remove(self, ob: Physical) -> None:
-        self.touch()
+        """At once, by the engine's own removal (also inside a collision callback) when the
+        world is current; the object keeps the pose it had."""
+        if not self.stale and ob.body is not None:
+            s = ob.state
+            s.x, s.y, s.angle = self.world.pose(ob.body)
+            s.vx, s.vy, s.omega = self.world.velocity(ob.body)
+            self.world.remove(ob.body)
+        else:
+            self.touch()
         ob.removed = True
         ob.body = None  # (its pose stays the one it had when removed)
         self.objects.remove(ob)

@@ -280,23 +280,29 @@ class Platformer:
                     w.add_timer(now + roots[0], lambda world, ev, k=k: self.passable(gen, k))
         if self.support is not None and vx and w.alive(self.support):
             xs = [cx for cx, _ in self.corners(self.support)]
-            # (1 cm past the edge's end: see leave)
-            edge = max(xs) + 0.01 if vx > 0 else min(xs) - 0.01
+            edge = max(xs) if vx > 0 else min(xs)
             s = (edge - x) / vx
             if s > 1e-9:
                 w.add_timer(now + s, lambda world, ev: self.leave(gen))
 
     def leave(self, gen: int) -> None:
-        if gen == self.generation:
-            self.support = None
-            if self.riding:
-                self.ride(False)
-            # (the same velocity, set again: the engine's rest rule, in some grids, slides a
-            # ball on past the end of an edge, along its line; a ball set going just past the
-            # end rolls off it and falls, as it should)
-            vx, vy, _ = self.world.velocity(self.player)
-            self.world.set_velocity(self.player, (vx, vy))
-            self.changed()
+        """The player's centre passes its support's end: it is off it, and falls."""
+        if gen != self.generation:
+            return
+        self.support = None
+        if self.riding:
+            self.ride(False)
+        # (the engine's rest rule holds a ball resting on an edge at the edge's end, or slides
+        # it on along the edge's line, depending on the grid: the player is moved 11 mm on,
+        # clear of the flat edge, with its velocity set again, from where it rolls over the
+        # rounded corner and falls, as a ball should)
+        w = self.world
+        x, y, _ = w.pose(self.player)
+        vx, vy, _ = w.velocity(self.player)
+        d = 1 if vx > 0 else -1
+        w.set_pose(self.player, (x + d * 0.011, y))
+        w.set_velocity(self.player, (vx, vy))
+        self.changed()
 
     def sensed(self, gen: int, body: int) -> None:
         if gen != self.generation or not self.world.alive(body):
