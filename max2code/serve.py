@@ -1,7 +1,7 @@
 """`max2code serve SCENE`: the scene's world, authoritative on this machine, played from browsers.
 
     max2code serve examples/scenes/arena.toml            # then open http://127.0.0.1:8036/
-    max2code serve SCENE [--host 127.0.0.1] [--port 8036] [--player NAME ...] [--rooms N] [--speed V]
+    max2code serve SCENE [--host 127.0.0.1] [--port 8036] [--player NAME ...] [--rooms N] [--speed V] [--tolerance EPS]
 
 Each browser that joins a room (the page's ?room=NAME, default "main") gets the world and then
 only events (docs/server.md). A joining client controls the first player body nobody else
@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import argparse
 import asyncio
+import signal
 import sys
 
 
@@ -27,9 +28,15 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--rooms", type=int, default=16, metavar="N", help="most rooms at once (default 16)")
     ap.add_argument("--speed", type=float, metavar="V",
                     help="input speed in scene units per second (default: a quarter of the view's width)")
+    ap.add_argument("--tolerance", type=float, metavar="EPS",
+                    help="a change whose drift stays below EPS scene units is sent when it would "
+                         "exceed it (dead reckoning; docs/server.md); default 0: every change at "
+                         "once, exact; -1: a quarter of a pixel of the page's canvas")
     args = ap.parse_args(argv)
-    if not 0 <= args.port <= 65535 or args.rooms < 1 or (args.speed is not None and not 0 < args.speed < 1e300):
-        print("max2code serve: error: --port must be 0..65535, --rooms at least 1, --speed positive",
+    if not 0 <= args.port <= 65535 or args.rooms < 1 or (args.speed is not None and not 0 < args.speed < 1e300) \
+            or (args.tolerance is not None and args.tolerance != -1 and not 0 <= args.tolerance < 1e300):
+        print("max2code serve: error: --port must be 0..65535, --rooms at least 1, --speed positive, "
+              "--tolerance finite and >= 0 (or -1)",
               file=sys.stderr)
         return 2
 
@@ -49,18 +56,29 @@ def main(argv: list[str]) -> int:
     if bad:
         print(f"{args.scene}: error: --player {bad[0]!r}: no dynamic body of that name", file=sys.stderr)
         return 1
-    options = Options(scene, tuple(names[n] for n in wanted), max_rooms=args.rooms, speed=args.speed)
+    options = Options(scene, tuple(names[n] for n in wanted), max_rooms=args.rooms, speed=args.speed,
+                      tolerance=None if args.tolerance == -1 else (args.tolerance or 0.0))
 
     def ready(server, port: int) -> None:
         print(f"max2code serve: {scene.name} on http://{args.host}:{port}/ "
               f"(players: {', '.join(wanted) or 'none'})", file=sys.stderr, flush=True)
 
+    async def serve_until_signal() -> int:
+        # asyncio's own signal handlers: the CLI's raise an exception in whatever runs when
+        # the signal comes, which inside a task only ends that task (the server went on)
+        loop, task, got = asyncio.get_running_loop(), asyncio.current_task(), []
+        for sig in (signal.SIGTERM, signal.SIGINT, signal.SIGHUP):
+            loop.add_signal_handler(sig, lambda s=sig: (got.append(s), task.cancel()))
+        try:
+            await run(options, args.host, args.port, ready)
+        except asyncio.CancelledError:
+            if not got:
+                raise
+        return 128 + got[0] if got else 0
+
     try:
-        asyncio.run(run(options, args.host, args.port, ready))
-    except KeyboardInterrupt:
-        return 130
+        return asyncio.run(serve_until_signal())
     except OSError as exc:
         print(f"max2code serve: error: cannot listen on {args.host}:{args.port}: {exc.strerror or exc}",
               file=sys.stderr)
         return 1
-    return 0

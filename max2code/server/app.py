@@ -39,6 +39,7 @@ class Options:
     max_rooms: int = 16
     max_clients: int = 256      # per room
     speed: float | None = None
+    tolerance: float | None = 0.0    # 0: exact; None: a quarter pixel (room.AUTO_PIXELS)
 
 
 class Server:
@@ -55,7 +56,8 @@ class Server:
         if room is None:
             if len(self.rooms) >= self.options.max_rooms:
                 raise ProtocolError(f"no room {name!r}, and no more rooms (at most {self.options.max_rooms})")
-            room = Room(name, self.options.scene, self.options.players, speed=self.options.speed)
+            room = Room(name, self.options.scene, self.options.players, speed=self.options.speed,
+                        tolerance=self.options.tolerance)
             room.start()
             self.rooms[name] = room
         return room

@@ -18,7 +18,10 @@ from typing import Callable
 
 from ..engine.scenefile import Scene, build_world
 from ..engine.world import EngineError, Event
-from . import protocol, wire
+from . import protocol, reckon, wire
+
+
+AUTO_PIXELS = 3200
 
 
 @dataclass(eq=False)
@@ -52,7 +55,8 @@ class Room:
     """An independent world shared by its clients. `clock` gives the room's time (seconds)."""
 
     def __init__(self, name: str, scene: Scene, players: tuple[int, ...],
-                 clock: Callable[[], float] | None = None, speed: float | None = None) -> None:
+                 clock: Callable[[], float] | None = None, speed: float | None = None,
+                 tolerance: float | None = 0.0) -> None:
         self.name = name
         self.scene = scene
         self.world = build_world(scene)
@@ -61,7 +65,19 @@ class Room:
         start = time.monotonic()
         self.clock = clock or (lambda: time.monotonic() - start)
         self.clients: list[Client] = []
-        self.counters = self.world.motions()[1]
+        motions, self.counters = self.world.motions()
+        # what clients hold of each body (the tolerance compares changes with it), the time
+        # by which a held segment must be replaced, and how far each body reaches from its
+        # reference point (rotation moves points that far out by angle x reach)
+        self.tolerance = 0.0
+        self.held: list[tuple[float, ...]] = [wire.motion(wire.segment(i, m, 0.0), 0.0)
+                                              for i, m in enumerate(motions)]
+        self.due: dict[int, float] = {}
+        self.reach = [max(math.hypot(*v) for v in b.vertices) + b.radius for b in self.world.bodies]
+        if tolerance is None:   # a quarter of a pixel of the page's 800-pixel-wide canvas
+            view = self._view()
+            tolerance = (view[2] - view[0]) / AUTO_PIXELS
+        self.tolerance = float(tolerance)
         self.gravity = [b.gravity if b.gravity is not None else scene.gravity for b in scene.bodies]
         self.seq = 0
         self.stats = Stats()
@@ -84,7 +100,7 @@ class Room:
 
     async def _run(self) -> None:
         while self.failed is None:
-            delay = self.world.next_time() - self.clock()
+            delay = self.next_wake() - self.clock()
             self._wake.clear()
             if delay > 0:
                 try:
@@ -97,7 +113,7 @@ class Room:
 
     def advance(self, t: float) -> None:
         """Step the world to t and send what changed (nothing when nothing drawn changed)."""
-        if self.failed is not None or t <= self.world.time:
+        if self.failed is not None or t < self.world.time or (t == self.world.time and not self.due):
             return
         try:
             events = self.world.step_to(t)
@@ -113,22 +129,41 @@ class Room:
         motions, counters = self.world.motions()
         changed = [i for i, (c, old) in enumerate(zip(counters, self.counters)) if c != old]
         self.counters = counters
+        now = self.world.time
         drawn = [e for e in events if e.kind != "timer"]
-        if not changed and not drawn and extra is None:
+        # with a tolerance, a change clients would not see yet waits (reckon.py); an input's
+        # body is always sent, as is every body whose wait is over
+        for i in changed:
+            self.due[i] = (reckon.deadline(self.held[i], motions[i], now, self.tolerance, self.reach[i])
+                           if extra is None or extra[1] != i else now)
+        send = sorted(i for i, d in self.due.items() if d <= now)
+        if not send and extra is None and (self.tolerance > 0 or not drawn):
             return
-        # the message's time: its latest event (or the input's time), so that a step holding
-        # one instant sends no time per event; every segment is re-expressed from it
-        times = [e.time for e in drawn] + [motions[i][0] for i in changed]
-        t = self.world.time if extra is not None or not times else max(times)
+        for i in send:
+            del self.due[i]
+        # the message's time: its latest event (or the input's, or now for a wait that ended),
+        # so that a step holding one instant sends no time per event; every segment is
+        # re-expressed from it
+        times = [e.time for e in drawn] + [motions[i][0] for i in send]
+        t = max(times) if times and extra is None else now
+        sent = set(send)
         ev = []
         for e in drawn:   # [kind, a, b], and the time before t when the step held several
+            if self.tolerance > 0 and e.a not in sent and e.b not in sent:
+                continue  # (an event nobody sees)
             item = [protocol.EVENT_CODES[e.kind], e.a, e.b]
             ev.append(item if e.time == t else item + [protocol.number(e.time - t)])
         if extra is not None:
             ev.append(list(extra))
+        segs = [wire.segment(i, motions[i], t) for i in send]
+        for seg in segs:   # what clients now hold (the numbers as sent)
+            self.held[seg[0]] = wire.motion(seg, t)
         self.seq += 1
-        self._broadcast({"type": "ev", "n": self.seq, "t": t, "ev": ev,
-                         "seg": [wire.segment(i, motions[i], t) for i in changed]})
+        self._broadcast({"type": "ev", "n": self.seq, "t": t, "ev": ev, "seg": segs})
+
+    def next_wake(self) -> float:
+        """The next queued event, or the end of a change's wait, whichever is first."""
+        return min([self.world.next_time()] + list(self.due.values()))
 
     def _broadcast(self, message: dict) -> None:
         text = protocol.encode(message)
@@ -148,7 +183,9 @@ class Room:
         client = Client(send, name, tuple(free[:1]) if play else ())
         self.advance(self.clock())
         t = self.world.time
-        motions, _ = self.world.motions()
+        # a late joiner gets what the others hold (within the tolerance of the truth), so
+        # that every client draws the same
+        motions = self.held
         message = {"type": "world", "v": protocol.VERSION, "room": self.name, "n": self.seq,
                    "t": t, "you": list(client.controls), "view": self._view(),
                    "bodies": [wire.body(self.world, i) for i in range(len(self.world.bodies))],

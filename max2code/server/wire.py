@@ -66,3 +66,8 @@ def pose(seg: list, t: float, t_seg: float) -> tuple[float, float, float]:
     x, y, th, vx, vy, w, ax, ay = (list(seg[1:]) + [0.0] * 8)[:8]
     s = t - t_seg
     return (x + s * (vx + 0.5 * ax * s), y + s * (vy + 0.5 * ay * s), th + w * s)
+
+
+def motion(seg: list, t: float) -> tuple[float, ...]:
+    """A sent segment (from time t) back as the core's motion tuple: what a client holds."""
+    return (t,) + tuple((list(seg[1:]) + [0.0] * 8)[:8])

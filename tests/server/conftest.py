@@ -62,6 +62,7 @@ def start(scene_path, players=None, **kw) -> Running:
     scene = load(scene_path)
     if players is None:
         players = tuple(i for i, b in enumerate(scene.bodies) if b.name.startswith("player"))
+    kw.setdefault("tolerance", 0.0)   # exact unless a test asks: the replays compare bit for bit
     return Running(Options(scene, players, **kw))
 
 

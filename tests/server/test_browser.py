@@ -51,13 +51,20 @@ class Served:
         self.port = int(m.group(1))
         self.watcher: Client | None = None
         self.done = threading.Event()
-        self.thread = threading.Thread(target=lambda: asyncio.run(self._watch()), daemon=True)
+        self.failure: BaseException | None = None
+        self.thread = threading.Thread(target=self._main, daemon=True)
         self.thread.start()
-        for _ in range(300):
-            if self.watcher is not None:
+        for _ in range(600):
+            if self.watcher is not None or self.failure is not None:
                 break
             time.sleep(0.1)
-        assert self.watcher is not None, "the watcher did not join"
+        assert self.watcher is not None, f"the watcher did not join: {self.failure!r}"
+
+    def _main(self) -> None:
+        try:
+            asyncio.run(self._watch())
+        except BaseException as exc:   # (reported by the test's assertion)
+            self.failure = exc
 
     async def _watch(self) -> None:
         # (a thread and loop of its own: Playwright's synchronous API owns the main thread's)

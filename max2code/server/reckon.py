@@ -1,0 +1,66 @@
+"""Dead reckoning with a drawn tolerance: when a client's segment of a body stops being good
+enough. IEEE 1278 (DIS) re-sends an entity's state when the receivers' motion model drifts
+from the truth beyond a threshold; here both the model and the truth are exact segments
+(c + v s + a s^2/2, angle + omega s), so the time the drift reaches the threshold is the first
+root of a quadratic per axis, and the threshold may be 0 (every change is sent: exact).
+
+With tolerance eps, a body's new segment is not sent while the one clients hold stays within
+eps/2 per axis (so within eps / sqrt(2) of the truth, rotation included at the body's bounding
+radius), and is sent at the latest when it would leave that: the server wakes then. A change
+that becomes visible within SOON is sent at once, at its event's exact time, with its event.
+"""
+
+from __future__ import annotations
+
+import math
+
+Motion = tuple[float, ...]   # (t0, x, y, angle, vx, vy, omega, ax, ay)
+
+
+def _at(m: Motion, t: float) -> tuple[float, ...]:
+    t0, x, y, th, vx, vy, w, ax, ay = m
+    s = t - t0
+    return (x + s * (vx + 0.5 * ax * s), y + s * (vy + 0.5 * ay * s), th + w * s,
+            vx + ax * s, vy + ay * s, w, ax, ay)
+
+
+def _first_exceed(c: float, b: float, a: float, e: float) -> float:
+    """The least s >= 0 with |c + b s + a s^2/2| > e (inf if never, 0 if already)."""
+    if abs(c) > e or (abs(c) == e and (c * b > 0 or (b == 0 and c * a > 0))):
+        return 0.0      # beyond already, or on the edge and going out
+    best = math.inf
+    for level in (e, -e):
+        # a/2 s^2 + b s + (c - level) = 0
+        qa, qb, qc = 0.5 * a, b, c - level
+        if qa == 0:
+            if qb != 0:
+                s = -qc / qb
+                if s > 0:
+                    best = min(best, s)
+            continue
+        disc = qb * qb - 4 * qa * qc
+        if disc < 0:
+            continue
+        r = math.sqrt(disc)
+        q = -0.5 * (qb + math.copysign(r, qb))     # the stable form of the two roots
+        for s in ((q / qa) if qa else math.inf, (qc / q) if q else math.inf):
+            if s > 0:
+                best = min(best, s)
+    return best
+
+
+SOON = 0.05   # seconds: a change visible within this is sent at once, with its event
+
+
+def deadline(held: Motion, truth: Motion, now: float, eps: float, reach: float) -> float:
+    """When the held segment first drifts from the truth by more than eps/2 along x or y, or
+    by more than eps/2 at `reach` from the reference point through rotation (both segments
+    valid from `now`); `now` when eps is 0 or they already differ that much."""
+    if eps <= 0:
+        return now
+    h, g = _at(held, now), _at(truth, now)
+    e = eps / 2
+    s = min(_first_exceed(g[0] - h[0], g[3] - h[3], g[6] - h[6], e),
+            _first_exceed(g[1] - h[1], g[4] - h[4], g[7] - h[7], e),
+            _first_exceed(reach * (g[2] - h[2]), reach * (g[5] - h[5]), 0.0, e) if reach > 0 else math.inf)
+    return now if s < SOON else now + s
