@@ -72,6 +72,18 @@ fn kahan_quadratic() {
 }
 
 #[test]
+fn infinite_window_keeps_a_root_near_a_tiny_constant() {
+    // issue 33: a ball an ulp above a boundary, thrown up; with tmax = inf the t^2 term was
+    // dropped as negligible against the rest's bound (its root -1e-16), and the root with it
+    let c = [1e-16, 1.0, -4.905];
+    let at_ten = first_root(&c, 10.0).expect("a root in (0, 10]");
+    assert!((at_ten - 1.0 / 4.905).abs() < 1e-15);
+    for m in ALL {
+        assert_eq!(root(&c, INF, m), root(&c, 10.0, m), "{m:?}");
+    }
+}
+
+#[test]
 fn linear_and_trivial() {
     assert_eq!(first_root(&[-1.0, 1.0], 1.0), Some(1.0));
     assert_eq!(first_root(&[-1.0, 1.0], 0.5), None);
