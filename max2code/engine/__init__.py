@@ -29,7 +29,7 @@ gravity=, mass= | density=, inertia=, restitution=, friction=, group=, name=, co
   * vertices are offsets from `position` in the body frame: one vertex + radius = a circle
     (its offset puts it off the reference point: the paper's orbiting paddles), two = a
     segment (thin, two-sided) or capsule (radius > 0), three or more = a convex polygon,
-    anticlockwise (radius > 0 rounds it);
+    either winding (radius > 0 rounds it);
   * kind: "dynamic" (responds to impulses; its reference point moves to the centre of mass),
     "static" (never moves), "kinematic" (follows c + v t + a t^2/2 with angle + omega t for
     ever: infinite mass);
@@ -47,6 +47,13 @@ the callbacks at their time (`step_to(t, events=False)` makes no Event objects: 
 nothing reads them). Equal times are ordered by body id: the same world gives the same
 events, bit for bit. World(rest_speed=, collapse_time=) tune the rest rule (README): 0 is
 automatic, a negative value turns the rules off.
+
+Games (docs/game-api.md): `remove(b)`, `set_pose`, `set_velocity` (kinematic bodies too),
+`set_acceleration`, `set_kind` (fix/unfix), `set_mass`, `apply_impulse`, `cancel_timer`;
+`on_collision(cb, body=)`, `on_collision_with(a, b, cb)`, `on_pre_solve(b, cb)` and
+`collision_handler(type_a, type_b)` (begin / pre_solve / post_solve / separate); sensors,
+`category`/`mask`, user `data`; `add_input(Input)` / `on_input(cb)` (inputs.py); queries
+`query_point`, `query_box`, `cast_ray`; `pickle` / `copy.deepcopy` / `restore` snapshots.
 
 Scenes: `max2code.engine.scenefile.load(path)` reads a scene file (TOML or JSON, schema in
 that module and the README) and `build_world(scene)` makes its World; `max2code sim` runs one.
