@@ -16,9 +16,13 @@ def _scene(engine, seed: int):
     w = engine.World(gravity=(0.0, -9.81))
     for a, b in (((-5, 0), (5, 0)), ((-5, 0), (-5, 10)), ((5, 0), (5, 10))):
         w.add_segment(a, b)
-    for _ in range(12):
-        w.add_circle((rnd.uniform(-4, 4), rnd.uniform(1, 9)), 0.2, restitution=rnd.uniform(0.5, 1),
-                     velocity=(rnd.uniform(-3, 3), rnd.uniform(-3, 3)))
+    taken = [(0.0, 5.0, 0.4), (0.0, 0.5, 0.3), (2.0, 2.0, 0.4)]   # the box, kinematic, sensor
+    while len(taken) < 15:                                       # balls that start apart
+        x, y = rnd.uniform(-4, 4), rnd.uniform(1, 9)
+        if all((x - a) ** 2 + (y - b) ** 2 > (0.3 + r) ** 2 for a, b, r in taken):
+            taken.append((x, y, 0.2))
+            w.add_circle((x, y), 0.2, restitution=rnd.uniform(0.5, 1),
+                         velocity=(rnd.uniform(-3, 3), rnd.uniform(-3, 3)))
     w.add_polygon([(-0.3, -0.2), (0.3, -0.2), (0.3, 0.2), (-0.3, 0.2)], position=(0.0, 5.0), omega=3.0)
     w.add_circle((0.0, 0.5), 0.3, kind="kinematic", velocity=(0.5, 0.0))
     w.add_circle((2.0, 2.0), 0.4, kind="static", sensor=True)
