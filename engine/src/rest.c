@@ -337,7 +337,11 @@ int rest_after_contact(m2c_world *w, int k, int s, const event *ev, int k_is_a, 
         K->support_n[1] = n[1];
         K->rest_time = t_rest;
         K->counter++;
-        return 1;
+        if (rest_leave_time(w, k, INFINITY) > 0)
+            return 1;
+        /* at the edge's end and leaving it: no sliding there (it would leave at once, land
+         * on the end again at the same instant and loop); a corner, as below */
+        rest_restore(w, k);
     }
     double hop = 0.5 * gn * collapse_time(w);
     if (u < hop) {

@@ -345,6 +345,26 @@ static void visit(m2c_world *w, int i, int j, void *ctx)
         bc->partner = j;
 }
 
+/* The search's outcome into the body's event: its contact, or a window end. */
+static void set_contact(const m2c_world *w, event *ev, best_contact *bc)
+{
+    if (bc->c.window < bc->c.t) { /* a rotating search stopped early: resume by then */
+        ev->t = bc->c.window;
+        ev->kind = EV_WINDOW;
+        bc->partner = -1;
+    }
+    if (bc->partner >= 0) {
+        ev->t = bc->c.t;
+        ev->kind = EV_CONTACT;
+        ev->partner = bc->partner;
+        ev->partner_counter = w->b[bc->partner].counter;
+        ev->feature = bc->c.feature;
+        ev->fa = bc->c.fa;
+        ev->fb = bc->c.fb;
+        ev->side = bc->c.side;
+    }
+}
+
 /* How far ahead a body with no other event is searched: a million seconds, or a millionth of
  * the time now (so that now + horizon is a later time), at most to the largest double. */
 static double horizon(double now)
@@ -363,6 +383,22 @@ void world_predict(m2c_world *w, int i)
     ev.kind = EV_NONE;
     ev.partner = -1;
     if (b->state == ASLEEP) {
+        /* asleep: static for the dynamic bodies (they predict against it), but a kinematic
+         * body never predicts, so the sleeper watches the kinematic ones itself -- a paddle
+         * swept through a ball at rest with no event at all (issue 33) */
+        if (w->nkin > 0) {
+            best_contact bc;
+            memset(&bc, 0, sizeof bc);
+            bc.c.t = w->now + horizon(w->now);
+            bc.c.rate = -INFINITY;
+            bc.c.window = INFINITY;
+            bc.partner = -1;
+            ev.t = bc.c.t;
+            ev.kind = EV_WINDOW;
+            for (int k = 0; k < w->nkin; k++)
+                visit(w, i, w->kinematic[k], &bc);
+            set_contact(w, &ev, &bc);
+        }
         b->ev = ev;
         heap_update(w, i);
         return;
@@ -399,21 +435,7 @@ void world_predict(m2c_world *w, int i)
     bc.c.window = INFINITY;
     bc.partner = -1;
     grid_neighbours(w, i, visit, &bc);
-    if (bc.c.window < bc.c.t) { /* a rotating search stopped early: resume by then */
-        ev.t = bc.c.window;
-        ev.kind = EV_WINDOW;
-        bc.partner = -1;
-    }
-    if (bc.partner >= 0) {
-        ev.t = bc.c.t;
-        ev.kind = EV_CONTACT;
-        ev.partner = bc.partner;
-        ev.partner_counter = w->b[bc.partner].counter;
-        ev.feature = bc.c.feature;
-        ev.fa = bc.c.fa;
-        ev.fb = bc.c.fb;
-        ev.side = bc.c.side;
-    }
+    set_contact(w, &ev, &bc);
     b->ev = ev;
     heap_update(w, i);
 }
@@ -467,6 +489,12 @@ static void process(m2c_world *w, int i)
             if (w->b[j].kind == M2C_DYNAMIC)
                 world_predict(w, j);
             break;
+        }
+        if (w->b[i].state == ASLEEP) { /* a kinematic body reached a sleeper: it wakes */
+            int n = wake_island(w, i, w->woken, w->cap);
+            for (int k = 0; k < n; k++)
+                if (w->woken[k] != i)
+                    world_predict(w, w->woken[k]);
         }
         int woken = respond(w, i, j, &ev);
         world_predict(w, i);

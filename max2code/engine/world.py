@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
-from typing import Callable, Iterable, Sequence
+from typing import Callable, Iterable, Iterator, Sequence
 
 from .binding import load
 from .handlers import FLAG_SENSOR, CollisionHandler, Handlers
@@ -366,13 +366,23 @@ class World:
     def step_to(self, t: float, events: bool = True) -> list[Event]:
         """Process every event up to time t (inclusive); returns the reported events (none with
         events=False, which saves making Python objects of them: callbacks still run)."""
-        out: list[Event] = []
+        return list(self._run(t, events))
+
+    def stream_to(self, t: float) -> Iterator[Event]:
+        """step_to(t) as a stream: each reported event as the core hands it out, so memory
+        stays bounded however many there are (`max2code sim` writes its log this way). The
+        world is stepped as far as the stream has been read."""
+        return self._run(t, True)
+
+    def _run(self, t: float, events: bool) -> Iterator[Event]:
         # with callbacks the core stops after each reported event, so that a callback sees the
         # world at its event's time (and may change it: set_velocity, add_timer)
         listening = self._handlers.any()
         self._refresh_flags()
         room = 4 if listening or any(tm.callback or tm.is_input for tm in self._timers.values()) else BUFFER
         while True:
+            # (a call returns after a bounded amount of work, events or not: signals are
+            # honoured between calls)
             status = self._lib.m2c_world_step(self._w, float(t), self._buf, room, self._count)
             if self._failure is not None:
                 failure, self._failure = self._failure, None
@@ -381,15 +391,15 @@ class World:
                 raise EngineError(self.error())
             if not events and not listening and not self._timers:
                 if status == 0:
-                    return out
+                    return
                 continue
             for k in range(self._count[0]):
                 ev = self._event(self._buf[k])
-                if events:
-                    out.append(ev)
                 self._dispatch(ev)
+                if events:
+                    yield ev
             if status == 0:
-                return out
+                return
 
     def _dispatch(self, ev: Event) -> None:
         if ev.kind == "input":

@@ -91,3 +91,16 @@ def test_spinning_boxes_stay_in_the_room(engine, seed):
     w.step_to(10, events=False)
     lost = [b for b in boxes if not all(h - TOL < c < size - h + TOL for c in w.pose(b)[:2])]
     assert lost == []
+
+
+@pytest.mark.parametrize("speed", [3.0, 10.5])
+def test_ball_sliding_off_a_floor_falls(engine, speed):
+    """A ball sliding on a floor (the rest rule) leaves it at its end and falls: at the end it
+    landed on the corner again at the same instant and slid on, in the air or (with the crossing
+    rule above) for ever at one instant."""
+    w = engine.World(gravity=(0, -9.81))
+    w.add_segment((-5, 0), (5, 0))
+    ball = w.add_circle((0, 0.3), 0.1, velocity=(speed, 0), restitution=0.5)
+    w.step_to(5 / speed + 1.0)
+    x, y, _ = w.pose(ball)
+    assert x > 5 and y < -1
