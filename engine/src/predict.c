@@ -48,27 +48,28 @@ typedef int (*coef_fn)(const double p[], double c[]);
  * tests/engine/test_rotation.py when tried, and is left out until that is understood. */
 #define NSLOTS 6
 #define TOP_SLOT (NSLOTS - 1)
-static const int ORDER[NSLOTS] = {0, 1, 2, 3, 4, 6};
-static const coef_fn PP_COEF[NSLOTS] = {
-    circles_orbit_o1_coefficients, circles_orbit_o1_coefficients, circles_orbit_o2_coefficients,
-    circles_orbit_o3_coefficients, circles_orbit_coefficients, circles_orbit_o6_coefficients};
-static const int PP_DEGREE[NSLOTS] = {
-    circles_orbit_o1_DEGREE, circles_orbit_o1_DEGREE, circles_orbit_o2_DEGREE,
-    circles_orbit_o3_DEGREE, circles_orbit_DEGREE, circles_orbit_o6_DEGREE};
-static const char *const *const PP_NAMES[NSLOTS] = {
-    circles_orbit_o1_param_names, circles_orbit_o1_param_names, circles_orbit_o2_param_names,
-    circles_orbit_o3_param_names, circles_orbit_param_names, circles_orbit_o6_param_names};
-static const coef_fn PL_COEF[NSLOTS] = {
-    circle_orbit_line_o1_coefficients, circle_orbit_line_o1_coefficients,
-    circle_orbit_line_o2_coefficients, circle_orbit_line_o3_coefficients,
-    circle_orbit_line_coefficients, circle_orbit_line_o6_coefficients};
-static const int PL_DEGREE[NSLOTS] = {
-    circle_orbit_line_o1_DEGREE, circle_orbit_line_o1_DEGREE, circle_orbit_line_o2_DEGREE,
-    circle_orbit_line_o3_DEGREE, circle_orbit_line_DEGREE, circle_orbit_line_o6_DEGREE};
-static const char *const *const PL_NAMES[NSLOTS] = {
-    circle_orbit_line_o1_param_names, circle_orbit_line_o1_param_names,
-    circle_orbit_line_o2_param_names, circle_orbit_line_o3_param_names,
-    circle_orbit_line_param_names, circle_orbit_line_o6_param_names};
+/* One model of a feature's gap: the generated coefficients, their degree and parameter names. */
+typedef struct {
+    coef_fn coef;
+    int degree;
+    const char *const *names;
+} model;
+#define MODEL(eq) {eq##_coefficients, eq##_DEGREE, eq##_param_names}
+
+/* The predictors, one row per slot: the Taylor order of the rotation, and the model of each
+ * feature kind (point-point, point-line) at that order. */
+static const struct {
+    int order;
+    model pp, pl;
+} SLOT[NSLOTS] = {
+    {0, MODEL(circles_orbit_o1), MODEL(circle_orbit_line_o1)},
+    {1, MODEL(circles_orbit_o1), MODEL(circle_orbit_line_o1)},
+    {2, MODEL(circles_orbit_o2), MODEL(circle_orbit_line_o2)},
+    {3, MODEL(circles_orbit_o3), MODEL(circle_orbit_line_o3)},
+    {4, MODEL(circles_orbit), MODEL(circle_orbit_line)},
+    {6, MODEL(circles_orbit_o6), MODEL(circle_orbit_line_o6)},
+};
+#undef MODEL
 
 /* Parameter order of the equations (checked against the generated names at start-up). */
 enum { CX1, CY1, VX1, VY1, AX1, AY1, OX1, OY1, W1, R1,
@@ -86,12 +87,12 @@ int predict_check_generated(m2c_world *w)
 {
     for (int o = 0; o < NSLOTS; o++) {
         for (int k = 0; k < PP_NPARAMS; k++)
-            if (strcmp(PP_NAMES[o][k], PP_EXPECTED[k]) != 0)
+            if (strcmp(SLOT[o].pp.names[k], PP_EXPECTED[k]) != 0)
                 goto bad;
         for (int k = 0; k < PL_NPARAMS; k++)
-            if (strcmp(PL_NAMES[o][k], PL_EXPECTED[k]) != 0)
+            if (strcmp(SLOT[o].pl.names[k], PL_EXPECTED[k]) != 0)
                 goto bad;
-        if (PP_DEGREE[o] >= MAXC || PL_DEGREE[o] >= MAXC)
+        if (SLOT[o].pp.degree >= MAXC || SLOT[o].pl.degree >= MAXC)
             goto bad;
     }
     return 0;
@@ -437,7 +438,7 @@ static int bound_start(feat *f, double tmax, double tolp, double *t)
     if (f->kind == F_PL && !f->rot_b) {
         g.R = f->R + ra;
         fill_pl(&g, p, 0.0);
-        n = PL_COEF[0](p, c);
+        n = SLOT[0].pl.coef(p, c);
     } else {
         double rb = f->rot_b ? (f->kind == F_PP ? hypot(f->pb[0], f->pb[1]) : f->B->rho) : 0.0;
         g.rot_b = 0;
@@ -451,7 +452,7 @@ static int bound_start(feat *f, double tmax, double tolp, double *t)
         fill_pp(&g, p, 0.0);
         p[R1] = r1 + extra;
         p[R2] = r2;
-        n = PP_COEF[0](p, c);
+        n = SLOT[0].pp.coef(p, c);
     }
     if (c[0] <= tolp) {
         /* overlapping, or touching within the tolerance: from now (a corner standing on a
@@ -474,15 +475,15 @@ static int bound_start(feat *f, double tmax, double tolp, double *t)
  * else from the order-2 model of the same state (feat_at's). */
 static int pressed_in(const feat *f, int slot, const double c[MAXC])
 {
-    if (ORDER[slot] >= 2)
+    if (SLOT[slot].order >= 2)
         return c[2] < 0;
     double p[PL_NPARAMS + 1], c2[MAXC] = {0};
     if (f->kind == F_PP) {
         fill_pp(f, p, 0.0);
-        PP_COEF[2](p, c2);
+        SLOT[2].pp.coef(p, c2);
     } else {
         fill_pl(f, p, 0.0);
-        PL_COEF[2](p, c2);
+        SLOT[2].pl.coef(p, c2);
     }
     return c2[2] < 0;
 }
@@ -522,17 +523,17 @@ static int solve_rotating(feat *f, double tmax, double tolp, double vthr, double
         double h = fmin(H, 1.0 / wmax);
         H = h;
         for (int k = 1; k <= TOP_SLOT; k++)
-            if (rot_term(f, ORDER[k]) * pow(H, ORDER[k] + 1) <= eps) {
+            if (rot_term(f, SLOT[k].order) * pow(H, SLOT[k].order + 1) <= eps) {
                 slot = k;
                 break;
             }
         if (!slot) {
             slot = TOP_SLOT;
-            h = pow(eps / rot_term(f, ORDER[slot]), 1.0 / (ORDER[slot] + 1));
+            h = pow(eps / rot_term(f, SLOT[slot].order), 1.0 / (SLOT[slot].order + 1));
             if (!(h < H))
                 h = H;
         }
-        int order = ORDER[slot];
+        int order = SLOT[slot].order;
         /* reach test: can the gap close within the window at all? */
         double reach = dv * h + 0.5 * da * h * h + spin * h;
         if (!after_root && (mode == ABOVE ? dist : -dist) - reach > 0) {
@@ -541,8 +542,8 @@ static int solve_rotating(feat *f, double tmax, double tolp, double vthr, double
         }
         w->st.windows_solved++;
         double p[PL_NPARAMS + 1], c[MAXC] = {0};
-        int n = f->kind == F_PP ? (fill_pp(f, p, 0.0), PP_COEF[slot](p, c))
-                                : (fill_pl(f, p, 0.0), PL_COEF[slot](p, c));
+        int n = f->kind == F_PP ? (fill_pp(f, p, 0.0), SLOT[slot].pp.coef(p, c))
+                                : (fill_pl(f, p, 0.0), SLOT[slot].pl.coef(p, c));
         /* the model's error bound B(t) = kappa t^(n+1) on the gap function */
         double e_h = rot_term(f, order) * pow(h, order + 1);
         double kappa;
@@ -667,13 +668,13 @@ static int solve_feature(feat *f, double tmax, double *tau, double *rate)
     double norm = 1.0;
     if (f->kind == F_PP) {
         fill_pp(f, p, 0.0);
-        n = PP_COEF[0](p, c);
+        n = SLOT[0].pp.coef(p, c);
         tolp = tol * (2 * f->R + tol);
         norm = 2 * f->R;
         vthr *= norm;
     } else {
         fill_pl(f, p, 0.0);
-        n = PL_COEF[0](p, c);
+        n = SLOT[0].pl.coef(p, c);
         tolp = tol;
     }
     if (!first_contact(f, c, n, tmax, tolp, vthr, tau, rate))
@@ -827,7 +828,7 @@ int predict_pair(m2c_world *w, int i, int j, contact *c)
         fill_pp(&f, p, 0.0);
         p[R1] = A->bound;
         p[R2] = B->bound;
-        int n = PP_COEF[0](p, cc);
+        int n = SLOT[0].pp.coef(p, cc);
         double tmax = c->t - w->now;
         if (cc[0] > 0) {
             if (clearly_apart(cc, n, tmax, 0.0))
