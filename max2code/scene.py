@@ -96,12 +96,12 @@ def load_scene(path: str | Path) -> Scene:
     checker: every problem a `file:line:col: error:` line, raised together as SceneError):
     known keys only, finite numbers, positive radii, unique names, and no two bodies of
     different groups overlapping at 0 -- a contact already under way has no first time."""
-    from .engine.scenefile import SceneError, _Checker, read_located
+    from .engine.scenefile import SceneError, Checker, read_located
 
     path = Path(path)
     shown = str(path)
     doc = read_located(path)
-    c = _Checker(shown, doc)
+    c = Checker(shown, doc)
     data = doc.data
     if not isinstance(data, dict):
         raise SceneError([f"{shown}:1:1: error: a frozen scene is a table (JSON object) of fields"])

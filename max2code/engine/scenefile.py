@@ -128,7 +128,7 @@ def _shown(v: object, limit: int = 80) -> str:
 
 
 @dataclass
-class _Checker:
+class Checker:
     file: str
     doc: Located
     errors: list[str] = field(default_factory=list)
@@ -271,7 +271,7 @@ def _turns(vertices: list[Vec]) -> int:
     return round(total / (2 * math.pi))
 
 
-def _body(c: _Checker, raw: object, index: int, names: set[str],
+def _body(c: Checker, raw: object, index: int, names: set[str],
           tolerance: float) -> BodySpec | None:
     path = ("bodies", index)
     if not isinstance(raw, dict):
@@ -368,7 +368,7 @@ def _body(c: _Checker, raw: object, index: int, names: set[str],
                     restitution, group, color, friction)
 
 
-def _mass_check(c: _Checker, raw: dict, path: tuple, vertices: list[Vec], radius: float,
+def _mass_check(c: Checker, raw: dict, path: tuple, vertices: list[Vec], radius: float,
                 mass: float | None, density: float, inertia: float | None) -> None:
     """A dynamic body's mass and inertia, as World.add_body derives them, within what the
     engine's arithmetic holds (limits.MASS, limits.INERTIA), located at the key they come from
@@ -487,7 +487,7 @@ def _cells(circle: tuple[float, float, float], size: float) -> list[tuple[int, i
     return [(gx, gy) for gx in range(x0, x1 + 1) for gy in range(y0, y1 + 1)]
 
 
-def _overlaps(c: _Checker, bodies: list[tuple[int, BodySpec]], tolerance: float) -> None:
+def _overlaps(c: Checker, bodies: list[tuple[int, BodySpec]], tolerance: float) -> None:
     """Bodies that start overlapping (by more than the tolerance): exact geometry, pairs that can
     collide (a dynamic one, different groups), near pairs only (bounding circles)."""
     shapes = []
@@ -512,7 +512,7 @@ def _overlaps(c: _Checker, bodies: list[tuple[int, BodySpec]], tolerance: float)
     report_overlaps(c, found)
 
 
-def report_overlaps(c: _Checker, found: list[tuple[tuple[int, str], tuple[int, str], float]],
+def report_overlaps(c: Checker, found: list[tuple[tuple[int, str], tuple[int, str], float]],
                     why: str = "") -> None:
     """Each overlap ((index, name) of both bodies, depth) as an error at the later body of the
     file, in file order whatever order near_pairs found them in."""
@@ -570,7 +570,7 @@ def load(path: str | FilePath) -> Scene:
 
 
 def check(doc: Located, shown: str, stem: str = "scene") -> Scene:
-    c = _Checker(shown, doc)
+    c = Checker(shown, doc)
     data = doc.data
     if not isinstance(data, dict):
         raise SceneError([f"{shown}:1:1: error: a scene is a table (JSON object) of fields"])

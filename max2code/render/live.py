@@ -14,7 +14,7 @@ import time
 from collections.abc import Callable, Iterable, Sequence
 
 from .model import Body, Frame, View
-from .write import RenderUnavailable, _check_fps, _imports
+from .write import RenderUnavailable, check_fps, drawing_modules
 
 
 # SDL's video drivers that show nothing, which pygame 2 falls back to without a display
@@ -42,8 +42,8 @@ def show(bodies: Sequence[Body], frames: Iterable[Frame], view: View, fps: float
     pygame = _pygame()
     if pygame is None:
         raise RenderUnavailable("the live window needs pygame: pip install 'max2code[live]'")
-    raster, _ = _imports()
-    fps = _check_fps(fps)
+    raster, _ = drawing_modules()
+    fps = check_fps(fps)
     try:
         pygame.display.init()
         driver = pygame.display.get_driver()

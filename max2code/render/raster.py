@@ -172,7 +172,7 @@ def _line(canvas: Canvas, a: Point, b: Point, width: float, colour: str) -> None
         canvas.paint(rows, cols, _stroke(_segment_distance(x, y, a, b), width), colour)
 
 
-def _contrast(colour: str | None) -> str:
+def contrast(colour: str | None) -> str:
     """A spoke colour visible on the fill: black on light fills, white on dark ones."""
     if colour is None:
         return "#000000"
@@ -201,7 +201,7 @@ def draw_body(canvas: Canvas, body: Body, pose) -> None:
         centre = view.to_pixel(pose.apply(shape.centre))
         rim = view.to_pixel(pose.apply((shape.centre[0] + shape.radius, shape.centre[1])))
         canvas.paint(rows, cols, _stroke(_segment_distance(x, y, centre, rim), max(width, 1.0)),
-                     style.stroke or _contrast(style.fill))
+                     style.stroke or contrast(style.fill))
 
 
 def draw_contact(canvas: Canvas, contact: Contact, size: float) -> None:
@@ -223,7 +223,7 @@ def font(size: int) -> ImageFont.ImageFont | ImageFont.FreeTypeFont:
     return ImageFont.load_default(size=size)
 
 
-def _text_size(view: View) -> int:
+def text_size(view: View) -> int:
     return max(10, round(min(view.width, view.height) / 32))
 
 
@@ -235,14 +235,14 @@ def _box(view: View, left: float, top: float, right: float, bottom: float) -> Bo
 
 def _text_items(bodies: Sequence[Body], frame: Frame, view: View) -> list[tuple]:
     """What draw_text writes: (anchor point, text, colour, anchor, white box behind it or None)."""
-    size = _text_size(view)
+    size = text_size(view)
     label_font = font(size)
     items = []
     for body, pose in zip(bodies, frame.poses):
         if body.style.label:
             x, y = view.to_pixel((pose.x, pose.y))
             if -size <= x <= view.width + size and -size <= y <= view.height + size:
-                items.append(((x, y), printable(body.style.label), _contrast(body.style.fill),
+                items.append(((x, y), printable(body.style.label), contrast(body.style.fill),
                               "mm", None))
     if view.show_time:
         text = time_stamp(frame.time)
@@ -264,13 +264,13 @@ def _draw_items(draw: ImageDraw.ImageDraw, items: list[tuple], size: int,
 
 def draw_text(image: Image.Image, bodies: Sequence[Body], frame: Frame, view: View) -> None:
     """Labels and the time stamp, drawn by Pillow."""
-    _draw_items(ImageDraw.Draw(image), _text_items(bodies, frame, view), _text_size(view))
+    _draw_items(ImageDraw.Draw(image), _text_items(bodies, frame, view), text_size(view))
 
 
 def _draw_text_boxed(pixels: np.ndarray, bodies: Sequence[Body], frame: Frame, view: View) -> list[Box]:
     """draw_text into RGB bytes, each text on a crop of its own box only (the same pixels:
     whole-pixel offsets keep Pillow's fractional placement); returns the boxes."""
-    size = _text_size(view)
+    size = text_size(view)
     label_font = font(size)
     boxes = []
     for item in _text_items(bodies, frame, view):
@@ -315,7 +315,7 @@ def scene_colours(bodies: Sequence[Body], view: View) -> list[str]:
     out = [view.background, TEXT_COLOUR, "#ffffff", CONTACT_COLOUR]
     for body in bodies:
         style = body.style
-        out += [c for c in (style.fill, style.stroke, _contrast(style.fill)) if c is not None]
+        out += [c for c in (style.fill, style.stroke, contrast(style.fill)) if c is not None]
     return out
 
 

@@ -14,7 +14,7 @@ from collections.abc import Sequence
 from xml.sax.saxutils import escape
 
 from .model import Body, Capsule, Circle, Frame, Point, Polygon, Segment, View
-from .raster import CONTACT_COLOUR, TEXT_COLOUR, _contrast, _text_size, check_frame
+from .raster import CONTACT_COLOUR, TEXT_COLOUR, contrast, text_size, check_frame
 from .text import printable, time_stamp
 
 
@@ -82,7 +82,7 @@ def _body(i: int, body: Body, pose, view: View) -> list[str]:
         out = [head, f'<circle cx="{num(c[0])}" cy="{num(c[1])}" r="{num(shape.radius * s)}"{paint}/>']
         if style.spoke:
             rim = px((shape.centre[0] + shape.radius, shape.centre[1]))
-            colour = style.stroke or _contrast(style.fill)
+            colour = style.stroke or contrast(style.fill)
             out.append(f'<line class="spoke" x1="{num(c[0])}" y1="{num(c[1])}" x2="{num(rim[0])}" '
                        f'y2="{num(rim[1])}"{_paint("stroke", colour)} '
                        f'stroke-width="{num(max(style.stroke_width, 1.0))}"/>')
@@ -107,7 +107,7 @@ def _body(i: int, body: Body, pose, view: View) -> list[str]:
 def svg_text(bodies: Sequence[Body], frame: Frame, view: View) -> str:
     """The SVG document of one frame."""
     check_frame(bodies, frame)
-    size = _text_size(view)
+    size = text_size(view)
     w, h = view.width, view.height
     lines = ['<?xml version="1.0" encoding="UTF-8"?>',
              f'<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}">',
@@ -130,7 +130,7 @@ def svg_text(bodies: Sequence[Body], frame: Frame, view: View) -> str:
         if body.style.label:
             x, y = view.to_pixel((pose.x, pose.y))
             lines.append(f'<text class="label" x="{num(x)}" y="{num(y)}" {font} text-anchor="middle" '
-                         f'dominant-baseline="central"{_paint("fill", _contrast(body.style.fill))}>'
+                         f'dominant-baseline="central"{_paint("fill", contrast(body.style.fill))}>'
                          f'{escape(printable(body.style.label))}</text>')
     if view.show_time:
         lines.append(f'<text class="time" x="6" y="{6 + size}" {font} fill="{TEXT_COLOUR}" '

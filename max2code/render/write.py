@@ -38,7 +38,7 @@ class RenderUnavailable(RuntimeError):
     """A library that this kind of output needs is not installed."""
 
 
-def _imports() -> tuple[object, object]:
+def drawing_modules() -> tuple[object, object]:
     """raster (numpy + Pillow), imported on first use so the model works without them."""
     try:
         from . import raster
@@ -52,21 +52,21 @@ def _imports() -> tuple[object, object]:
 GIF_PALETTE_SAMPLES = 4   # frames whose colours choose a GIF's palette, evenly spaced
 
 
-def _check_fps(fps: float) -> float:
+def check_fps(fps: float) -> float:
     if isinstance(fps, bool) or not isinstance(fps, (int, float)) or not (math.isfinite(fps) and fps > 0):
         raise RenderModelError(f"fps must be a positive number, not {fps!r}")
     return float(fps)
 
 
 def write_png(path: str | os.PathLike, bodies: Sequence[Body], frame: Frame, view: View) -> None:
-    raster, _ = _imports()
+    raster, _ = drawing_modules()
     _save_png(path, raster.frame_image(bodies, frame, view))
 
 
 def write_png_dir(folder: str | os.PathLike, bodies: Sequence[Body], frames: Iterable[Frame],
                   view: View) -> list[Path]:
     """The frames as a folder of PNGs (png_dir_of below)."""
-    raster, _ = _imports()
+    raster, _ = drawing_modules()
     return png_dir_of(folder, frames, raster.FrameDrawer(bodies, view).image)
 
 
@@ -116,7 +116,7 @@ def png_dir_of(folder: str | os.PathLike, frames: Iterable[F], draw: Callable[[F
 def gif_timing(count: int, fps: float) -> tuple[int, list[int]]:
     """(keep every k-th frame, delay of each kept frame in ms, multiples of 10) for `count`
     frames at `fps`: delays of at least 20 ms, summing to the kept frames' duration."""
-    fps = _check_fps(fps)
+    fps = check_fps(fps)
     step = max(1, math.ceil(fps / GIF_MAX_FPS - 1e-9))
     kept = range(0, count, step)
     ends = [min(i + step, count) for i in kept]
@@ -128,7 +128,7 @@ def gif_timing(count: int, fps: float) -> tuple[int, list[int]]:
 def write_gif(path: str | os.PathLike, bodies: Sequence[Body], frames: Iterable[Frame], view: View,
               fps: float) -> int:
     """An animated GIF that loops; returns the number of frames kept (see the module's timing)."""
-    raster, _ = _imports()
+    raster, _ = drawing_modules()
     drawer = raster.FrameDrawer(bodies, view)
     return gif_of(path, frames, drawer.pixels, fps, raster.scene_colours(bodies, view),
                   lambda: drawer.changed)
@@ -141,9 +141,9 @@ def gif_of(path: str | os.PathLike, frames: Iterable[F], draw: Callable[[F], obj
     `keys` exactly, and the blends in GIF_PALETTE_SAMPLES kept frames drawn ahead (draw must
     depend on its frame only). changed(): the boxes where the last drawing may differ from
     the one before (None: anywhere), so only those are mapped to the palette again."""
-    _imports()
+    drawing_modules()
     from . import palette
-    fps = _check_fps(fps)
+    fps = check_fps(fps)
     frames = list(frames)   # (Frame objects are small; their pictures are not kept)
     step, delays = gif_timing(len(frames), fps)
     kept = frames[::step]
@@ -166,7 +166,7 @@ def gif_of(path: str | os.PathLike, frames: Iterable[F], draw: Callable[[F], obj
 def write_mp4(path: str | os.PathLike, bodies: Sequence[Body], frames: Iterable[Frame], view: View,
               fps: float, quality: float = 8.0) -> int:
     """An H.264 MP4 of the frames (mp4_of below)."""
-    raster, _ = _imports()
+    raster, _ = drawing_modules()
     return mp4_of(path, frames, raster.FrameDrawer(bodies, view).pixels, fps,
                   view.background, quality)
 
@@ -176,8 +176,8 @@ def mp4_of(path: str | os.PathLike, frames: Iterable[F], draw: Callable[[F], obj
     """An H.264 MP4 (yuv420p, so every player takes it) of draw(frame) for each frame, through
     the ffmpeg binary shipped in the imageio-ffmpeg wheel; odd picture sizes are padded by one
     pixel of background, as H.264 in 4:2:0 needs even ones. Returns the number of frames."""
-    _imports()
-    fps = _check_fps(fps)
+    drawing_modules()
+    fps = check_fps(fps)
     try:
         import imageio.v2 as imageio
         import imageio_ffmpeg  # noqa: F401  (the ffmpeg binary)
