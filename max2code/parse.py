@@ -8,8 +8,10 @@ import re
 from functools import lru_cache
 from importlib import resources
 
-from lark import Lark, Token, Tree
-from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
+from lark import Lark, Token, Transformer, Tree, v_args
+from lark.exceptions import (UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken,
+                             VisitError)
+from lark.tree import Meta
 
 from . import maxima_names
 from .diagnostics import Max2CodeError, Pos, error
@@ -219,10 +221,11 @@ class _Builder:
     def original(self, tok: Token) -> str:
         return self.text[tok.start_pos:tok.end_pos]
 
-    def pos(self, node: Tree | Token) -> Pos:
-        if isinstance(node, Token):
-            return Pos(self.path, node.line or 1, node.column or 1)
-        return Pos(self.path, node.meta.line, node.meta.column)
+    def pos(self, tok: Token) -> Pos:
+        return Pos(self.path, tok.line or 1, tok.column or 1)
+
+    def at(self, meta: Meta) -> Pos:
+        return Pos(self.path, meta.line, meta.column)
 
     def block(self, tok: Token, lang: str | None) -> CodeBlock:
         """The text inside the braces; its position is that of the first character after '{'."""
@@ -230,60 +233,19 @@ class _Builder:
                          lang)
 
     def build(self, tree: Tree) -> Spec:
-        fields: dict[str, object] = {}
-        initialise: list[CodeBlock] = []
-        finalise: list[CodeBlock] = []
-        terms: list[Term] = []
-        program: Program | None = None
-        roles: list[Role] = []
-        seen: dict[str, Pos] = {}
-        for node in tree.children:
-            kind = node.data
-            if kind in ("terms_decl", "function_decl", "parameters_decl", "variable_decl"):
-                if kind in seen:
-                    raise error(self.pos(node), f"duplicate '{_keyword(kind)}' declaration "
-                                f"(first at line {seen[kind].line})")
-                seen[kind] = self.pos(node)
-            if kind in _NAMED:
-                self.check_names(node.children, _NAMED[kind])
-            if kind == "terms_decl":
-                count = int(node.children[0])
-                if count < 1:
-                    raise error(self.pos(node.children[0]), "'polynomial terms' must be at least 1")
-                fields["terms_declared"] = Declared(count, self.pos(node))
-            elif kind == "function_decl":
-                fields["function"] = Declared(str(node.children[0]), self.pos(node.children[0]))
-            elif kind == "parameters_decl":
-                names = [str(c) for c in node.children]
-                dup = sorted({n for n in names if names.count(n) > 1})
-                if dup:
-                    raise error(self.pos(node), f"parameter {dup[0]!r} is listed twice")
-                fields["parameters"] = Declared(tuple(names), self.pos(node))
-            elif kind == "variable_decl":
-                fields["variable"] = str(node.children[0])
-            elif kind in ("initialise", "finalise"):
-                lang, tok = self.tagged(node.children)
-                target = initialise if kind == "initialise" else finalise
-                self.check_unique(target, lang, kind, node)
-                target.append(self.block(tok, lang))
-            elif kind == "term":
-                index = int(node.children[0])
-                lang, tok = self.tagged(node.children[1:])
-                terms.append(Term(index, self.block(tok, lang), self.pos(node)))
-            elif kind == "role_decl":
-                name, *params = [str(c) for c in node.children]
-                for r in roles:
-                    if r.name == name:
-                        raise error(self.pos(node), f"duplicate role '{name}' (first at line {r.pos.line})")
-                if len(set(params)) != len(params):
-                    raise error(self.pos(node), f"role '{name}' lists a parameter twice")
-                roles.append(Role(name, tuple(params), self.pos(node)))
-            elif kind == "program":
-                program = self.program(node.children[0])
-        assert program is not None  # the grammar requires it
-        self.check_terms(terms, fields.get("terms_declared"))  # type: ignore[arg-type]
-        return Spec(path=self.path, program=program, initialise=tuple(initialise),
-                    terms=tuple(terms), finalise=tuple(finalise), roles=tuple(roles), **fields)  # type: ignore[arg-type]
+        """The sections through _Sections (one method per grammar rule, in file order, so the
+        first error in the file is the one reported), then the checks across terms."""
+        sections = _Sections(self)
+        try:
+            sections.transform(tree)
+        except VisitError as exc:  # Lark wraps what a rule's method raised
+            raise exc.orig_exc from None
+        assert sections.found_program is not None  # the grammar requires it
+        self.check_terms(sections.terms, sections.fields.get("terms_declared"))  # type: ignore[arg-type]
+        return Spec(path=self.path, program=sections.found_program,
+                    initialise=tuple(sections.blocks["initialise"]), terms=tuple(sections.terms),
+                    finalise=tuple(sections.blocks["finalise"]), roles=tuple(sections.roles),
+                    **sections.fields)  # type: ignore[arg-type]
 
     def check_names(self, tokens: list, symbols_from: int | None) -> None:
         """Declared names: at most MAX_NAME characters (a C string literal of a 5000-character
@@ -296,15 +258,16 @@ class _Builder:
             maxima_names.check_declared([(str(t), self.pos(t)) for t in tokens[symbols_from:]])
 
     def tagged(self, children: list) -> tuple[str | None, Token]:
+        """(language tag or None, the block's token); _Sections.lang_tag made the tag a str."""
         if len(children) == 2:
-            return str(children[0].children[0]), children[1]
+            return str(children[0]), children[1]
         return None, children[0]
 
-    def check_unique(self, blocks: list[CodeBlock], lang: str | None, kind: str, node: Tree) -> None:
+    def check_unique(self, blocks: list[CodeBlock], lang: str | None, kind: str, pos: Pos) -> None:
         for b in blocks:
             if b.lang == lang:
                 what = f"'{kind} {lang}'" if lang else f"'{kind}'"
-                raise error(self.pos(node), f"duplicate {what} block (first at line {b.pos.line})")
+                raise error(pos, f"duplicate {what} block (first at line {b.pos.line})")
 
     def check_terms(self, terms: list[Term], declared: Declared | None) -> None:
         """Per language tag, terms must run 0, 1, 2, ... once each, within the declared count."""
@@ -352,6 +315,89 @@ MAX_NAME = 255
 # (None: no symbol, a module's or a role's own name)
 _NAMED: dict[str, int | None] = {"function_decl": None, "parameters_decl": 0,
                                  "variable_decl": 0, "role_decl": 1}
+
+
+@v_args(meta=True)
+class _Sections(Transformer):
+    """One method per grammar rule, which Lark calls by the rule's name, in file order: each
+    checks its own section (names, counts, duplicates against the sections before it) and
+    files its value where the Spec will take it."""
+
+    def __init__(self, builder: _Builder) -> None:
+        super().__init__()
+        self.b = builder
+        self.fields: dict[str, object] = {}
+        self.seen: dict[str, Pos] = {}
+        self.blocks: dict[str, list[CodeBlock]] = {"initialise": [], "finalise": []}
+        self.terms: list[Term] = []
+        self.roles: list[Role] = []
+        self.found_program: Program | None = None  # (not `program`: that is the rule's method)
+
+    def once(self, kind: str, meta: Meta, children: list) -> Pos:
+        """A section that may appear once: a second is an error; its names are checked."""
+        pos = self.b.at(meta)
+        if kind in self.seen:
+            raise error(pos, f"duplicate '{_keyword(kind)}' declaration "
+                        f"(first at line {self.seen[kind].line})")
+        self.seen[kind] = pos
+        if kind in _NAMED:
+            self.b.check_names(children, _NAMED[kind])
+        return pos
+
+    def lang_tag(self, meta: Meta, children: list) -> str:
+        return str(children[0])
+
+    def terms_decl(self, meta: Meta, children: list) -> None:
+        pos = self.once("terms_decl", meta, children)
+        count = int(children[0])
+        if count < 1:
+            raise error(self.b.pos(children[0]), "'polynomial terms' must be at least 1")
+        self.fields["terms_declared"] = Declared(count, pos)
+
+    def function_decl(self, meta: Meta, children: list) -> None:
+        self.once("function_decl", meta, children)
+        self.fields["function"] = Declared(str(children[0]), self.b.pos(children[0]))
+
+    def parameters_decl(self, meta: Meta, children: list) -> None:
+        pos = self.once("parameters_decl", meta, children)
+        names = [str(c) for c in children]
+        dup = sorted({n for n in names if names.count(n) > 1})
+        if dup:
+            raise error(pos, f"parameter {dup[0]!r} is listed twice")
+        self.fields["parameters"] = Declared(tuple(names), pos)
+
+    def variable_decl(self, meta: Meta, children: list) -> None:
+        self.once("variable_decl", meta, children)
+        self.fields["variable"] = str(children[0])
+
+    def initialise(self, meta: Meta, children: list) -> None:
+        self.code_block("initialise", meta, children)
+
+    def finalise(self, meta: Meta, children: list) -> None:
+        self.code_block("finalise", meta, children)
+
+    def code_block(self, kind: str, meta: Meta, children: list) -> None:
+        lang, tok = self.b.tagged(children)
+        self.b.check_unique(self.blocks[kind], lang, kind, self.b.at(meta))
+        self.blocks[kind].append(self.b.block(tok, lang))
+
+    def term(self, meta: Meta, children: list) -> None:
+        lang, tok = self.b.tagged(children[1:])
+        self.terms.append(Term(int(children[0]), self.b.block(tok, lang), self.b.at(meta)))
+
+    def role_decl(self, meta: Meta, children: list) -> None:
+        pos = self.b.at(meta)
+        self.b.check_names(children, _NAMED["role_decl"])
+        name, *params = [str(c) for c in children]
+        for r in self.roles:
+            if r.name == name:
+                raise error(pos, f"duplicate role '{name}' (first at line {r.pos.line})")
+        if len(set(params)) != len(params):
+            raise error(pos, f"role '{name}' lists a parameter twice")
+        self.roles.append(Role(name, tuple(params), pos))
+
+    def program(self, meta: Meta, children: list) -> None:
+        self.found_program = self.b.program(children[0])
 
 
 def _keyword(kind: str) -> str:
