@@ -172,6 +172,7 @@ class Prediction:
     rotating: bool
     solves: Counter = field(default_factory=Counter)   # degree -> solves
     windows: int = 0            # rotating-model windows solved
+    gave_up: str = ""           # the engine's reason when its search gave up (time is None)
 
 
 def pairs(scene: Scene):
@@ -214,20 +215,26 @@ def world(scene: Scene):
 
 def predict(scene: Scene) -> tuple[list[Prediction], float]:
     """Every pair's first contact, and the seconds the engine spent on them."""
+    from .engine import EngineError
+
     w = world(scene)
     out = []
     seconds = 0.0
     for i, j, a, b in pairs(scene):
         before = w.stats()
         start = time.perf_counter()
-        t = w.first_contact(i, j, scene.horizon)
+        gave_up = ""
+        try:
+            t = w.first_contact(i, j, scene.horizon)
+        except EngineError as exc:  # the search gave up: said, never reported as no contact
+            t, gave_up = None, str(exc)
         seconds += time.perf_counter() - start
         after = w.stats()
         solves = Counter({d: n - before["solves_by_degree"].get(d, 0)
                           for d, n in after["solves_by_degree"].items()})
         out.append(Prediction(i, j, a.name, b.name, t,
                               (a.omega != 0 and a.rho > 0) or (b.omega != 0 and b.rho > 0),
-                              +solves, after["windows_solved"] - before["windows_solved"]))
+                              +solves, after["windows_solved"] - before["windows_solved"], gave_up))
     return out, seconds
 
 
@@ -322,6 +329,8 @@ class Report:
             "seconds": self.seconds,
             "collisions": [{"a": p.a, "b": p.b, "time": p.time, "rotating": p.rotating,
                             "windows": p.windows} for p in self.predictions if p.time is not None],
+            "gave_up": [{"a": p.a, "b": p.b, "reason": p.gave_up}
+                        for p in self.predictions if p.gave_up],
         }
         if self.exact is not None:
             errs = self.errors()
@@ -335,9 +344,10 @@ class Report:
                  f"{s.horizon:g}, tolerance {s.tolerance:g}"]
         exact = self.exact or [None] * len(self.predictions)
         for p, e in zip(self.predictions, exact):
-            if p.time is None and e is None:
+            if p.time is None and e is None and not p.gave_up:
                 continue
-            line = (f"  {p.a:>10s} - {p.b:<10s} t = {_fmt(p.time)}  "
+            shown = f"gave up ({p.gave_up})" if p.gave_up else _fmt(p.time)
+            line = (f"  {p.a:>10s} - {p.b:<10s} t = {shown}  "
                     f"{'rotating, ' + str(p.windows) + ' windows' if p.rotating else 'exact'}; "
                     f"solves {dict(sorted(p.solves.items()))}")
             if self.exact is not None:
@@ -395,4 +405,7 @@ def main(argv: list[str]) -> int:
           else report.text())
     if args.check and not report.as_dict()["within_tolerance"]:
         return 1
-    return 0
+    for p in report.predictions:
+        if p.gave_up:
+            print(f"{args.scene}:1:1: error: pair {p.a} - {p.b}: {p.gave_up}", file=sys.stderr)
+    return 1 if any(p.gave_up for p in report.predictions) else 0

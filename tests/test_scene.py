@@ -124,3 +124,30 @@ def test_frozen_circles_placed_to_touch_are_accepted(tmp_path: Path) -> None:
     path.write_text('{"horizon": 1, "tolerance": 1e-6, "bodies": [{"centre": [0.1, 0], "radius": 0.1},'
                     ' {"centre": [0.3, 0], "radius": 0.1, "velocity": [1, 0]}]}')
     assert len(scene_mod.load_scene(path).bodies) == 2
+
+
+def test_a_search_that_gives_up_says_so(tmp_path) -> None:
+    """Issue 33, item 6: two fast orbits closing slowly over a long horizon take more rotation
+    windows than the search allows. It said "none" (no contact, exit 0) after 16 million
+    solves; now the pair says "gave up", the JSON lists it, and the exit status is 1."""
+    import json as _json
+    import subprocess as _sp
+    import sys as _sys
+
+    scene = tmp_path / "giveup.json"
+    scene.write_text(_json.dumps({
+        "name": "giveup", "horizon": 40000, "tolerance": 1e-6,
+        "bodies": [{"name": "spinner", "centre": [0, 0], "offset": [0.1, 0], "omega": 1e6,
+                    "radius": 0.05},
+                   {"name": "other", "centre": [0.35, 0.001], "offset": [0, 0.1],
+                    "velocity": [-1e-5, 0], "omega": -7e5, "radius": 0.05}]}))
+    text = _sp.run([_sys.executable, "-m", "max2code", "scene", str(scene)], capture_output=True,
+                   text=True, timeout=600)
+    assert text.returncode == 1
+    assert "t = gave up (first_contact: gave up at t = " in text.stdout
+    assert f"{scene}:1:1: error: pair spinner - other: first_contact: gave up" in text.stderr
+    js = _sp.run([_sys.executable, "-m", "max2code", "scene", str(scene), "--json"],
+                 capture_output=True, text=True, timeout=600)
+    report = _json.loads(js.stdout)
+    assert js.returncode == 1 and report["collisions"] == []
+    assert [(g["a"], g["b"]) for g in report["gave_up"]] == [("spinner", "other")]

@@ -205,8 +205,10 @@ M2C_API int m2c_world_add_timer(m2c_world *w, double t);
 M2C_API int m2c_world_cancel_timer(m2c_world *w, int id);
 
 /* The first contact of bodies i and j alone, as if nothing else existed and nothing changed,
- * in (now, now + tmax] (any kinds of body): 1 and *t (absolute), 0 when none. The prediction
- * the event loop uses (`max2code scene` shows it per pair). */
+ * in (now, now + tmax] (any kinds of body): 1 and *t (absolute), 0 when none, -1 with the
+ * error set when the search gave up (two million rotation windows: a fast orbit over a long
+ * horizon) -- never a silent 0. The prediction the event loop uses (`max2code scene` shows
+ * it per pair). */
 M2C_API int m2c_world_first_contact(m2c_world *w, int i, int j, double tmax, double *t);
 
 /* Queries at time t >= now (each body where its motion puts it then; nothing changes). Only

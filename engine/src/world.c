@@ -744,6 +744,10 @@ void m2c_world_stats(const m2c_world *w, m2c_stats *out)
     *out = w->st;
 }
 
+/* The most rotation windows one first_contact solves before it gives up (and says so). */
+#define FIRST_CONTACT_WINDOWS 2000000
+#define FIRST_CONTACT_SEARCHES 1000000 /* rotating searches resumed (16 windows each at most) */
+
 int m2c_world_first_contact(m2c_world *w, int i, int j, double tmax, double *t)
 {
     if (w->broken || i < 0 || j < 0 || i >= w->n || j >= w->n || i == j || !(tmax > 0)
@@ -751,8 +755,17 @@ int m2c_world_first_contact(m2c_world *w, int i, int j, double tmax, double *t)
         return fail(w, "first_contact: bad bodies or horizon");
     double now = w->now, end = now + tmax;
     int found = 0;
+    long long budget = w->st.windows_solved + FIRST_CONTACT_WINDOWS;
     w->any_kinds = 1;
-    for (int guard = 0; guard < 1000000; guard++) {
+    for (int guard = 0;; guard++) {
+        if (guard >= FIRST_CONTACT_SEARCHES || w->st.windows_solved > budget) {
+            /* said, never a silent "no contact" */
+            snprintf(w->err, sizeof w->err, "first_contact: gave up at t = %.17g of %.17g (%d "
+                     "searches or %d rotation windows solved: a fast orbit over a long horizon)",
+                     w->now, end, FIRST_CONTACT_SEARCHES, FIRST_CONTACT_WINDOWS);
+            found = -1;
+            break;
+        }
         contact c;
         memset(&c, 0, sizeof c);
         c.t = end;
