@@ -785,6 +785,54 @@ static void points_on_edges(feat *f, contact *best, int swapped)
     }
 }
 
+/* The second derivative now of the gap (a distance) of the event's feature between bodies i
+ * and j, from the order-2 model: the bodies' relative acceleration along the normal plus what
+ * rotation adds (a spinning corner curves into its partner). The response needs it when the
+ * pair is pressed together with no approach speed: solve_rotating reports such a contact now
+ * (pressed_in), and unless the response parts the pair, the same contact is found again at
+ * the same instant, forever. */
+double contact_gap_accel(m2c_world *w, int i, int j, const event *ev)
+{
+    int swapped = ev->feature == F_LP;
+    feat f;
+    memset(&f, 0, sizeof f);
+    f.w = w;
+    f.A = &w->b[swapped ? j : i];
+    f.B = &w->b[swapped ? i : j];
+    f.a = motion_at(&f.A->m, w->now);
+    f.b = motion_at(&f.B->m, w->now);
+    relative_position(f.A, f.B, w->now, &f.rx, &f.ry);
+    f.va = swapped ? ev->fb : ev->fa;
+    f.vb = swapped ? ev->fa : ev->fb;
+    set_point(w, f.A, &f.a, f.va, f.pa);
+    f.rot_a = f.a.w != 0.0 && (f.pa[0] != 0.0 || f.pa[1] != 0.0);
+    f.R = f.A->radius + f.B->radius;
+    set_point(w, f.B, &f.b, f.vb, f.pb);
+    double p[PL_NPARAMS + 1], c[MAXC] = {0};
+    if (ev->feature == F_PP) {
+        /* the gap is |P - Q|^2 - R^2 = d^2 - R^2: c2 = d d'' + d'^2 with d = R, d' = c1 / 2R */
+        f.kind = F_PP;
+        f.rot_b = f.b.w != 0.0 && (f.pb[0] != 0.0 || f.pb[1] != 0.0);
+        fill_pp(&f, p, 0.0);
+        SLOT[2].pp.coef(p, c);
+        if (!(f.R > 0))
+            return 0.0;
+        double d1 = c[1] / (2 * f.R);
+        return (c[2] - d1 * d1) / f.R;
+    }
+    f.kind = F_PL;
+    f.side = ev->side;
+    f.rot_b = f.b.w != 0.0;
+    double D[2];
+    world_vector(&f.b, &w->edges[3 * (f.B->vert + f.vb)], D);
+    f.dir[0] = f.side * D[0];
+    f.dir[1] = f.side * D[1];
+    f.len = w->edges[3 * (f.B->vert + f.vb) + 2];
+    fill_pl(&f, p, 0.0);
+    SLOT[2].pl.coef(p, c);
+    return 2 * c[2];
+}
+
 int predict_pair(m2c_world *w, int i, int j, contact *c)
 {
     const body *A = &w->b[i], *B = &w->b[j];

@@ -186,9 +186,23 @@ int respond(m2c_world *w, int i, int j, const event *ev)
         J = (1 + e) * closing / k;
     }
     /* pressed together with (almost) no approach speed -- a ball sliding on the floor under
-     * one falling onto it: they part at least as fast as an elastic bounce of period t_c */
+     * one falling onto it: they part at least as fast as an elastic bounce of period t_c.
+     * What presses is the gap's curvature: the relative acceleration along the normal, and
+     * for a rotating body what its rotation adds (a spinning corner curves into a ball even
+     * without gravity). Without the rotation's part the prediction reported the pressed
+     * pair again at the same instant, no impulse parted it, and the step ended "stuck"
+     * (tests/engine/test_snapshot.py). Against a fixed body (the rest rule's case when
+     * gravity presses) only rotation's pressing is parted here. */
     double an = (b.ax - a.ax) * n[0] + (b.ay - a.ay) * n[1];
-    if (awake_b && tc > 0 && an < 0 && k > 1e-12 * (ima + imb)) {
+    int press = awake_b && an < 0;
+    if (A->m.w != 0.0 || B->m.w != 0.0) {
+        double curve = contact_gap_accel(w, i, j, ev);
+        if (curve < 0 && (awake_b || !(an < 0))) {
+            an = fmin(an, curve);
+            press = 1;
+        }
+    }
+    if (press && tc > 0 && k > 1e-12 * (ima + imb)) {
         double want = -0.5 * an * tc;
         double sep = -closing + J * k;
         if (sep < want)

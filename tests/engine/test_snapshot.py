@@ -1,5 +1,11 @@
 """Snapshots of a World (issue 35): pickle and copy.deepcopy give a world that goes on with the
-same future events, bit for bit; restore rolls back; damaged bytes are refused."""
+same future events, bit for bit; restore rolls back; damaged bytes are refused.
+
+The property runs without gravity in a closed box: gravity piles pushed by the kinematic ball
+are jams the engine cannot resolve yet (resting contact, issue 34), which end a step with
+`stuck` after 100,000 events or take 700,000 events for 4 s (a spinning box resting on a ball),
+minutes for one run of this test. Gravity, rests and a jam are covered by fixed worlds, where
+the future includes the error: a copy must fail the same way at the same time."""
 
 from __future__ import annotations
 
@@ -7,14 +13,17 @@ import copy
 import pickle
 
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import Phase, example, given, settings, strategies as st
 
 
-def _scene(engine, seed: int):
+def _scene(engine, seed: int, gravity: tuple[float, float] = (0.0, -9.81)):
+    """A box of balls with every kind of body: a spinning polygon, a kinematic and a static
+    sensor circle, a timer. Without gravity the box gets a lid (the balls stay inside)."""
     import random
     rnd = random.Random(seed)
-    w = engine.World(gravity=(0.0, -9.81))
-    for a, b in (((-5, 0), (5, 0)), ((-5, 0), (-5, 10)), ((5, 0), (5, 10))):
+    w = engine.World(gravity=gravity)
+    walls = [((-5, 0), (5, 0)), ((-5, 0), (-5, 10)), ((5, 0), (5, 10))]
+    for a, b in walls + ([((-5, 10), (5, 10))] if gravity == (0.0, 0.0) else []):
         w.add_segment(a, b)
     taken = [(0.0, 5.0, 0.4), (0.0, 0.5, 0.3), (2.0, 2.0, 0.4)]   # the box, kinematic, sensor
     while len(taken) < 15:                                       # balls that start apart
@@ -34,15 +43,57 @@ def _log(events):
     return [(e.time, e.kind, e.a, e.b, e.normal, e.point, e.speed, e.impulse) for e in events]
 
 
-@settings(max_examples=12, deadline=None)
+def _future(engine, w, until: float):
+    """The events up to `until`, or the engine's error (with the time it happened at)."""
+    try:
+        return _log(w.step_to(until))
+    except engine.EngineError as exc:
+        return str(exc)
+
+
+# no shrinking: one example takes a fraction of a second, but a shrink of a slow world took
+# minutes; the falsifying seed and t are printed all the same
+@settings(max_examples=12, deadline=None, phases=(Phase.explicit, Phase.reuse, Phase.generate))
 @given(seed=st.integers(0, 10_000), t=st.floats(0.0, 2.0))
+@example(seed=396, t=0.0)   # the spinning box pressed onto a ball by its rotation (was stuck)
 def test_pickle_and_deepcopy_reproduce_the_future(engine, seed: int, t: float) -> None:
-    w = _scene(engine, seed)
+    w = _scene(engine, seed, gravity=(0.0, 0.0))
     w.step_to(t)
     pickled, copied = pickle.dumps(w), copy.deepcopy(w)
     future = _log(w.step_to(4.0))
+    assert any(e[1] == "collision" for e in future)
     assert _log(pickle.loads(pickled).step_to(4.0)) == future
     assert _log(copied.step_to(4.0)) == future
+
+
+def test_a_box_spun_onto_a_ball_is_parted_from_it(engine) -> None:
+    """Without gravity the spinning box meets a ball with no approach speed at t = 1.03, its
+    rotation curving it into the ball: the engine reported that contact, no impulse parted them,
+    and the same contact came again at the same instant until the step ended `stuck`. The
+    rotation's pressing now parts them as gravity's does (response.c)."""
+    w = _scene(engine, 396, gravity=(0.0, 0.0))
+    box = next(b.id for b in w.bodies if b.shape == "polygon")
+    energy = w.energy()
+    events = w.step_to(4.0)
+    hits = [e for e in events if e.kind == "collision" and box in (e.a, e.b)]
+    assert 0 < len(hits) < 1000 and w.time == 4.0
+    assert w.energy() <= energy
+
+
+@pytest.mark.parametrize("seed, t, outcome", [(4, 2.0, "rests"), (346, 3.7, "stuck")])
+def test_copies_of_a_falling_world_rest_and_jam_alike(engine, seed: int, t: float, outcome: str) -> None:
+    """Seed 346 jams at t = 3.70: the kinematic ball pushes a row of balls resting on the floor
+    (issue 34). Should the engine learn to resolve it, pick a seed that still jams."""
+    w = _scene(engine, seed)
+    w.step_to(t)
+    pickled, copied = pickle.dumps(w), copy.deepcopy(w)
+    future = _future(engine, w, 4.0)
+    if outcome == "stuck":
+        assert isinstance(future, str) and future.startswith("stuck:"), future
+    else:
+        assert sum(e[1] == "rest" for e in future) > 10
+    assert _future(engine, pickle.loads(pickled), 4.0) == future
+    assert _future(engine, copied, 4.0) == future
 
 
 def test_restore_rolls_back_and_copies_are_independent(engine) -> None:
