@@ -6,9 +6,12 @@ the .mxm files (with `-MD -MP` depfiles): the same build integration users get. 
 lives in `<max2code cache>/engine/<digest>/libmax2code_engine.so`, where the digest covers
 the engine's sources, the C runtime, the equations, max2code's own code (which renders the
 headers) and the compiler: any change builds a fresh library, and an unchanged checkout loads
-the existing one in about a millisecond. Builds go to a temporary folder renamed into place
-under a lock, so concurrent first uses (pytest workers, two terminals) never see half a
-library.
+the existing one in about a millisecond. Builds go to a temporary folder of their own renamed
+into place under a lock, so concurrent first uses (pytest workers, two terminals) never see half
+a library; should another process have put the same build in place meanwhile, ours is discarded.
+The cache keeps the few builds used last (each use touches its folder): clones and sessions
+sharing one cache each build their own digest, and a library in use must not be pruned under a
+long test run, whose next process would rebuild it (a compile inside a measured run).
 """
 
 from __future__ import annotations
@@ -81,6 +84,7 @@ def library() -> Path:
     final = home / key
     lib = final / LIBRARY
     if lib.exists():
+        _touch(final)
         return lib
     home.mkdir(parents=True, exist_ok=True)
     with open(home / f".lock-{key}", "w") as lock:
@@ -90,12 +94,32 @@ def library() -> Path:
         tmp = Path(tempfile.mkdtemp(prefix=f".{key}-", dir=home))
         try:
             _make(tmp)
-            os.replace(tmp, final)
+            _install(tmp, final)
         except BaseException:
             shutil.rmtree(tmp, ignore_errors=True)
             raise
     _prune(home, keep=final)
     return lib
+
+
+def _install(tmp: Path, final: Path) -> None:
+    """Rename the finished build into place; when the same build got there first (a process
+    that did not share our lock: another cache folder's lock file, an older max2code), keep that
+    one and discard ours -- a rename onto a non-empty folder fails ("Directory not empty")."""
+    try:
+        os.replace(tmp, final)
+    except OSError:
+        if not (final / LIBRARY).exists():
+            raise
+        shutil.rmtree(tmp, ignore_errors=True)
+
+
+def _touch(build: Path) -> None:
+    """Mark a build as used now, for _prune (which keeps the builds used last)."""
+    try:
+        os.utime(build)
+    except OSError:
+        pass
 
 
 def _make(out: Path) -> None:
@@ -115,15 +139,15 @@ def _make(out: Path) -> None:
 
 
 def _prune(home: Path, keep: Path, limit: int = 4) -> None:
-    """Keep the few most recent builds (a checkout being edited makes a new one per change)."""
+    """Keep the few builds used last (a checkout being edited makes a new one per change).
+    Lock files go only with their builds: a lock whose build is still missing may be held by
+    a build in progress, and unlinking it let a third process build the same digest at once."""
     builds = sorted((p for p in home.iterdir() if p.is_dir() and not p.name.startswith(".")),
                     key=lambda p: p.stat().st_mtime, reverse=True)
     for old in builds[limit:]:
         if old != keep:
             shutil.rmtree(old, ignore_errors=True)
-    for stale in home.glob(".lock-*"):
-        if not (home / stale.name[len(".lock-"):]).exists():
             try:
-                stale.unlink()
+                (home / f".lock-{old.name}").unlink()
             except OSError:
                 pass
