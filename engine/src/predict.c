@@ -787,7 +787,8 @@ static void points_on_edges(feat *f, contact *best, int swapped)
 
 /* The second derivative now of the gap (a distance) of the event's feature between bodies i
  * and j, from the order-2 model: the bodies' relative acceleration along the normal plus what
- * rotation adds (a spinning corner curves into its partner). The response needs it when the
+ * rotation adds (a spinning corner curves into its partner); 0 when rotation moves neither
+ * feature (the linear part is the caller's). The response needs it when the
  * pair is pressed together with no approach speed: solve_rotating reports such a contact now
  * (pressed_in), and unless the response parts the pair, the same contact is found again at
  * the same instant, forever. */
@@ -808,11 +809,13 @@ double contact_gap_accel(m2c_world *w, int i, int j, const event *ev)
     f.rot_a = f.a.w != 0.0 && (f.pa[0] != 0.0 || f.pa[1] != 0.0);
     f.R = f.A->radius + f.B->radius;
     set_point(w, f.B, &f.b, f.vb, f.pb);
+    f.rot_b = ev->feature == F_PP ? f.b.w != 0.0 && (f.pb[0] != 0.0 || f.pb[1] != 0.0) : f.b.w != 0.0;
+    if (!f.rot_a && !f.rot_b)
+        return 0.0; /* rotation moves neither the point nor the edge (a spinning ball's centre) */
     double p[PL_NPARAMS + 1], c[MAXC] = {0};
     if (ev->feature == F_PP) {
         /* the gap is |P - Q|^2 - R^2 = d^2 - R^2: c2 = d d'' + d'^2 with d = R, d' = c1 / 2R */
         f.kind = F_PP;
-        f.rot_b = f.b.w != 0.0 && (f.pb[0] != 0.0 || f.pb[1] != 0.0);
         fill_pp(&f, p, 0.0);
         SLOT[2].pp.coef(p, c);
         if (!(f.R > 0))
@@ -822,7 +825,6 @@ double contact_gap_accel(m2c_world *w, int i, int j, const event *ev)
     }
     f.kind = F_PL;
     f.side = ev->side;
-    f.rot_b = f.b.w != 0.0;
     double D[2];
     world_vector(&f.b, &w->edges[3 * (f.B->vert + f.vb)], D);
     f.dir[0] = f.side * D[0];
