@@ -51,7 +51,7 @@ BUILT_NAMES = {
     "define-buildq": ('define(f(c), buildq([s: concat(sys, tem)], s(c)))$\nf("touch {pwned}")$', 3,
                       "system"),
     "built-writefile": ('apply(concat(write, file), ["{pwned}"])$', 2, "writefile"),
-    "built-with-stdout": ('apply(concat(with_, stdout), ["{pwned}", 1])$', 2, "with_stdout"),
+    "built-with-stdout": ('apply(concat(with_st, dout), ["{pwned}", 1])$', 2, "with_stdout"),
     "built-openw": ('apply(concat(open, w), ["{pwned}"])$', 2, "openw"),
     "built-save": ('apply(concat(sa, ve), ["{pwned}", x])$', 2, "save"),
     "built-to-lisp": ('apply(concat(to_, lisp), [])$', 2, "to_lisp"),

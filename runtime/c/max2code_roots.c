@@ -356,15 +356,7 @@ static int leading_far(const int e[], const int nz[], int n, double T, int emax)
  * negligible), in exponents (scaled_le).  Almost always no term comes
  * near: when the exponents alone show |c_n| T^(n-i) above k |c_i| by a
  * factor 8 for every i (beyond all the roundings of the comparison), the
- * answer is no without the loop.
- * tmax = inf: never.  The window is then (0, B] with B the Fujiwara bound
- * of the whole polynomial c_0..c_n, which holds every root, and over it
- * |c_n| B^(n-i) >= 2^(n-i) |c_i| > k |c_i| for every i: the leading term
- * is never negligible there.  (Until issue 33, B was the bound of c_0..c_m,
- * the rest without the leading term: circular, as the roots that the
- * leading term makes lie beyond it.  1e-16 + t - 4.905 t^2, whose rest
- * has its root at -1e-16, lost its root 0.2039 to it, and the engine's
- * falling bodies their floors.) */
+ * answer is no without the loop.  T = inf: no (reduce gives a finite T). */
 static int leading_negligible(const double c[], const int e[], const int nz[],
                               int n, double tmax, int emax)
 {
@@ -392,10 +384,29 @@ static int leading_negligible(const double c[], const int e[], const int nz[],
 /* Drop zero/negligible leading terms and factors of t; returns the degree
  * left, or -1 for the zero polynomial.  c and its exponents (e, nz) are
  * modified in place.  emax: load_coefficients' largest exponent, which
- * stays a bound on every e_i left (leading_far). */
-static int reduce(double c[], int e[], int nz[], int n, double tmax, int emax)
+ * stays a bound on every e_i left (leading_far).
+ * *tmax = inf: the window the leading term is weighed over is (0, K], K the
+ * bound on the positive roots of the polynomial as it stands (Kioustelidis';
+ * with a contact skin and a graze check, every_root: Fujiwara's on every
+ * root), which holds
+ * every root there is to find.  Where the term is negligible over it, it is
+ * dropped and *tmax becomes K: the rest may have roots beyond K that the
+ * whole polynomial has not (1 - 1e-10 t + 2.25e-5 t^2 has no real root;
+ * its rest 1 - 1e-10 t has one at 1e10), and they are not roots.  Weighed
+ * over (0, B], B the bound of the rest alone (until issue 33), the rule was
+ * circular and lost the roots the leading term makes (1e-16 + t - 4.905 t^2
+ * lost 0.2039); never weighed (issue 33, first fix), -4.5 + 3.75 t + 3 t^2 +
+ * 3e-30 t^3 kept a cubic term whose only other roots lie near -1e30, and
+ * the companion matrix (M2C_METHOD_GSL) lost its root 0.75.  Over (0, K]
+ * the leading term is at least twice each term of the opposite sign, so it
+ * is negligible only beside a term of its own sign: no root is lost.
+ * *bound: K of the polynomial returned (root_bound's value, which
+ * solve_normalised's window would compute again), or -1 where none was. */
+static int reduce(double c[], int e[], int nz[], int n, double *tmax, int every_root,
+                  int emax, double *bound)
 {
     for (;;) {
+        *bound = -1;
         while (n > 0 && c[n] == 0)
             n--;
         if (n == 0)
@@ -411,7 +422,15 @@ static int reduce(double c[], int e[], int nz[], int n, double tmax, int emax)
             n--;
             continue;
         }
-        if (leading_negligible(c, e, nz, n, tmax, emax)) {
+        double T = *tmax;
+        if (isinf(T)) {
+            double K = root_bound(e, nz, every_root ? NULL : c, n);
+            *bound = K;
+            T = K > 0 && K < DBL_MAX ? K : INFINITY;
+        }
+        if (leading_negligible(c, e, nz, n, T, emax)) {
+            *tmax = T;
+            *bound = -1;
             c[n] = 0;
             e[n] = nz[n] = 0;
             n--;
@@ -3331,7 +3350,7 @@ NOINLINE static int cleared_at_once(const double c[], const int e[],
  * extremes): scaled exactly, then by degree and method. */
 static int solve_normalised(double c[], const int e[], const int nz[], int n,
                             int emax, double tu, int method, double eps,
-                            double failed_w, double *root, int *g)
+                            double failed_w, double bound, double *root, int *g)
 {
     int closed = method == M2C_METHOD_CLOSED && n <= 4;
     int interval = n > 2 && method != M2C_METHOD_GSL && !closed;
@@ -3355,7 +3374,8 @@ static int solve_normalised(double c[], const int e[], const int nz[], int n,
     /* every positive root lies below the bound: a smaller window, fewer
      * steps (with a skin, Fujiwara's on every root, as the skin's contact
      * need not be near a positive root) */
-    double B = root_bound(e, nz, skin > 0 ? NULL : c, n); /* (the exponents before scaling: the same) */
+    /* (the exponents before scaling: the same; reduce's where it has it) */
+    double B = bound >= 0 ? bound : root_bound(e, nz, skin > 0 ? NULL : c, n);
     double T = tu < B ? tu : B;      /* (fmin is a library call) */
     return T > 0 && first_root_interval_fixed(c, n, T, skin, failed_w, root, g);
 }
@@ -3409,7 +3429,12 @@ static ALWAYS_INLINE int solve_core(const double c_in[], int degree, double tmax
     /* (a test step 0b ran -- only where c_n, c_0 != 0 and leading_far shows
      * the leading term far from negligible over [0, tmax] -- means reduce
      * would drop nothing: the same checks, not repeated) */
-    int n = cleared == 0 ? degree : reduce(c, e, nz, degree, tmax, sc.emax);
+    /* (every_root as solve_normalised's window: a skin, and a graze check to use it) */
+    double bound = -1;
+    int n = cleared == 0 ? degree
+                         : reduce(c, e, nz, degree, &tmax,
+                                  eps > 0 && method != M2C_METHOD_INTERVAL_NOGRAZE, sc.emax,
+                                  &bound);
     if (n <= 0)
         return 0;
     double root = 0;
@@ -3420,7 +3445,7 @@ static ALWAYS_INLINE int solve_core(const double c_in[], int degree, double tmax
         found = first_root_sliced(c, n, tmax, eps,
                                   method == M2C_METHOD_INTERVAL_NOGRAZE, &root, &g);
     else
-        found = solve_normalised(c, e, nz, n, emax, tmax, method, eps, failed_w, &root, &g);
+        found = solve_normalised(c, e, nz, n, emax, tmax, method, eps, failed_w, bound, &root, &g);
     if (!found)
         return 0;
     /* a root that underflows to 0 or overflows is not representable: none */

@@ -26,15 +26,22 @@
  *      by t: we want the next root strictly after 0.
  *   3. A leading coefficient is dropped when it is negligible over the
  *      window [0, T]:  |c_n| T^n <= 4 n DBL_EPSILON max_{i<n} |c_i| T^i,
- *      with T = tmax.  With tmax = +INFINITY the window is (0, B], B the
- *      Fujiwara bound of the whole polynomial (2 max_i |c_i / c_n|^(1/(n-i)),
- *      which holds every root), and over it |c_n| B^(n-i) >= 2^(n-i) |c_i|:
- *      nothing is dropped, and every root of the coefficients as given
- *      counts, however small c_0 (1e-16 + t - 4.905 t^2 has its root 0.2039
- *      with tmax = inf as with tmax = 10; until issue 33 B was the bound of
- *      the rest c_0..c_{n-1}, whose own root -1e-16 made the t^2 term look
- *      negligible, and the root was lost).  There is no absolute threshold
- *      anywhere.
+ *      with T = tmax.  With tmax = +INFINITY, T = K, the bound on the
+ *      positive roots of the polynomial as it stands: Kioustelidis'
+ *      2 max |c_i / c_n|^(1/(n-i)) over the c_i of the sign opposite to c_n's
+ *      (with a contact skin eps > 0 and a graze check, Fujiwara's: over
+ *      every c_i), each ratio rounded up to a power of two; once a term is
+ *      dropped the window is
+ *      (0, K]: roots of the rest beyond K are none of the polynomial's.  Over
+ *      (0, K] the leading term is at least twice each term of the other sign,
+ *      so it is dropped only beside a term of its own sign, and no root it
+ *      makes is lost (1e-16 + t - 4.905 t^2 has its root 0.2039 with
+ *      tmax = inf as with tmax = 10; until issue 33 T was the bound of the
+ *      rest c_0..c_{n-1}, whose own root -1e-16 made the t^2 term look
+ *      negligible, and the root was lost), while -4.5 + 3.75 t + 3 t^2 +
+ *      3e-30 t^3 drops its cubic term (its other roots lie near -1e30, and
+ *      kept, they cost the companion matrix of M2C_METHOD_GSL the root
+ *      0.75).  There is no absolute threshold anywhere.
  *   Steps 1-3 repeat until nothing changes; then the coefficients are scaled
  *   by a power of two (exact) so that the largest has magnitude in [1/2, 1).
  *   4. Extremes only: when the nonzero coefficients span more than 2^1021

@@ -301,52 +301,77 @@ def _log2(x: float) -> float:
     return math.log2(abs(x))
 
 
-def _lead_negligible(c: list[float], tmax: float) -> bool:
+def _lead_negligible(c: list[float], T: float) -> bool:
     """The header's step 3, "a leading coefficient is dropped when it is negligible over the
-    window [0, T]": |c_n| T^(n-i) <= 4 n eps |c_i| for some i < n, T = tmax.  With tmax = inf
-    never (issue 33): the window is then bounded by the whole polynomial's Fujiwara bound, over
-    which the leading term outweighs every other.  Written from the header, not the code, in
-    logarithms, and lenient (the runtimes round T up to a power of two, which can only keep
-    more terms)."""
+    window [0, T]": |c_n| T^(n-i) <= 4 n eps |c_i| for some i < n.  Written from the header,
+    not the code, in logarithms, and lenient by 1e-9 in the exponent."""
     n = len(c) - 1
-    if not math.isfinite(tmax):
+    if not math.isfinite(T):
         return False
-    lt = _log2(tmax)
+    lt = _log2(T)
     k = _log2(4 * n * 2.0**-52)
     return any(c[i] != 0 and _log2(c[n]) + (n - i) * lt <= k + _log2(c[i]) + 1e-9 for i in range(n))
 
 
-def documented_reduction(coeffs: Sequence[float], tmax: float) -> tuple[float, ...]:
+def _root_bound(c: list[float], every_root: bool) -> float:
+    """The header's bound, "2 max |c_i / c_n|^(1/(n-i)), each ratio rounded up to a power of two
+    using exponents", over the c_i of the sign opposite to c_n's (Kioustelidis: the positive
+    roots), or over every c_i with a contact skin; inf where none counts or it is beyond
+    DBL_MAX (then nothing is weighed)."""
+    n = len(c) - 1
+    ratios = [math.ceil((math.frexp(c[i])[1] - math.frexp(c[n])[1] + 1) / (n - i))
+              for i in range(n) if c[i] != 0 and (every_root or (c[i] < 0) != (c[n] < 0))]
+    if not ratios:
+        return math.inf
+    b = max(ratios) + 1
+    return math.ldexp(1.0, b) if b < 1024 else math.inf
+
+
+def documented_window(coeffs: Sequence[float], tmax: float,
+                      eps: float = 0.0) -> tuple[tuple[float, ...], float]:
     """The coefficients after the header's steps 1-3 (zero leading terms dropped, factors of t
-    divided out, negligible leading terms dropped, until nothing changes)."""
+    divided out, negligible leading terms dropped, until nothing changes), and the window's end
+    they are solved over: with tmax = inf a leading term is weighed over (0, K], K the bound on
+    the positive roots (every root with a skin eps > 0) of the polynomial as it stands, and
+    once one is dropped the window is (0, K]."""
     c = list(coeffs)
     while True:
         while c and c[-1] == 0:
             c.pop()
         if len(c) <= 1:
-            return tuple(c)
+            return tuple(c), tmax
         if c[0] == 0:
             c.pop(0)
-        elif _lead_negligible(c, tmax):
+            continue
+        T = _root_bound(c, eps > 0) if math.isinf(tmax) else tmax
+        if _lead_negligible(c, T):
+            tmax = T
             c.pop()
         else:
-            return tuple(c)
+            return tuple(c), tmax
+
+
+def documented_reduction(coeffs: Sequence[float], tmax: float,
+                         eps: float = 0.0) -> tuple[float, ...]:
+    """The coefficients of documented_window()."""
+    return documented_window(coeffs, tmax, eps)[0]
 
 
 def judge(coeffs: Sequence[float], tmax: float, status: int, t: float, graze: bool,
           eps: float = 0.0) -> str:
-    """judge_exact() of the coefficients, or of their documented_reduction(): when the header's
-    rule drops a leading term, a root that exists only because of it may be missed or moved
-    ("ok-lead-dropped").  eps: the contact skin the runtime was given (a touch may then be
-    reported wherever |p| is within it)."""
+    """judge_exact() of the coefficients, or of their documented_window(): where the header's
+    rule drops a leading term (negligible over a window that holds every root to find), the
+    rest's roots in that window count, within their own tolerance ("ok-lead-dropped").  eps:
+    the contact skin the runtime was given (a touch may then be reported wherever |p| is within
+    it)."""
     verdict = judge_exact(coeffs, tmax, status, t, graze, eps)
     if verdict.startswith("ok"):
         return verdict
-    reduced = documented_reduction(coeffs, tmax)
+    reduced, window = documented_window(coeffs, tmax, eps)
     trimmed = tuple(coeffs)
     while trimmed and trimmed[-1] == 0:
         trimmed = trimmed[:-1]
-    if len(reduced) < len(trimmed) and judge_exact(reduced, tmax, status, t, graze, eps).startswith("ok"):
+    if len(reduced) < len(trimmed) and judge_exact(reduced, window, status, t, graze, eps).startswith("ok"):
         return "ok-lead-dropped"
     return verdict
 

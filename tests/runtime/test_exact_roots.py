@@ -88,13 +88,25 @@ def test_multiple_roots() -> None:
 
 
 def test_documented_lead_rule() -> None:
-    """The header's step 3 drops 1.09e-133 t^2 beside -8.9e96 t with tmax = inf (its root,
-    8.1e229, exists only because of it): a runtime may miss that root, not an ordinary one."""
+    """The header's step 3 with tmax = inf weighs the leading term over (0, K], K the bound on
+    the positive roots: 1.09e-133 t^2 beside -8.9e96 t makes the root 8.1e229 and is kept (the
+    leading term is at least twice each term of the other sign there); 3e-30 t^3 beside 3 t^2,
+    whose other roots lie near -1e30, is dropped, and the window becomes (0, K]."""
     c = (-4386.296610043701, -8.87599604097008e96, 1.0897379656641521e-133)
-    assert ex.documented_reduction(c, math.inf) == c[:2]
-    assert ex.judge(c, math.inf, 0, math.nan, False) == "ok-lead-dropped"
-    assert ex.judge_exact(c, math.inf, 0, math.nan, False) == "miss"
-    # not negligible over a finite window that holds the root, nor at ordinary sizes
+    assert ex.documented_reduction(c, math.inf) == c
+    assert ex.judge(c, math.inf, 0, math.nan, False) == "miss"
     assert ex.documented_reduction(c, 1e300) == c
+    drop = (-4.5, 3.75, 3.0, 3e-30)
+    reduced, window = ex.documented_window(drop, math.inf)
+    assert reduced == drop[:3] and 1e10 < window < 1e11
+    assert ex.judge(drop, math.inf, 1, 0.75, False) == "ok-root"
+    # 1 - 1e-10 t + 2^-14 t^2 has no real root; its rest 1 - 1e-10 t has 1e10, beyond K =
+    # 2^-18 (and over (0, K] the t term is negligible in turn)
+    spurious = (1.0, -1e-10, 2.0**-14)
+    reduced, window = ex.documented_window(spurious, math.inf)
+    assert reduced == (1.0,) and window == 2.0**-18
+    assert ex.judge(spurious, math.inf, 1, 1e10, False) == "false"
+    assert ex.judge(spurious, math.inf, 0, math.nan, False) == "ok-none"
     assert ex.documented_reduction((-2.0, 1.0, 1.0), math.inf) == (-2.0, 1.0, 1.0)
     assert ex.judge((-2.0, 1.0, 1.0), math.inf, 0, math.nan, False) == "miss"
+

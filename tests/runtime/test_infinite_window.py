@@ -5,8 +5,9 @@ tmax = inf and 0.2039 with tmax = 10, in C, Modula-2, Rust and Python alike: wit
 window the preparation compared the leading term against the Fujiwara bound of the *rest*
 (1e-16 + t, whose root is -1e-16), found it negligible there and dropped it -- and with it the
 root it makes.  The engine predicts cell crossings with tmax = inf, so balls fell through
-floors.  Now an infinite window keeps every term (the header, step 3: the whole polynomial's
-bound, over which the leading term is never negligible).
+floors.  Now an infinite window weighs the leading term over the bound on the positive roots
+of the whole polynomial (the header, step 3), where a term that makes a root is never
+negligible.
 
 Checked here on the reproducer and on a family of such throws (a constant term within a few
 ulps of 0, or the smallest subnormal, beside ordinary velocity and acceleration, degree 2 to
@@ -95,3 +96,33 @@ def test_the_judge_no_longer_excuses_the_drop() -> None:
     leading term makes may be missed: "ok-lead-dropped"); now "no root" there is a miss."""
     assert ex.judge(REPRODUCER, math.inf, 0, math.nan, False) == "miss"
     assert ex.documented_reduction(REPRODUCER, math.inf) == REPRODUCER
+
+
+# With tmax = inf a leading term is weighed over (0, K], K the bound on the positive roots
+# (header, step 3): each vector with what every runtime must answer.
+LEAD_CASES: tuple[tuple[tuple[float, ...], float | None], ...] = (
+    # 3e-30 t^3 beside 3 t^2 (its other roots lie near -1e30): dropped, 0.75 stays
+    ((-4.5, 3.75, 3.0, 3e-30), 0.75),
+    ((-3.0, 8.5, -4.0, -2.5, 1.0, 0.0, 0.0, 0.0, 1e-30), 0.5),
+    # no real root; the rest 1 - 1e-10 t has 1e10, beyond K = 2^-18: not a root
+    ((1.0, -1e-10, 2.0**-14), None),
+    # the leading term makes the root 8.1e229 and is kept
+    ((-4386.296610043701, -8.87599604097008e96, 1.0897379656641521e-133), 8.1450737e229),
+)
+
+
+@pytest.mark.parametrize("runtime", er.RUNTIMES)
+def test_negligible_lead_is_weighed_over_the_root_bound(
+        runtime: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+        request: pytest.FixtureRequest) -> None:
+    m2_exe = request.getfixturevalue("drivers")[0] if runtime == "m2" else None
+    got = er.answers(runtime, [(c, math.inf) for c, _ in LEAD_CASES], tmp_path, monkeypatch, m2_exe)
+    for (c, want), (st, t, graze) in zip(LEAD_CASES, got):
+        assert ex.judge(c, math.inf, st, t, graze).startswith("ok"), (c, st, t)
+        truth = ex.first_root(c, math.inf)
+        if want is None:
+            assert st == 0 and truth.kind == "none", (c, t)
+        else:  # the root as written above, and as the exact oracle has it
+            assert st == 1 and abs(t - want) <= 1e-7 * want, (c, st, t)
+            assert truth.lo <= Fraction(t) * (1 + Fraction(1, 10**12)), (c, t, truth)
+            assert Fraction(t) <= truth.hi * (1 + Fraction(1, 10**12)), (c, t, truth)

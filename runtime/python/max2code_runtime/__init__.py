@@ -136,7 +136,10 @@ def _solve_python(cc: list[float], tmax: float, method: str, eps: float) -> tupl
         failed_w = tmax if cleared == 0 and method == "interval" else 0.0
     # (a test step 0b ran -- only where c_n, c_0 != 0 and the exponents show the leading term
     # far from negligible over [0, tmax] -- means reduce would drop nothing: not repeated)
-    n = degree if cleared == 0 else solver.reduce(c, degree, tmax)
+    if cleared != 0:
+        n, tmax = solver.reduce(c, degree, tmax, eps > 0 and method != "interval-nograze")
+    else:
+        n = degree
     if n <= 0:
         return 0, math.nan, False
     _, _, spread, emax = solver.exponents(c, n)

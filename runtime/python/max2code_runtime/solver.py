@@ -150,8 +150,7 @@ def _leading_far(e: Sequence[int], nz: Sequence[bool], n: int, T: float) -> bool
 
 def _leading_negligible(c: Coeffs, n: int, tmax: float) -> bool:
     """C leading_negligible (in exponents where a side leaves the normal range; no loop where
-    _leading_far shows the answer, as C).  tmax = inf: never (the window is then bounded by
-    the whole polynomial's Fujiwara bound B, and |c_n| B^(n-i) >= 2^(n-i) |c_i|: issue 33)."""
+    _leading_far shows the answer, as C).  tmax = inf: no (reduce weighs over a finite K)."""
     T = tmax
     if math.isinf(T):
         return False
@@ -171,24 +170,33 @@ def _leading_negligible(c: Coeffs, n: int, tmax: float) -> bool:
     return False
 
 
-def reduce(c: Coeffs, n: int, tmax: float) -> int:
-    """Drop zero/negligible leading terms and factors of t: the degree left, or -1."""
+def reduce(c: Coeffs, n: int, tmax: float, every_root: bool = False) -> tuple[int, float]:
+    """Drop zero/negligible leading terms and factors of t: (the degree left or -1, the window's
+    end).  With tmax = inf the leading term is weighed over (0, K], K the bound on the positive
+    roots of the polynomial as it stands (with a skin, `every_root`, on every root), and where
+    it is dropped the window becomes (0, K]: roots of the rest beyond K are none of the whole
+    polynomial's (C reduce, whose comment has the history)."""
     while True:
         while n > 0 and c[n] == 0:
             n -= 1
         if n == 0:
-            return -1 if c[0] == 0 else 0
+            return (-1 if c[0] == 0 else 0), tmax
         if c[0] == 0:
             for i in range(n):
                 c[i] = c[i + 1]
             c[n] = 0.0
             n -= 1
             continue
-        if _leading_negligible(c, n, tmax):
+        T = tmax
+        if math.isinf(T):
+            K = root_bound(c, n, positive=not every_root)
+            T = K if 0 < K < DBL_MAX else math.inf
+        if _leading_negligible(c, n, T):
+            tmax = T
             c[n] = 0.0
             n -= 1
             continue
-        return n
+        return n, tmax
 
 
 def exponents(c: Sequence[float], n: int) -> tuple[list[int], list[bool], int, int]:

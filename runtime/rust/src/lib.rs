@@ -28,9 +28,9 @@
 //! coefficients as given, scaled as below: where it holds there is no root, before the rest of
 //! the preparation (a third of a "no root in the window" solve's work).
 //! Leading coefficients that are exactly 0, or negligible over the window
-//! (`|c_n| T^n <= 4 n eps max_{i<n} |c_i| T^i`, `T = tmax`; with `tmax` infinite never: the
-//! window is then bounded by the whole polynomial's Fujiwara bound, over which the leading
-//! term outweighs every other), are dropped; `c[0] == 0` (touching now) divides by
+//! (`|c_n| T^n <= 4 n eps max_{i<n} |c_i| T^i`, `T = tmax`; with `tmax` infinite `T` is the
+//! bound on the positive roots of the polynomial as it stands, and the window becomes `(0, T]`
+//! once a term is dropped), are dropped; `c[0] == 0` (touching now) divides by
 //! `t`; the coefficients are scaled by a power of two.  At the extremes (coefficients spanning
 //! more than `2^1021`) the variable is rescaled by the power of two that spreads them least and
 //! terms still below `2^-1022` of the largest are dropped (the documented tolerance).
@@ -228,7 +228,13 @@ fn solve_core(coef: &[f64], tmax: f64, method: Method, eps: f64) -> Status {
     }
     // (a test step 0b ran -- only where c_n, c_0 != 0 and leading_far shows the leading term
     // far from negligible over [0, tmax] -- means reduce would drop nothing: not repeated)
-    let n = if cleared == Some(false) { degree as i32 } else { solver::reduce(&mut c, &mut e, &mut nz, degree, tmax, sc.emax) };
+    let mut tmax = tmax;
+    let n = if cleared == Some(false) {
+        degree as i32
+    } else {
+        let every_root = eps > 0.0 && method != Method::IntervalNoGraze;
+        solver::reduce(&mut c, &mut e, &mut nz, degree, &mut tmax, every_root, sc.emax)
+    };
     if n <= 0 {
         return Status::NoRoot;
     }

@@ -245,8 +245,7 @@ fn leading_far(e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n: usize, t: f64, ema
 /// C `leading_negligible` (in exponents where a side leaves the normal range).  e, nz: the
 /// exponents of c (`load_coefficients`).  When the exponents alone show |c_n| T^(n-i) above
 /// k |c_i| by a factor 8 for every i (`leading_far`), the answer is no without the
-/// floating-point loop.  tmax = inf: never (the window is then bounded by the whole
-/// polynomial's Fujiwara bound B, and |c_n| B^(n-i) >= 2^(n-i) |c_i|: issue 33).
+/// floating-point loop.  tmax = inf: no (`reduce` weighs over a finite K).
 fn leading_negligible(c: &Coeffs, e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n: usize, tmax: f64, emax: i32) -> bool {
     let t = tmax;
     if t.is_infinite() {
@@ -275,8 +274,14 @@ fn leading_negligible(c: &Coeffs, e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n:
 
 /// Drop zero/negligible leading terms and factors of t; the degree left, or -1.  c and its
 /// exponents (e, nz) are modified in place.  emax: load_coefficients' largest exponent, which stays
-/// a bound on every e_i left (`leading_far`).
-pub(crate) fn reduce(c: &mut Coeffs, e: &mut [i32; MAXN + 1], nz: &mut [bool; MAXN + 1], mut n: usize, tmax: f64, emax: i32) -> i32 {
+/// a bound on every e_i left (`leading_far`).  With *tmax = inf the leading term is weighed over
+/// (0, K], K the bound on the positive roots of the polynomial as it stands (with a skin,
+/// `every_root`, on every root), and where it is dropped *tmax becomes K: roots of the rest
+/// beyond K are none of the whole polynomial's (C `reduce`, whose comment has the history).
+pub(crate) fn reduce(
+    c: &mut Coeffs, e: &mut [i32; MAXN + 1], nz: &mut [bool; MAXN + 1], mut n: usize, tmax: &mut f64,
+    every_root: bool, emax: i32,
+) -> i32 {
     loop {
         while n > 0 && c[n] == 0.0 {
             n -= 1;
@@ -296,7 +301,13 @@ pub(crate) fn reduce(c: &mut Coeffs, e: &mut [i32; MAXN + 1], nz: &mut [bool; MA
             n -= 1;
             continue;
         }
-        if leading_negligible(c, e, nz, n, tmax, emax) {
+        let mut t = *tmax;
+        if t.is_infinite() {
+            let k = root_bound(e, nz, if every_root { None } else { Some(&*c) }, n);
+            t = if k > 0.0 && k < f64::MAX { k } else { f64::INFINITY };
+        }
+        if leading_negligible(c, e, nz, n, t, emax) {
+            *tmax = t;
             c[n] = 0.0;
             e[n] = 0;
             nz[n] = false;
