@@ -11,8 +11,9 @@
  * Without rotation the polynomial is the exact motion and one solve gives the contact time.
  *
  * Which roots count: a contact begins where the gap function goes from positive to negative
- * (its derivative there < 0; a touching double root -- a graze -- is no contact), and for an
- * edge only where the point's projection lies on the edge. A root that does not count is
+ * (its derivative there < 0; a touching double root -- a graze -- is no contact, nor is one
+ * that rounding split into two close roots: the gap dips no deeper than the tolerance), and
+ * for an edge only where the point's projection lies on the edge. A root that does not count is
  * stepped over: the polynomial is re-expanded at that root with its constant term set to
  * exactly 0, and the runtime (which divides out a root at 0) finds the next one; a
  * polynomial of degree n has at most n roots, so the walk ends. Touching now (the gap within
@@ -240,6 +241,25 @@ static int clearly_apart(const double c[], int n, double tmax, double tolp)
     return c[0] > sum * (1 + 1e-12);
 }
 
+/* Does the gap c (shifted to the moment in question) only dip into the tolerance band and come
+ * out again? A body sliding past a vertex or along a line at exactly touching distance has a
+ * double root there (a graze), which the rounding of the coefficients splits into two roots
+ * some sqrt(eps) apart with a derivative of sqrt(eps) times the speed; taken as an impact, it
+ * gave a tangential slide an impulse (and the rest rule then stopped it dead, issue 33). The
+ * local quadratic's lowest value c0 - c1^2 / (4 c2), at tau = -c1 / (2 c2), stays within the
+ * tolerance (the higher terms too): no contact, the pair never overlaps by more than it. */
+static int shallow_dip(const double c[], int n, double tolp)
+{
+    if (n < 2 || !(c[1] < 0) || !(c[2] > 0))
+        return 0;
+    double tau = -c[1] / (2 * c[2]), rest = 0.0, tk = tau * tau;
+    for (int k = 3; k <= n; k++) {
+        tk *= tau;
+        rest += fabs(c[k]) * tk;
+    }
+    return c[0] + c[1] * tau / 2 - rest >= -tolp;
+}
+
 static int first_contact(feat *f, double c[MAXC], int n, double tmax, double tolp, double vthr,
                          double *tau, double *rate)
 {
@@ -253,7 +273,7 @@ static int first_contact(feat *f, double c[MAXC], int n, double tmax, double tol
         c[0] = 0.0; /* on the line, belonging to the other side: only later roots count */
     } else if (c[0] <= tolp) {
         if (c[0] >= -tolp || f->kind == F_PP) {   /* touching (or overlapping: Bannerman) */
-            if (n >= 1 && c[1] < -vthr && on_edge(f, 0.0)) {
+            if (n >= 1 && c[1] < -vthr && !shallow_dip(c, n, tolp) && on_edge(f, 0.0)) {
                 *tau = 0.0;
                 *rate = -c[1];
                 return 1;
@@ -276,6 +296,10 @@ static int first_contact(feat *f, double c[MAXC], int n, double tmax, double tol
             return 0;
         double tr = t0 + r;
         double d = derivative(c, n, r);
+        taylor_shift(c, n, r);
+        c[0] = 0.0;
+        if (!graze && d < 0 && shallow_dip(c, n, tolp))
+            graze = 1; /* a double root split by rounding: a graze all the same */
         /* a touch without crossing (a graze) is no collision, but it is a first contact for
          * m2c_world_first_contact */
         if ((graze ? f->w->any_kinds : d < 0) && on_edge(f, tr)) {
@@ -283,8 +307,6 @@ static int first_contact(feat *f, double c[MAXC], int n, double tmax, double tol
             *rate = -d;
             return 1;
         }
-        taylor_shift(c, n, r);
-        c[0] = 0.0;
         if (graze)
             c[1] = 0.0;
         t0 = tr;

@@ -134,28 +134,35 @@ static double circle_gap(const m2c_world *w, int k, int j, double n[2])
     return best - K->radius - J->radius;
 }
 
-/* The velocity closest to v with no part into any support (v . n >= 0 for every normal): a
- * perfectly inelastic response to all of them at once. Without it a body wedged between two
- * supports (a ball slid under an asleep one) would bounce between them infinitely often at one
- * instant. Returns 1 when the velocity changed. */
-static int project_velocity(body *K, const double (*nrm)[2], int count)
+/* The velocity closest to v with no part into any support it approaches at most as fast as
+ * vslow (v . n >= 0 for those normals): a perfectly inelastic response to all of them at once.
+ * Without it a body wedged between two supports (a ball slid under an asleep one) would bounce
+ * between them infinitely often at one instant. A support approached faster is an impact of
+ * its own at this instant (its contact event follows), whatever the order: a ball going
+ * exactly into a corner bounces off both walls and is not stopped by the second (issue 33:
+ * e = 1 lost half its energy; with no gravity vslow = 0 and nothing is projected). Returns 1
+ * when the velocity changed. */
+static int project_velocity(body *K, const double (*nrm)[2], int count, double vslow)
 {
-    double v[2] = {K->m.vx, K->m.vy};
+    double v[2] = {K->m.vx, K->m.vy}, dv[MAX_SUPPORTS + 1];
     int inside = 1;
-    for (int m = 0; m < count; m++)
-        if (v[0] * nrm[m][0] + v[1] * nrm[m][1] < 0)
+    for (int m = 0; m < count; m++) {
+        dv[m] = v[0] * nrm[m][0] + v[1] * nrm[m][1];
+        if (dv[m] < 0 && dv[m] >= -vslow)
             inside = 0;
+    }
     if (inside)
         return 0;
     double best[2] = {0.0, 0.0}, dist = hypot(v[0], v[1]);
     for (int m = 0; m < count; m++) {
-        double d = v[0] * nrm[m][0] + v[1] * nrm[m][1];
-        if (d >= 0)
+        double d = dv[m];
+        if (d >= 0 || d < -vslow)
             continue;
         double p[2] = {v[0] - d * nrm[m][0], v[1] - d * nrm[m][1]};
         int ok = 1;
         for (int l = 0; l < count; l++)
-            if (l != m && p[0] * nrm[l][0] + p[1] * nrm[l][1] < -1e-12 * hypot(p[0], p[1]))
+            if (l != m && dv[l] >= -vslow
+                && p[0] * nrm[l][0] + p[1] * nrm[l][1] < -1e-12 * hypot(p[0], p[1]))
                 ok = 0;
         if (ok && -d < dist) {
             dist = -d;
@@ -296,7 +303,7 @@ int rest_after_contact(m2c_world *w, int k, int s, const event *ev, int k_is_a, 
     nrm[0][1] = n[1];
     gather g = {k, s, 1, (gl > 0 ? 2 * vmax * vmax / gl : 0.0) + w->cfg.tolerance, nrm};
     grid_neighbours(w, k, collect, &g);
-    int changed = project_velocity(K, (const double (*)[2])nrm, g.count);
+    int changed = project_velocity(K, (const double (*)[2])nrm, g.count, vmax);
     double gn = -(K->gx * n[0] + K->gy * n[1]);
     if (!(gn > 0))
         return changed; /* nothing presses it onto s there */
