@@ -217,14 +217,15 @@ def pymunk_snooker(seconds: float) -> dict:
 def ours_platformer(seconds: float) -> dict:
     pf = load_example("platformer")
     game = pf.Platformer()
-    script = pf.load_script(pf.SCRIPT)
+    from max2code.engine import loop
+    script = loop.read_keys(str(pf.SCRIPT))
     w = game.world
     queue = list(script)
 
     def step(k: int):
         t = k / FPS
         while queue and queue[0][0] <= t:
-            tk, kind, key = queue.pop(0)
+            tk, (kind, key) = queue.pop(0)
             w.step_to(tk)
             game.key(kind, key)
         w.step_to(t)

@@ -22,7 +22,7 @@ import math
 import sys
 from dataclasses import dataclass, field
 
-from max2code.engine import World
+from max2code.engine import World, loop
 from max2code.render.items import Frame, Item, body_item
 
 WIDTH, HEIGHT = 10.0, 10.0
@@ -154,59 +154,33 @@ class Breakout:
         return Frame(w.time, tuple(items))
 
 
-def read_keys(path: str) -> list[tuple[float, str, str]]:
-    out = []
-    with open(path, encoding="utf-8") as f:
-        for n, line in enumerate(f, 1):
-            if line.strip():
-                rec = json.loads(line)
-                if rec.get("kind", "input") == "input":
-                    out.append((float(rec["t"]), rec["type"], rec["key"]))
-    return sorted(out, key=lambda r: r[0])
-
-
 def play(game: Breakout, until: float, fps: float, keys, autopilot: bool, live: bool,
          frames: list[Frame] | None) -> None:
     """Frames at 1/fps; key events at their times (scripted) or the frame after they came (live)."""
     pressed = {"K_LEFT": -1, "K_RIGHT": 1}
     held: list[str] = []
-    if live:
-        import pygame
-        from max2code.render.items import image
-        import time
-        pygame.display.init()
-        screen = pygame.display.set_mode((640, 640))
-        pygame.display.set_caption("breakout (max2code.engine)")
-        start = time.monotonic()
-    k = 0
-    queue = list(keys)
     game.autopilot = autopilot
     if autopilot:
         game.aim()
-    while k / fps <= until and not game.lost and game.bricks:
-        t = k / fps
-        while queue and queue[0][0] <= t:
-            tk, kind, key = queue.pop(0)
-            game.world.step_to(tk)
-            handle_key(game, held, pressed, kind, key)
-        game.world.step_to(t)
-        f = game.frame()
-        if frames is not None:
-            frames.append(f)
-        if live:
-            wait = start + t - time.monotonic()
-            if wait > 0:
-                time.sleep(wait)
-            img = image(f, 640, 640, (0.0, 0.0, WIDTH))
-            screen.blit(pygame.image.frombuffer(img.tobytes(), img.size, "RGB"), (0, 0))
-            pygame.display.flip()
-            for e in pygame.event.get():
-                if e.type == pygame.QUIT or (e.type == pygame.KEYDOWN and e.key == pygame.K_ESCAPE):
-                    return
-                if e.type in (pygame.KEYDOWN, pygame.KEYUP):
-                    name = "K_" + pygame.key.name(e.key).upper() if e.key in (pygame.K_LEFT, pygame.K_RIGHT) else ""
-                    handle_key(game, held, pressed, pygame.event.event_name(e.type).upper(), name)
-        k += 1
+    window = picture = None
+    if live:
+        from max2code.render.items import image
+        from max2code.render.live import Window
+        window = Window(640, 640, "breakout (max2code.engine)")
+        picture = lambda f: image(f, 640, 640, (0.0, 0.0, WIDTH))  # noqa: E731
+
+    def from_window(e):
+        import pygame
+        if e.type in (pygame.KEYDOWN, pygame.KEYUP) and e.key in (pygame.K_LEFT, pygame.K_RIGHT):
+            return pygame.event.event_name(e.type).upper(), "K_" + pygame.key.name(e.key).upper()
+        return None
+
+    shown = loop.play(game.world, game.frame, until=until, fps=fps, script=keys,
+                      deliver=lambda item: handle_key(game, held, pressed, *item),
+                      done=lambda: game.lost or not game.bricks, keep=frames is not None,
+                      window=window, picture=picture, from_window=from_window)
+    if frames is not None:
+        frames.extend(shown)
 
 
 def handle_key(game: Breakout, held: list[str], pressed: dict, kind: str, key: str) -> None:
@@ -232,7 +206,7 @@ def main(argv: list[str] | None = None) -> int:
     args = ap.parse_args(argv)
     game = Breakout()
     frames: list[Frame] | None = [] if args.gif else None
-    play(game, args.until, args.fps, read_keys(args.input) if args.input else [], args.autopilot,
+    play(game, args.until, args.fps, loop.read_keys(args.input) if args.input else [], args.autopilot,
          not args.headless, frames)
     if args.gif:
         from max2code.render.items import image

@@ -31,7 +31,7 @@ import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from max2code.engine import World
+from max2code.engine import World, loop
 from max2code.render.items import Frame, Item, body_item
 
 HERE = Path(__file__).resolve().parent
@@ -344,59 +344,29 @@ class Platformer:
         return Frame(w.time, tuple(items))
 
 
-def load_script(path) -> list[tuple[float, str, str]]:
-    out = []
-    with open(path, encoding="utf-8") as f:
-        for line in f:
-            if line.strip():
-                rec = json.loads(line)
-                if rec.get("kind", "input") == "input":
-                    out.append((float(rec["t"]), rec["type"], rec["key"]))
-    return sorted(out, key=lambda r: r[0])
-
-
 LIVE_KEYS = {"left": "K_LEFT", "right": "K_RIGHT", "up": "K_UP", "space": "K_SPACE"}
 
 
 def play(game: Platformer, until: float, fps: float, keys, live: bool, frames: list | None) -> None:
     """Frames at 1/fps; scripted keys at their times, live keys after the frame they came in."""
-    queue = list(keys)
+    window = picture = None
     if live:
-        import time
-
-        import pygame
-
         from max2code.render.items import image
-        pygame.display.init()
-        screen = pygame.display.set_mode((640, 640))
-        pygame.display.set_caption("platformer (max2code.engine)")
-        start = time.monotonic()
-    k = 0
-    while k / fps <= until and not game.won:
-        t = k / fps
-        while queue and queue[0][0] <= t:
-            tk, kind, key = queue.pop(0)
-            game.world.step_to(tk)
-            game.key(kind, key)
-        game.world.step_to(t)
-        f = game.frame()
-        if frames is not None:
-            frames.append(f)
-        if live:
-            wait = start + t - time.monotonic()
-            if wait > 0:
-                time.sleep(wait)
-            img = image(f, 640, 640, (0.0, 0.0, SIDE))
-            screen.blit(pygame.image.frombuffer(img.tobytes(), img.size, "RGB"), (0, 0))
-            pygame.display.flip()
-            for e in pygame.event.get():
-                if e.type == pygame.QUIT or (e.type == pygame.KEYDOWN and e.key == pygame.K_ESCAPE):
-                    return
-                if e.type in (pygame.KEYDOWN, pygame.KEYUP):
-                    name = LIVE_KEYS.get(pygame.key.name(e.key))
-                    if name:
-                        game.key("KEYDOWN" if e.type == pygame.KEYDOWN else "KEYUP", name)
-        k += 1
+        from max2code.render.live import Window
+        window = Window(640, 640, "platformer (max2code.engine)")
+        picture = lambda f: image(f, 640, 640, (0.0, 0.0, SIDE))  # noqa: E731
+
+    def from_window(e):
+        import pygame
+        name = LIVE_KEYS.get(pygame.key.name(e.key)) if e.type in (pygame.KEYDOWN, pygame.KEYUP) else None
+        return ("KEYDOWN" if e.type == pygame.KEYDOWN else "KEYUP", name) if name else None
+
+    shown = loop.play(game.world, game.frame, until=until, fps=fps, script=keys,
+                      deliver=lambda item: game.key(*item), done=lambda: game.won,
+                      keep=frames is not None, window=window, picture=picture,
+                      from_window=from_window)
+    if frames is not None:
+        frames.extend(shown)
     if frames is not None and game.won:
         for j in range(1, int(fps)):   # a second on the goal
             game.world.step_to(game.world.time + 1 / fps)
@@ -415,7 +385,7 @@ def main(argv: list[str] | None = None) -> int:
     args = ap.parse_args(argv)
     game = Platformer()
     frames: list | None = [] if args.gif else None
-    play(game, args.until, args.fps, load_script(args.input) if args.input else [],
+    play(game, args.until, args.fps, loop.read_keys(args.input) if args.input else [],
          not args.headless, frames)
     if args.gif:
         from max2code.render.items import image
