@@ -141,7 +141,7 @@ async def _load(port: int, clients: int, seconds: float, server_pid: int) -> dic
 
     async def one(k: int, lat: list, counts: list):
         ws = await connect(f"ws://127.0.0.1:{port}/ws", max_queue=None)
-        await ws.send(json.dumps({"type": "hello", "v": 1, "seq": 0, "play": False, "room": room}))
+        await ws.send(json.dumps({"type": "hello", "v": 2, "seq": 0, "play": False, "room": room}))
         json.loads(await ws.recv())
         seq, best = 1, None
         for i in range(8):     # the page's clock estimate: the least round trip wins

@@ -11,6 +11,7 @@ from __future__ import annotations
 import asyncio
 import json
 from dataclasses import dataclass
+from typing import Callable
 from importlib import resources
 from urllib.parse import urlsplit
 
@@ -20,6 +21,7 @@ from websockets.exceptions import ConnectionClosed
 from websockets.http11 import Request, Response
 
 from ..engine.scenefile import Scene
+from ..engine.world import World
 from . import protocol
 from .protocol import Hello, Key, Ping, Point, ProtocolError, RateLimit
 from .room import Room
@@ -40,6 +42,7 @@ class Options:
     max_clients: int = 256      # per room
     speed: float | None = None
     tolerance: float | None = 0.0    # 0: exact; None: a quarter pixel (room.AUTO_PIXELS)
+    world: Callable[[], World] | None = None   # each room's world (a game's), else the scene's
 
 
 class Server:
@@ -56,8 +59,9 @@ class Server:
         if room is None:
             if len(self.rooms) >= self.options.max_rooms:
                 raise ProtocolError(f"no room {name!r}, and no more rooms (at most {self.options.max_rooms})")
+            make = self.options.world
             room = Room(name, self.options.scene, self.options.players, speed=self.options.speed,
-                        tolerance=self.options.tolerance)
+                        tolerance=self.options.tolerance, world=make() if make else None)
             room.start()
             self.rooms[name] = room
         return room

@@ -1,4 +1,4 @@
-"""The wire protocol of `max2code serve` (docs/server.md): JSON text frames, version 1.
+"""The wire protocol of `max2code serve` (docs/server.md): JSON text frames, version 2.
 
 Why JSON: the client is a static page with no build step and no library, and a browser parses
 JSON natively (and shows it in its developer tools); messages are small because only events
@@ -19,7 +19,7 @@ import math
 import re
 from dataclasses import dataclass
 
-VERSION = 1
+VERSION = 2   # 2: bodies removed (rm) and added (add) while the world runs
 NUMBER_DIGITS = 10
 MAX_MESSAGE = 1024          # bytes of one client frame (our own limit: an error frame, then close)
 HARD_MAX_MESSAGE = 65536    # the WebSocket library's limit (close 1009 without reading it)
@@ -122,7 +122,7 @@ def parse(frame: str | bytes, expected_seq: int) -> Message:
     object, unknown type or fields, bad values, or a sequence number other than expected_seq
     (out of order, repeated or skipped)."""
     if isinstance(frame, bytes):
-        raise ProtocolError("binary frames are not part of protocol version 1")
+        raise ProtocolError(f"binary frames are not part of protocol version {VERSION}")
     if len(frame.encode("utf-8", "surrogatepass")) > MAX_MESSAGE:
         raise ProtocolError(f"message larger than {MAX_MESSAGE} bytes", CLOSE_TOO_BIG)
     try:

@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 from typing import Callable
 
 from ..engine.scenefile import Scene, build_world
-from ..engine.world import EngineError, Event
+from ..engine.world import EngineError, Event, World
 from . import protocol, reckon, wire
 
 
@@ -56,10 +56,12 @@ class Room:
 
     def __init__(self, name: str, scene: Scene, players: tuple[int, ...],
                  clock: Callable[[], float] | None = None, speed: float | None = None,
-                 tolerance: float | None = 0.0) -> None:
+                 tolerance: float | None = 0.0, world: World | None = None) -> None:
+        """`world`: a World made by the caller (a game with its callbacks) instead of the
+        scene's; the scene then gives only the view (and the input speed)."""
         self.name = name
         self.scene = scene
-        self.world = build_world(scene)
+        self.world = world if world is not None else build_world(scene)
         self.players = players
         self.speed = speed if speed is not None else _speed(scene)
         start = time.monotonic()
@@ -73,12 +75,16 @@ class Room:
         self.held: list[tuple[float, ...]] = [wire.motion(wire.segment(i, m, 0.0), 0.0)
                                               for i, m in enumerate(motions)]
         self.due: dict[int, float] = {}
-        self.reach = [max(math.hypot(*v) for v in b.vertices) + b.radius for b in self.world.bodies]
+        self.reach: list[float] = []
+        self.gravity: list[tuple[float, float]] = []
+        self._grow()
+        # the bodies clients know of: every id below `known`, and of those the ones alive
+        self.known = len(self.world.bodies)
+        self.live = {i for i, b in enumerate(self.world.bodies) if b.alive}
         if tolerance is None:   # a quarter of a pixel of the page's 800-pixel-wide canvas
             view = self._view()
             tolerance = (view[2] - view[0]) / AUTO_PIXELS
         self.tolerance = float(tolerance)
-        self.gravity = [b.gravity if b.gravity is not None else scene.gravity for b in scene.bodies]
         self.seq = 0
         self.stats = Stats()
         self.failed: str | None = None
@@ -125,19 +131,48 @@ class Room:
         self.stats.events += len(events)
         self._send_changes(events, None)
 
+    def _grow(self) -> None:
+        """Per-body tables for bodies the world gained (a game adds them while it runs)."""
+        for b in self.world.bodies[len(self.reach):]:
+            self.reach.append(max(math.hypot(*v) for v in b.vertices) + b.radius)
+            self.gravity.append(self.world._gravity[b.id])   # (what it falls with when dynamic)
+        motions, _ = self.world.motions()
+        for i in range(len(self.held), len(motions)):
+            self.held.append(wire.motion(wire.segment(i, motions[i], motions[i][0]), motions[i][0]))
+
+    def _membership(self) -> tuple[list[int], list[int]]:
+        """Bodies removed since the last message (were alive, are not) and bodies added (ids
+        past the last known; one added and removed within a step is never sent)."""
+        bodies = self.world.bodies
+        removed = sorted(i for i in self.live if not bodies[i].alive)
+        added = [i for i in range(self.known, len(bodies)) if bodies[i].alive]
+        self.known = len(bodies)
+        self.live.difference_update(removed)
+        self.live.update(added)
+        if added or len(self.reach) < len(bodies):
+            self._grow()
+        return removed, added
+
     def _send_changes(self, events: list[Event], extra: tuple[int, int, int] | None) -> None:
         motions, counters = self.world.motions()
-        changed = [i for i, (c, old) in enumerate(zip(counters, self.counters)) if c != old]
+        removed, added = self._membership()
+        new = set(added)
+        changed = [i for i, (c, old) in enumerate(zip(counters, self.counters))
+                   if c != old and i in self.live and i not in new]
         self.counters = counters
         now = self.world.time
+        for i in removed:   # (its wait, if any, is over: clients drop it)
+            self.due.pop(i, None)
         drawn = [e for e in events if e.kind != "timer"]
         # with a tolerance, a change clients would not see yet waits (reckon.py); an input's
         # body is always sent, as is every body whose wait is over
         for i in changed:
             self.due[i] = (reckon.deadline(self.held[i], motions[i], now, self.tolerance, self.reach[i])
                            if extra is None or extra[1] != i else now)
+        for i in added:     # a new body's segment goes with it, whatever the tolerance
+            self.due[i] = now
         send = sorted(i for i, d in self.due.items() if d <= now)
-        if not send and extra is None and (self.tolerance > 0 or not drawn):
+        if not send and not removed and extra is None and (self.tolerance > 0 or not drawn):
             return
         for i in send:
             del self.due[i]
@@ -146,7 +181,7 @@ class Room:
         # re-expressed from it
         times = [e.time for e in drawn] + [motions[i][0] for i in send]
         t = max(times) if times and extra is None else now
-        sent = set(send)
+        sent = set(send) | set(removed)
         ev = []
         for e in drawn:   # [kind, a, b], and the time before t when the step held several
             if self.tolerance > 0 and e.a not in sent and e.b not in sent:
@@ -159,7 +194,12 @@ class Room:
         for seg in segs:   # what clients now hold (the numbers as sent)
             self.held[seg[0]] = wire.motion(seg, t)
         self.seq += 1
-        self._broadcast({"type": "ev", "n": self.seq, "t": t, "ev": ev, "seg": segs})
+        message = {"type": "ev", "n": self.seq, "t": t, "ev": ev, "seg": segs}
+        if removed:
+            message["rm"] = removed
+        if added:
+            message["add"] = [wire.body(self.world, i) for i in added]
+        self._broadcast(message)
 
     def next_wake(self) -> float:
         """The next queued event, or the end of a change's wait, whichever is first."""
@@ -185,11 +225,13 @@ class Room:
         t = self.world.time
         # a late joiner gets what the others hold (within the tolerance of the truth), so
         # that every client draws the same
+        # (only the bodies alive now: a removed one is never drawn again)
         motions = self.held
+        live = sorted(self.live)
         message = {"type": "world", "v": protocol.VERSION, "room": self.name, "n": self.seq,
                    "t": t, "you": list(client.controls), "view": self._view(),
-                   "bodies": [wire.body(self.world, i) for i in range(len(self.world.bodies))],
-                   "seg": [wire.segment(i, motions[i], t) for i in range(len(motions))]}
+                   "bodies": [wire.body(self.world, i) for i in live],
+                   "seg": [wire.segment(i, motions[i], t) for i in live]}
         if self.failed:
             message["failed"] = self.failed
         self.clients.append(client)

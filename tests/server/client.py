@@ -8,7 +8,7 @@ import json
 
 from websockets.asyncio.client import connect
 
-from max2code.server import wire
+from max2code.server import protocol, wire
 
 
 class Client:
@@ -17,6 +17,7 @@ class Client:
         self.seq = 0
         self.segs: dict[int, tuple[list, float]] = {}
         self.world: dict = {}
+        self.bodies: dict[int, dict] = {}
         self.messages: list[dict] = []
         self.n = 0
 
@@ -24,10 +25,11 @@ class Client:
     async def join(cls, url: str, room: str = "main", play: bool = True, **kw) -> "Client":
         ws = await connect(url, **kw)
         c = cls(ws)
-        await c.send({"type": "hello", "v": 1, "room": room, "play": play})
+        await c.send({"type": "hello", "v": protocol.VERSION, "room": room, "play": play})
         c.world = json.loads(await ws.recv())
         assert c.world["type"] == "world", c.world
         c.n = c.world["n"]
+        c.bodies = {b["id"]: b for b in c.world["bodies"]}
         for seg in c.world["seg"]:
             c.segs[seg[0]] = (seg, c.world["t"])
         return c
@@ -41,6 +43,10 @@ class Client:
         if m["type"] == "ev":
             assert m["n"] == self.n + 1, (m["n"], self.n)
             self.n = m["n"]
+            for i in m.get("rm", []):     # as client.js: removals, then additions, then segments
+                del self.bodies[i], self.segs[i]
+            for b in m.get("add", []):
+                self.bodies[b["id"]] = b
             for seg in m["seg"]:
                 self.segs[seg[0]] = (seg, m["t"])
 

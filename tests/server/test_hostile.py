@@ -16,19 +16,19 @@ from max2code.server.protocol import ProtocolError
 
 from .client import Client
 
-HELLO = {"type": "hello", "v": 1, "seq": 0}
+HELLO = {"type": "hello", "v": 2, "seq": 0}
 BAD_FIRST = {
     "not json": "{nope",
     "json array": "[1, 2]",
     "unknown type": json.dumps({"type": "shutdown", "seq": 0}),
     "input before hello": json.dumps({"type": "key", "seq": 0, "body": 4, "key": "left", "down": True}),
-    "wrong version": json.dumps({"type": "hello", "v": 2, "seq": 0}),
+    "wrong version": json.dumps({"type": "hello", "v": 1, "seq": 0}),
     "version as bool": json.dumps({"type": "hello", "v": True, "seq": 0}),
     "seq not zero": json.dumps({**HELLO, "seq": 1}),
     "unknown field": json.dumps({**HELLO, "admin": True}),
     "bad room": json.dumps({**HELLO, "room": "../../etc"}),
     "play not bool": json.dumps({**HELLO, "play": "yes"}),
-    "NaN": '{"type": "hello", "v": 1, "seq": NaN}',
+    "NaN": '{"type": "hello", "v": 2, "seq": NaN}',
     "deep nesting": "[" * 500 + "]" * 500,
     "oversized": json.dumps({**HELLO, "name": "x" * 2000}),
 }

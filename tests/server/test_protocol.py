@@ -26,7 +26,7 @@ def test_join_gets_the_world_and_segments_give_the_engines_poses(arena):
     async def go():
         c = await Client.join(arena.url)
         w = c.world
-        assert w["v"] == 1 and w["you"] == [4] and len(w["bodies"]) == 12
+        assert w["v"] == 2 and w["you"] == [4] and len(w["bodies"]) == 12
         assert w["bodies"][4]["name"] == "player1" and w["bodies"][4]["fill"] == "#c44e52"
         assert w["bodies"][4]["shape"] == {"c": [0, 0], "r": 0.12}
         assert w["bodies"][8]["shape"]["p"][0] == [-0.08, -0.08]      # puck3, a box
@@ -141,7 +141,7 @@ def test_rooms_are_independent_worlds_and_bounded():
             await a.until(lambda m: m["type"] == "ev" and [5, 4, -1] in m["ev"])
             got_b = await b.receive(0.3)
             third = await connect(running.url)
-            await third.send(json.dumps({"type": "hello", "v": 1, "seq": 0, "room": "three"}))
+            await third.send(json.dumps({"type": "hello", "v": 2, "seq": 0, "room": "three"}))
             refusal = json.loads(await third.recv())
             return got_b, refusal
         got_b, refusal = run(go())

@@ -1,10 +1,10 @@
-// max2code serve: the thin client (protocol version 1, docs/server.md). No build step, no library.
+// max2code serve: the thin client (protocol version 2, docs/server.md). No build step, no library.
 // It holds every body's motion segment and draws any frame from it at the display's own rate;
 // the server sends a segment again only when an event changes it. Drawing follows
 // max2code.render (render/raster.py, render/svg.py): same shapes, colours, time stamp.
 "use strict";
 
-const PROTOCOL = 1;
+const PROTOCOL = 2;
 const KEYS = {ArrowLeft: "left", ArrowRight: "right", ArrowUp: "up", ArrowDown: "down",
               a: "left", d: "right", w: "up", s: "down"};
 const canvas = document.getElementById("view");
@@ -13,7 +13,7 @@ const statusLine = document.getElementById("status");
 const params = new URLSearchParams(location.search);
 
 const state = {
-  joined: false, closed: null, room: params.get("room") || "main", bodies: [], segs: [],
+  joined: false, closed: null, room: params.get("room") || "main", bodies: {}, segs: {},
   you: [], view: null, n: 0, seq: 0, offset: null, rtt: null, samples: [], late: null,
   lateMax: 0, received: 0, bytes: 0, refused: [], frozen: null, lastDrawn: null,
 };
@@ -49,7 +49,9 @@ function onMessage(text) {
   const m = JSON.parse(text);
   if (m.type === "world") {
     if (m.v !== PROTOCOL) { fail("server speaks protocol " + m.v); return; }
-    state.bodies = m.bodies; state.segs = []; state.you = m.you; state.view = m.view;
+    // bodies by id: only the live ones (a removed id is never sent again)
+    state.bodies = {}; state.segs = {}; state.you = m.you; state.view = m.view;
+    for (const b of m.bodies) state.bodies[b.id] = b;
     state.n = m.n;
     for (const seg of m.seg) setSegment(seg, m.t);
     if (state.offset === null) state.offset = m.t - clientNow();
@@ -57,6 +59,9 @@ function onMessage(text) {
   } else if (m.type === "ev") {
     if (m.n !== state.n + 1) { fail("message " + m.n + " out of order after " + state.n); return; }
     state.n = m.n;
+    // removals first (the bodies are dropped), then additions with their segments in seg
+    for (const id of m.rm || []) { delete state.bodies[id]; delete state.segs[id]; }
+    for (const b of m.add || []) state.bodies[b.id] = b;
     for (const seg of m.seg) setSegment(seg, m.t);
     // how late the event reached us (drawn from its exact time on regardless)
     state.late = serverNow() - m.t;
@@ -176,12 +181,11 @@ function drawYou(id, pose) {                   // a ring around what you control
 function draw(t) {
   ctx.fillStyle = "#ffffff";
   ctx.fillRect(0, 0, canvas.width, canvas.height);
-  for (const b of state.bodies) {
-    if (!b) continue;
+  for (const b of Object.values(state.bodies)) {
     const pose = poseAt(b.id, t);
     if (pose) drawBody(b, pose);
   }
-  for (const id of state.you) { const p = poseAt(id, t); if (p) drawYou(id, p); }
+  for (const id of state.you) { const p = state.bodies[id] && poseAt(id, t); if (p) drawYou(id, p); }
   const stamp = "t = " + t.toFixed(3) + " s";
   const size = Math.max(10, Math.round(Math.min(canvas.width, canvas.height) / 32));
   ctx.font = size + "px sans-serif"; ctx.textBaseline = "top";
@@ -201,7 +205,7 @@ function ms(x) { return x === null ? "-" : (1000 * x).toFixed(1) + " ms"; }
 function status() {
   if (state.closed) return "disconnected: " + state.closed;
   if (!state.joined) return "connecting...";
-  const you = state.you.length ? state.you.map((i) => state.bodies[i].name).join(", ") : "nothing (watching)";
+  const you = state.you.length ? state.you.map((i) => (state.bodies[i] ? state.bodies[i].name : "removed")).join(", ") : "nothing (watching)";
   return "room " + state.room + "   t = " + serverNow().toFixed(3) + " s   round trip " + ms(state.rtt)
     + "   last event arrived " + ms(state.late) + " after its time   you control " + you
     + "   messages " + state.received + " (" + state.bytes + " bytes)";
