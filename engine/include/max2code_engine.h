@@ -87,6 +87,7 @@ typedef struct {
     double rest_speed;         /* v_r of the rest rule (README): 0 automatic, < 0 off */
     double collapse_time;      /* t_c of the collapse rules: 0 automatic (1e-3 s), < 0 off */
     long long max_events;      /* a step (m2c_world_step) processing more events than this fails (0: no limit) */
+    double contact_step;       /* h of the sustained-contact solver (> 0, e.g. 1/240 s); 0: off (experimental) */
 } m2c_config;
 
 typedef struct {
@@ -113,6 +114,9 @@ typedef struct {
     long long rests, wakes;
     int ncells_x, ncells_y;
     double cell_size;
+    long long solver_ticks;    /* contact solver steps */
+    long long solver_iterations;   /* its Gauss-Seidel sweeps */
+    long long certificates;    /* islands put to sleep with a certificate */
 } m2c_stats;
 
 /* A body def with every field at its default: dynamic, at the origin, at rest, mass 1 and
@@ -241,6 +245,12 @@ M2C_API double m2c_world_energy(const m2c_world *w, double t);
 M2C_API int m2c_world_asleep(const m2c_world *w, int body);
 
 M2C_API void m2c_world_stats(const m2c_world *w, m2c_stats *out);
+/* The sleep certificate of asleep body i's island (the asleep bodies touching it, transitively):
+ * 1 when non-negative contact forces inside the friction cones balance every weight and torque
+ * (*residual: the worst unbalanced force / weight), 0 when none was found, -1: not asleep. */
+M2C_API int m2c_world_certificate(m2c_world *w, int body, double *residual);
+/* 1 while the body is moved by the contact solver (sustained contact), else 0. */
+M2C_API int m2c_world_solving(const m2c_world *w, int body);
 M2C_API const char *m2c_world_error(const m2c_world *w);
 /* cdef-end */
 

@@ -48,7 +48,8 @@ typedef struct {
     int dx, dy;                 /* cell crossing: the step to the next cell */
 } event;
 
-enum { AWAKE = 0, RESTING = 1, ASLEEP = 2 };
+enum { AWAKE = 0, RESTING = 1, ASLEEP = 2, SOLVING = 3 };
+/* SOLVING: in sustained contact, moved by the contact solver (contact_solver.c) */
 
 /* A removed body's kind: in no list, no cell, no heap; nothing predicts against it. */
 #define KIND_REMOVED 3
@@ -133,6 +134,7 @@ struct m2c_world {
     void *presolve_user;
     int in_presolve;            /* inside the pre-solve callback: no changes allowed */
     m2c_stats st;
+    struct solver *solver;      /* sustained contact (contact_solver.c); NULL until used */
     char err[256];
 };
 
@@ -202,6 +204,18 @@ int body_still(const body *b);
 void fall_asleep(m2c_world *w, int k);
 void rest_burst(m2c_world *w, int k);
 double rest_leave_time(const m2c_world *w, int k, double tmax);
+
+/* contact_solver.c: sustained contact (docs/engine-contact.md) */
+double solver_step(const m2c_world *w);                 /* h; < 0: off */
+double solver_soft_speed(const m2c_world *w, const body *b);  /* slower contacts join */
+int solver_adopt(m2c_world *w, int k);                  /* 1 when k joined */
+int solver_has(const m2c_world *w, int i);
+double solver_next_tick(const m2c_world *w);            /* INFINITY when no body is in it */
+void solver_tick(m2c_world *w);
+void solver_free(m2c_world *w);
+void solver_wedged(m2c_world *w, int k);
+int solver_soft_response(m2c_world *w, int i, int j, const event *ev, double closing, m2c_event *out);
+double solver_gap_accel(const m2c_world *w, int i, int j, const event *ev);
 
 /* motion.c */
 double first_crossing(double x, double v, double a, double edge, int dir, double tmax);

@@ -139,6 +139,24 @@ static void friction_impulse(body *A, body *B, double bound, double sep, const d
     B->m.w += P * rtb * iib;
 }
 
+/* Does the contact of i with j join the contact solver (sustained contact, contact_solver.c)?
+ * When it closes slower than v_soft and one side is held (static, kinematic, asleep, resting
+ * or already in the solver). A ball on a static body is left to the rest rule's bounce series
+ * (rest.c, rule 1), which ends it exactly (and hands it on when it cannot simply lie there). */
+static int soft_contact(const m2c_world *w, int i, int j, double closing)
+{
+    const body *A = &w->b[i], *B = &w->b[j];
+    double vs = solver_soft_speed(w, A);
+    if (!(vs > 0) || closing > vs)
+        return 0;
+    int held = B->kind != M2C_DYNAMIC || B->state != AWAKE || A->state == SOLVING;
+    if (!held)
+        return 0;
+    if (A->state != SOLVING && A->nvert == 1 && B->kind == M2C_STATIC)
+        return 0;
+    return 1;
+}
+
 /* Returns the number of bodies woken (their ids in w->woken): the caller predicts them. */
 int respond(m2c_world *w, int i, int j, const event *ev)
 {
@@ -154,8 +172,30 @@ int respond(m2c_world *w, int i, int j, const event *ev)
     double va[2] = {a.vx - a.w * ra[1], a.vy + a.w * ra[0]};
     double vb[2] = {b.vx - b.w * rb[1], b.vy + b.w * rb[0]};
     double closing = -((vb[0] - va[0]) * n[0] + (vb[1] - va[1]) * n[1]);
-    if (body_still(B) && wake_speed(w, B) > 0 && closing > wake_speed(w, B))
+    int soft = soft_contact(w, i, j, closing);
+    if (body_still(B) && ((wake_speed(w, B) > 0 && closing > wake_speed(w, B)) || soft)) {
         woken = wake_island(w, j, w->woken, w->cap);
+        if (solver_step(w) > 0) /* they were at rest in contact: the solver takes them */
+            for (int k = 0; k < woken; k++)
+                solver_adopt(w, w->woken[k]);
+    }
+    if (soft) { /* sustained contact: both go to the solver (rest.c's rules do not apply) */
+        solver_adopt(w, i);
+        if (B->kind == M2C_DYNAMIC)
+            solver_adopt(w, j);
+        m2c_event out;
+        if (solver_soft_response(w, i, j, ev, closing, &out) == 0) {
+            A->counter++;
+            if (B->kind == M2C_DYNAMIC)
+                B->counter++;
+            w->st.collisions++;
+            world_emit(w, &out);
+            solver_wedged(w, i);
+            if (B->kind == M2C_DYNAMIC)
+                solver_wedged(w, j);
+            return woken;
+        }
+    }
     int awake_b = dynamic_awake(B);
     double push_a[2] = {-n[0], -n[1]}, ua[2], ub[2];
     int ca = response_direction(A, push_a, ua);
@@ -169,7 +209,7 @@ int respond(m2c_world *w, int i, int j, const event *ev)
         rest_restore(w, i);
     if (awake_b && !cb)
         rest_restore(w, j);
-    double e = A->restitution * B->restitution;
+    double e = soft ? 0.0 : A->restitution * B->restitution;
     double tc = collapse_time(w);
     int fixed = !awake_b;
     int recent = tc > 0 && !fixed && w->now - A->last_contact < tc && w->now - B->last_contact < tc;
@@ -202,7 +242,14 @@ int respond(m2c_world *w, int i, int j, const event *ev)
             press = 1;
         }
     }
-    if (press && tc > 0 && k > 1e-12 * (ima + imb)) {
+    if (soft && k > 1e-12 * (ima + imb)) { /* part fast enough not to meet again before a tick */
+        double acc = solver_gap_accel(w, i, j, ev);
+        double want = acc < 0 ? -0.5 * acc * solver_step(w) : 0.0;
+        double sep = -closing + J * k;
+        if (sep < want)
+            J += (want - sep) / k;
+    }
+    if (!soft && press && tc > 0 && k > 1e-12 * (ima + imb)) {
         double want = -0.5 * an * tc;
         double sep = -closing + J * k;
         if (sep < want)
@@ -217,7 +264,7 @@ int respond(m2c_world *w, int i, int j, const event *ev)
         B->m.w += J * rnb * iib;
     }
     double mu = sqrt(A->friction * B->friction);
-    if (mu > 0 && J > 0 && !ca && !cb)
+    if (mu > 0 && J > 0 && !ca && !cb && !soft)
         friction_impulse(A, B, mu * J, -closing + J * k, ra, rb, va, vb, n, J, rna, rnb, ima,
                          imb, iia, iib);
     A->counter++;
@@ -226,6 +273,19 @@ int respond(m2c_world *w, int i, int j, const event *ev)
     w->st.collisions++;
     m2c_event out = {w->now, M2C_EVENT_COLLISION, i, j, n[0], n[1], p[0], p[1], closing, J};
     world_emit(w, &out);
+    if (soft) { /* sustained contact: both go to the solver (rest.c's rules do not apply) */
+        solver_adopt(w, i);
+        solver_wedged(w, i);
+        if (B->kind == M2C_DYNAMIC) {
+            solver_adopt(w, j);
+            solver_wedged(w, j);
+        }
+        return woken;
+    }
+    if (solver_has(w, i) || solver_has(w, j)) { /* an impact on a solver body: exact, no rule */
+        A->last_contact = w->now;
+        return woken;
+    }
     if (fixed)
         rest_after_contact(w, i, j, ev, 1, e);
     rest_burst(w, i);

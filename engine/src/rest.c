@@ -267,8 +267,8 @@ static void report_separate(m2c_world *w, int k)
 void rest_restore(m2c_world *w, int k)
 {
     body *K = &w->b[k];
-    if (K->state == AWAKE)
-        return;
+    if (K->state == AWAKE || K->state == SOLVING)
+        return; /* (a solver body stays in the solver: its gravity is applied at the ticks) */
     body_commit(K, w->now);
     report_separate(w, k);
     K->state = AWAKE;
@@ -318,6 +318,8 @@ int rest_after_contact(m2c_world *w, int k, int s, const event *ev, int k_is_a, 
         double up[2] = {-K->gx / gl, -K->gy / gl};
         int on_asleep = S->kind == M2C_DYNAMIC;
         double vt_abs = hypot(vt[0], vt[1]);
+        if (solver_step(w) > 0 && (on_asleep || (vt_abs > vr && K->friction * S->friction > 0)))
+            return solver_adopt(w, k) | changed; /* sustained contact: the solver decides */
         if ((on_asleep && vt_abs <= settle_speed(w, K))
             || (vt_abs <= vr && holds((const double (*)[2])nrm, g.count, up))) {
             K->m.vx = K->m.vy = K->m.w = 0.0;
@@ -350,6 +352,8 @@ int rest_after_contact(m2c_world *w, int k, int s, const event *ev, int k_is_a, 
          * on the end again at the same instant and loop); a corner, as below */
         rest_restore(w, k);
     }
+    if (solver_step(w) > 0)
+        return solver_adopt(w, k) | changed; /* a corner or a round support: the solver */
     double hop = 0.5 * gn * collapse_time(w);
     if (u < hop) {
         K->m.vx += (hop - u) * n[0];
@@ -444,7 +448,7 @@ static void cluster_visit(m2c_world *w, int k, int j, void *ctx)
 {
     cluster *c = ctx;
     body *J = &w->b[j];
-    int fixed = J->kind == M2C_STATIC || body_still(J);
+    int fixed = J->kind == M2C_STATIC || body_still(J) || J->state == SOLVING;
     if (J->kind == M2C_KINEMATIC)
         return;
     if (body_gap(w, k, j) > c->slack)
@@ -507,6 +511,11 @@ void rest_burst(m2c_world *w, int k)
         body *J = &w->b[w->members[m]];
         J->burst = -1 - J->burst; /* unmark */
         J->elastic = !c.supported; /* rule 2: a burst in free space turns elastic */
+    }
+    if (freeze && solver_step(w) > 0) { /* the solver takes the cluster (it sleeps certified) */
+        for (int m = 0; m < n; m++)
+            solver_adopt(w, w->members[m]);
+        return;
     }
     if (freeze)
         for (int m = 0; m < n; m++) {

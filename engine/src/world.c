@@ -54,6 +54,7 @@ void m2c_world_free(m2c_world *w)
     free(w->pending);
     free(w->timers);
     free(w->ghosts);
+    solver_free(w);
     grid_free(&w->g);
     free(w);
 }
@@ -568,7 +569,11 @@ int m2c_world_step(m2c_world *w, double until, m2c_event *events, int capacity, 
         int i = heap_top(w);
         double t = i >= 0 ? w->b[i].ev.t : INFINITY;
         double tt = w->ntimers > 0 ? w->timers[0].t : INFINITY;
+        double ts = solver_next_tick(w);   /* sustained contact (contact_solver.c) */
         double next = t < tt ? t : tt;
+        int tick = ts < next;
+        if (tick)
+            next = ts;
         if (!(next <= until))
             break;
         /* a run of events within STUCK_SPAN (relative) of its first: a ball crushed between a
@@ -601,7 +606,11 @@ int m2c_world_step(m2c_world *w, double until, m2c_event *events, int capacity, 
             w->out = NULL;
             return 1;
         }
-        if (w->ntimers > 0 && tt <= t) {
+        if (tick) {
+            if (next > w->now)
+                w->now = next;
+            solver_tick(w);
+        } else if (w->ntimers > 0 && tt <= t) {
             w->now = tt;
             m2c_event e = {tt, M2C_EVENT_TIMER, w->timers[0].id, -1, 0, 0, 0, 0, 0, 0};
             timer_pop(w);
@@ -732,6 +741,11 @@ double m2c_world_energy(const m2c_world *w, double t)
              - b->mass * (b->gx * s.x + b->gy * s.y);
     }
     return e;
+}
+
+int m2c_world_solving(const m2c_world *w, int i)
+{
+    return i >= 0 && i < w->n && w->b[i].kind == M2C_DYNAMIC && w->b[i].state == SOLVING;
 }
 
 int m2c_world_asleep(const m2c_world *w, int i)

@@ -92,7 +92,7 @@ class World:
 
     def __init__(self, *, gravity: Vec = (0.0, 0.0), tolerance: float = 1e-9,
                  cell_size: float = 0.0, rest_speed: float = 0.0, collapse_time: float = 0.0,
-                 max_events: int = 0) -> None:
+                 max_events: int = 0, contact_step: float = 0.0) -> None:
         self._ffi, self._lib = load()
         cfg = self._ffi.new("m2c_config *")
         cfg.tolerance = tolerance
@@ -100,6 +100,7 @@ class World:
         cfg.rest_speed = rest_speed
         cfg.collapse_time = collapse_time
         cfg.max_events = max_events
+        cfg.contact_step = contact_step
         ptr = self._lib.m2c_world_new(cfg)
         if ptr == self._ffi.NULL:
             raise MemoryError("m2c_world_new")
@@ -628,13 +629,27 @@ class World:
     def asleep(self, body: int) -> bool:
         return bool(self._lib.m2c_world_asleep(self._w, body))
 
+    def solving(self, body: int) -> bool:
+        """True while the body is in sustained contact, moved by the contact solver."""
+        return bool(self._lib.m2c_world_solving(self._w, body))
+
+    def certificate(self, body: int) -> tuple[bool, float]:
+        """The sleep certificate of an asleep body's island, checked now: (found, residual),
+        residual = the worst unbalanced force per weight under the best contact forces found
+        (non-negative, inside the friction cones). Raises for a body that is not asleep."""
+        r = self._ffi.new("double *")
+        ok = self._lib.m2c_world_certificate(self._w, body, r)
+        if ok < 0:
+            raise EngineError(f"certificate: body {body} is not asleep")
+        return bool(ok), float(r[0])
+
     def stats(self) -> dict[str, object]:
         s = self._ffi.new("m2c_stats *")
         self._lib.m2c_world_stats(self._w, s)
         out: dict[str, object] = {}
         for name in ("events", "collisions", "cell_crossings", "windows", "windows_solved", "stale",
                      "predictions", "pair_tests", "solves", "rests", "wakes", "ncells_x", "ncells_y",
-                     "cell_size"):
+                     "cell_size", "solver_ticks", "solver_iterations", "certificates"):
             out[name] = getattr(s, name)
         out["solves_by_degree"] = {d: s.solves_by_degree[d] for d in range(17) if s.solves_by_degree[d]}
         return out

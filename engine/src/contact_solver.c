@@ -1,0 +1,1107 @@
+/*
+ * contact_solver.c -- sustained contact: a cluster of bodies that stays in contact is handed to a
+ * constraint solver at a fixed step h and handed back to exact prediction when it separates or
+ * sleeps (docs/engine-contact.md).
+ *
+ * Why: between impacts the engine is exact, but a body resting, sliding, rolling or tipping on
+ * another touches it continuously; an event-driven engine sees that as infinitely many impacts
+ * at (nearly) one instant. Frame engines solve such contacts as constraints (sequential
+ * impulses / projected Gauss-Seidel with warm starting: Catto, Box2D; Chipmunk2D). We do the
+ * same for the bodies that need it, and only for them:
+ *
+ *  - a contact closing slower than v_soft (= max(rest speed, 2 |g| h)) where one side is
+ *    supported (static, kinematic, asleep or already in the solver) adopts its dynamic bodies:
+ *    state SOLVING, gravity taken out of their motion (added at each tick instead);
+ *  - at each tick t = k h: v += g h; contacts (vertex-edge and vertex-vertex features with the
+ *    rounding radii) within a speculative margin; PGS with Coulomb friction (|f_t| <= mu f_n,
+ *    mu = sqrt(mu_a mu_b)) warm started from the last tick's impulses; the new velocities become
+ *    the bodies' motion segments (constant velocity and spin until the next tick), evaluated
+ *    exactly like every other motion, and every solver body is predicted again: any contact the
+ *    linearised solve misses (a rotating corner's arc) is still an exact event, so nothing
+ *    overlaps beyond the tolerance and nothing tunnels;
+ *  - fast contacts (closing faster than v_soft) stay exact impacts with restitution;
+ *  - a solver body with no contact for 3 ticks flies again (exact free flight);
+ *  - an island (solver bodies linked by contacts) sleeps only when all of its bodies have been
+ *    slower than v_sleep for t_sleep and a certificate exists: non-negative normal forces inside
+ *    the friction cone that balance every body's weight and torque (solver_certify), found by
+ *    projected Gauss-Seidel on the static problem and checked by summing the forces explicitly.
+ *    Otherwise it keeps moving: it tips, slides, rolls or falls.
+ *
+ * Energy: the semi-implicit step loses m |g|^2 h^2 / 2 per tick in flight; inelastic contact
+ * impulses and friction only remove energy; the one source is pushing an overlap (rounding,
+ * never beyond the tolerance) back out, at most m |g| tolerance per contact.
+ */
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "engine.h"
+
+#define DEFAULT_STEP (1.0 / 240.0) /* suggested */
+#define IDLE_TICKS 3          /* ticks with no contact before a body flies again */
+#define SLEEP_TIME 0.25       /* seconds slower than v_sleep before an island may sleep */
+#define CERT_RESIDUAL 1e-6    /* certificate: unbalanced force / weight (and torque / (weight rho)) */
+#define CERT_ITERATIONS 4000
+#define WORK_BUDGET 40000     /* PGS contact updates per tick (iterations = budget / contacts) */
+#define MIN_ITERATIONS 10
+#define MAX_ITERATIONS 400
+
+typedef struct {
+    int a, b;                 /* a: in the solve; b: in the solve too when free_b */
+    int free_b;
+    unsigned key;             /* feature key: warm starting matches (a, b, key) */
+    double n[2];              /* from a towards b */
+    double ra[2], rb[2];      /* arms from the reference points to the contact point */
+    double vb[2];             /* a fixed b's contact point velocity */
+    double gap;
+    double mn, mt;            /* effective masses along n and t */
+    double ln, lt;            /* accumulated impulses */
+    double bias;              /* the least relative normal velocity allowed */
+    double mu;
+} cp;
+
+struct solver {
+    double h, t_next;
+    int *list, n;             /* the solver bodies, in adoption order */
+    int *slot;                /* per body: its index in list, or -1 */
+    double *calm;             /* per body: time spent slower than v_sleep */
+    int *idle;                /* per body: ticks without a contact */
+    int *uf;                  /* per body: union-find parent (islands) */
+    int *mark;                /* per body: island membership (certificates) */
+    int *flag;                /* per body: 1 touches, 2 supported, 4 touches a mover */
+    double *v;                /* per body: vx, vy, w during a solve */
+    int bcap;
+    cp *c, *prev;
+    int nc, capc, nprev, capprev;
+    int *hash;                /* open addressing over prev: warm starting */
+    int hcap;
+};
+
+static double cross(const double a[2], const double b[2])
+{
+    return a[0] * b[1] - a[1] * b[0];
+}
+
+double solver_step(const m2c_world *w)
+{
+    double h = w->cfg.contact_step;
+    return h > 0 ? h : -1.0; /* opt-in until the pile storms are fixed (DEFAULT_STEP: 1/240) */
+}
+
+static double glen(const body *b)
+{
+    return hypot(b->gx, b->gy);
+}
+
+double solver_soft_speed(const m2c_world *w, const body *b)
+{
+    double g = glen(b), h = solver_step(w);
+    if (!(h > 0) || !(g > 0))
+        return -1.0;
+    double vr = rest_speed(w, g);
+    return fmax(vr, 2 * g * h);
+}
+
+static double sleep_speed(const m2c_world *w, const body *b)
+{
+    double g = glen(b);
+    return fmax(rest_speed(w, g), g * solver_step(w));
+}
+
+static int ensure(m2c_world *w)
+{
+    struct solver *s = w->solver;
+    if (!s) {
+        s = calloc(1, sizeof *s);
+        if (!s)
+            return -1;
+        s->t_next = INFINITY;
+        w->solver = s;
+    }
+    if (s->bcap < w->cap) {
+        int cap = w->cap;
+        int *list = realloc(s->list, sizeof(int) * (size_t)cap);
+        int *slot = realloc(s->slot, sizeof(int) * (size_t)cap);
+        double *calm = realloc(s->calm, sizeof(double) * (size_t)cap);
+        int *idle = realloc(s->idle, sizeof(int) * (size_t)cap);
+        int *uf = realloc(s->uf, sizeof(int) * (size_t)cap);
+        int *mark = realloc(s->mark, sizeof(int) * (size_t)cap);
+        int *flag = realloc(s->flag, sizeof(int) * (size_t)cap);
+        if (flag)
+            s->flag = flag;
+        double *v = realloc(s->v, sizeof(double) * 3 * (size_t)cap);
+        if (list)
+            s->list = list;
+        if (slot)
+            s->slot = slot;
+        if (calm)
+            s->calm = calm;
+        if (idle)
+            s->idle = idle;
+        if (uf)
+            s->uf = uf;
+        if (mark)
+            s->mark = mark;
+        if (v)
+            s->v = v;
+        if (!list || !slot || !calm || !idle || !uf || !mark || !flag || !v)
+            return -1;
+        for (int i = s->bcap; i < cap; i++) {
+            s->slot[i] = -1;
+            s->mark[i] = 0;
+            s->flag[i] = 0;
+        }
+        s->bcap = cap;
+    }
+    return 0;
+}
+
+void solver_free(m2c_world *w)
+{
+    struct solver *s = w->solver;
+    if (!s)
+        return;
+    free(s->list);
+    free(s->slot);
+    free(s->calm);
+    free(s->idle);
+    free(s->uf);
+    free(s->mark);
+    free(s->flag);
+    free(s->v);
+    free(s->c);
+    free(s->prev);
+    free(s->hash);
+    free(s);
+    w->solver = NULL;
+}
+
+double solver_next_tick(const m2c_world *w)
+{
+    const struct solver *s = w->solver;
+    return s && s->n > 0 ? s->t_next : INFINITY;
+}
+
+int solver_has(const m2c_world *w, int i)
+{
+    return w->b[i].kind == M2C_DYNAMIC && w->b[i].state == SOLVING;
+}
+
+/* Hand dynamic body k to the solver (from now on its gravity is applied at the ticks). */
+int solver_adopt(m2c_world *w, int k)
+{
+    body *K = &w->b[k];
+    if (K->kind != M2C_DYNAMIC || K->state == SOLVING || !(solver_step(w) > 0))
+        return 0;
+    if (ensure(w) != 0)
+        return 0;
+    struct solver *s = w->solver;
+    body_commit(K, w->now);
+    K->state = SOLVING;
+    K->m.ax = K->m.ay = 0.0;
+    K->support = -1;
+    K->rest_time = NAN;
+    K->burst = K->instant = 0;
+    K->elastic = 0;
+    K->counter++;
+    s->slot[k] = s->n;
+    s->list[s->n++] = k;
+    s->calm[k] = 0.0;
+    s->idle[k] = 0;
+    if (s->n == 1 || !(s->t_next > w->now)) {
+        double h = solver_step(w);
+        double t = ceil(w->now / h) * h;
+        s->t_next = t > w->now ? t : t + h;
+    }
+    return 1;
+}
+
+/* Back to exact prediction: gravity in the motion again. */
+static void release(m2c_world *w, int k)
+{
+    struct solver *s = w->solver;
+    body *K = &w->b[k];
+    int at = s->slot[k];
+    s->list[at] = s->list[--s->n];
+    s->slot[s->list[at]] = at;
+    s->slot[k] = -1;
+    body_commit(K, w->now);
+    K->state = AWAKE;
+    K->m.ax = K->gx;
+    K->m.ay = K->gy;
+    K->counter++;
+}
+
+/* -------------------------------------------------------------------------------------------
+ * Contacts: every vertex (with its rounding radius) against every edge and vertex of the other
+ * body, within `margin`, where the normal lies in the vertex's normal cone (else a box's side
+ * corner would "touch" the floor through the box).
+ */
+
+typedef struct {
+    m2c_world *w;
+    double margin_base;      /* added to every pair's speculative margin */
+    int only_members;        /* certificate: partners that are members (mark) or not dynamic */
+    int fail;                /* certificate: touched an awake dynamic non-member */
+} gen_ctx;
+
+static int push_contact(m2c_world *w, cp *c)
+{
+    struct solver *s = w->solver;
+    if (s->nc == s->capc) {
+        int cap = s->capc ? 2 * s->capc : 256;
+        cp *n = realloc(s->c, sizeof(cp) * (size_t)cap);
+        if (!n)
+            return -1;
+        s->c = n;
+        s->capc = cap;
+    }
+    s->c[s->nc++] = *c;
+    return 0;
+}
+
+/* Is direction d in the outward normal cone of vertex v of body B (at snapshot sn)? */
+static int in_cone(const m2c_world *w, const body *B, const snap *sn, int v, const double d[2])
+{
+    if (B->nvert == 1)
+        return 1;
+    double P[2];
+    world_point(sn, &w->verts[2 * (B->vert + v)], P);
+    int nb[2], cnt = 0;
+    if (B->nvert == 2) {
+        nb[cnt++] = 1 - v;
+    } else {
+        nb[cnt++] = (v + B->nvert - 1) % B->nvert;
+        nb[cnt++] = (v + 1) % B->nvert;
+    }
+    for (int k = 0; k < cnt; k++) {
+        double Q[2];
+        world_point(sn, &w->verts[2 * (B->vert + nb[k])], Q);
+        double e[2] = {P[0] - Q[0], P[1] - Q[1]};
+        if (d[0] * e[0] + d[1] * e[1] < -1e-6 * hypot(e[0], e[1]))
+            return 0;
+    }
+    return 1;
+}
+
+static void point_velocity(const snap *s, const double r[2], double out[2])
+{
+    out[0] = s->vx - s->w * r[1];
+    out[1] = s->vy + s->w * r[0];
+}
+
+/* One contact: point P of body `pa` (index i), normal n from i towards j, gap, contact point. */
+static void add_one(m2c_world *w, int i, int j, const double n[2], const double p[2], double gap,
+                    unsigned key)
+{
+    struct solver *s = w->solver;
+    const body *A = &w->b[i], *B = &w->b[j];
+    snap sa = motion_at(&A->m, w->now), sb = motion_at(&B->m, w->now);
+    cp c;
+    memset(&c, 0, sizeof c);
+    c.a = i;
+    c.b = j;
+    c.free_b = B->kind == M2C_DYNAMIC && B->state == SOLVING;
+    c.key = key;
+    c.n[0] = n[0];
+    c.n[1] = n[1];
+    c.ra[0] = p[0] - sa.x;
+    c.ra[1] = p[1] - sa.y;
+    c.rb[0] = p[0] - sb.x;
+    c.rb[1] = p[1] - sb.y;
+    if (!c.free_b) {
+        if (B->kind == M2C_DYNAMIC && B->state != ASLEEP && !body_still(B))
+            point_velocity(&sb, c.rb, c.vb);   /* an awake body outside: moves as it moves */
+        else if (B->kind == M2C_KINEMATIC)
+            point_velocity(&sb, c.rb, c.vb);
+    }
+    c.gap = gap;
+    double ima = A->inv_mass, iia = A->inv_inertia;
+    double imb = c.free_b ? B->inv_mass : 0.0, iib = c.free_b ? B->inv_inertia : 0.0;
+    double rna = cross(c.ra, c.n), rnb = cross(c.rb, c.n);
+    double t[2] = {-n[1], n[0]};
+    double rta = cross(c.ra, t), rtb = cross(c.rb, t);
+    double kn = ima + imb + iia * rna * rna + iib * rnb * rnb;
+    double kt = ima + imb + iia * rta * rta + iib * rtb * rtb;
+    c.mn = kn > 0 ? 1 / kn : 0.0;
+    c.mt = kt > 0 ? 1 / kt : 0.0;
+    c.mu = sqrt(A->friction * B->friction);
+    (void)s;
+    push_contact(w, &c);
+}
+
+/* Contacts between bodies i and j (both orders of vertex against edge; vertex against vertex). */
+static void gen_pair(m2c_world *w, int i, int j, double margin)
+{
+    const body *B[2] = {&w->b[i], &w->b[j]};
+    int id[2] = {i, j};
+    snap sn[2] = {motion_at(&B[0]->m, w->now), motion_at(&B[1]->m, w->now)};
+    double R = B[0]->radius + B[1]->radius;
+    /* quick reject on the bounding circles */
+    double dx = sn[1].x - sn[0].x, dy = sn[1].y - sn[0].y;
+    if (B[1]->kind == M2C_DYNAMIC && hypot(dx, dy) > B[0]->bound + B[1]->bound + margin)
+        return;
+    for (int side = 0; side < 2; side++) {
+        const body *P = B[side], *E = B[1 - side];
+        const snap *sp = &sn[side], *se = &sn[1 - side];
+        int nedges = E->nvert >= 3 ? E->nvert : E->nvert - 1;
+        for (int v = 0; v < P->nvert; v++) {
+            double X[2];
+            world_point(sp, &w->verts[2 * (P->vert + v)], X);
+            for (int u = 0; u < nedges; u++) {
+                double L[2], D[2];
+                const double *e = &w->edges[3 * (E->vert + u)];
+                world_point(se, &w->verts[2 * (E->vert + u)], L);
+                world_vector(se, e, D);
+                double rel[2] = {X[0] - L[0], X[1] - L[1]};
+                double along = rel[0] * D[0] + rel[1] * D[1];
+                if (along < 0 || along > e[2])
+                    continue;
+                double across = rel[0] * D[1] - rel[1] * D[0]; /* > 0: outside (anticlockwise) */
+                double sgn = 1.0;
+                if (E->nvert == 2) { /* a segment has two sides: the one the body's centre is on */
+                    double cc[2] = {sp->x - L[0], sp->y - L[1]};
+                    sgn = cc[0] * D[1] - cc[1] * D[0] >= 0 ? 1.0 : -1.0;
+                }
+                double gap = sgn * across - R;
+                if (gap > margin || gap < -R - 1e-3 * (P->bound + E->bound) - 1e-9)
+                    continue;
+                double out[2] = {sgn * D[1], -sgn * D[0]}; /* the edge's outward normal */
+                double d[2] = {-out[0], -out[1]};          /* from the vertex into the edge */
+                if (!in_cone(w, P, sp, v, d))
+                    continue;
+                double p[2] = {X[0] - out[0] * P->radius, X[1] - out[1] * P->radius};
+                /* normal from i towards j */
+                double n[2] = {side == 0 ? d[0] : out[0], side == 0 ? d[1] : out[1]};
+                unsigned key = (unsigned)(side << 30) | (unsigned)(v << 15) | (unsigned)u;
+                add_one(w, id[0], id[1], n, p, gap, key);
+            }
+        }
+    }
+    /* vertex against vertex: rounded corners and circles */
+    if (R > 0 || (B[0]->nvert == 1 || B[1]->nvert == 1)) {
+        for (int v = 0; v < B[0]->nvert; v++) {
+            double X[2];
+            world_point(&sn[0], &w->verts[2 * (B[0]->vert + v)], X);
+            for (int u = 0; u < B[1]->nvert; u++) {
+                double Y[2];
+                world_point(&sn[1], &w->verts[2 * (B[1]->vert + u)], Y);
+                double d[2] = {Y[0] - X[0], Y[1] - X[1]}, dist = hypot(d[0], d[1]);
+                if (!(dist > 0))
+                    continue;
+                double gap = dist - R;
+                if (gap > margin)
+                    continue;
+                double n[2] = {d[0] / dist, d[1] / dist}, m[2] = {-n[0], -n[1]};
+                if (!in_cone(w, B[0], &sn[0], v, n) || !in_cone(w, B[1], &sn[1], u, m))
+                    continue;
+                /* the edge features cover the interior of a cone's sides: skip when the normal
+                 * is an edge's normal (the vertex-edge contact is already there) */
+                int covered = 0;
+                for (int side = 0; side < 2 && !covered; side++) {
+                    const body *E = B[1 - side];
+                    if (E->nvert < 2)
+                        continue;
+                    int nedges = E->nvert >= 3 ? E->nvert : E->nvert - 1;
+                    const snap *se = &sn[1 - side];
+                    const double *vx = side == 0 ? X : Y;
+                    for (int k = 0; k < nedges && !covered; k++) {
+                        double L[2], D[2];
+                        const double *e = &w->edges[3 * (E->vert + k)];
+                        world_point(se, &w->verts[2 * (E->vert + k)], L);
+                        world_vector(se, e, D);
+                        double along = (vx[0] - L[0]) * D[0] + (vx[1] - L[1]) * D[1];
+                        if (along >= 0 && along <= e[2])
+                            covered = 1;
+                    }
+                }
+                if (covered)
+                    continue;
+                double p[2] = {X[0] + n[0] * B[0]->radius, X[1] + n[1] * B[0]->radius};
+                unsigned key = (3u << 30) | (unsigned)(v << 15) | (unsigned)u;
+                add_one(w, i, j, n, p, gap, key);
+            }
+        }
+    }
+}
+
+static double body_speed(const body *b, const double *v)
+{
+    return hypot(v[0], v[1]) + fabs(v[2]) * b->rho;
+}
+
+static void gen_visit(m2c_world *w, int i, int j, void *ctx)
+{
+    gen_ctx *g = ctx;
+    struct solver *s = w->solver;
+    const body *J = &w->b[j];
+    if (J->kind == M2C_DYNAMIC && J->state == SOLVING && j < i && !g->only_members)
+        return; /* the pair is generated from j's side */
+    if (g->only_members && s->mark[j] && j < i)
+        return;
+    if (J->group >= 0 && J->group == w->b[i].group)
+        return;
+    double margin = g->margin_base;
+    if (!g->only_members && J->kind == M2C_DYNAMIC && J->state != SOLVING && J->state != ASLEEP)
+        return; /* a body in flight: its contacts are exact events (slow ones bring it in) */
+    if (!g->only_members) {
+        const body *I = &w->b[i];
+        double vj[3] = {0, 0, 0};
+        if (J->kind != M2C_STATIC && !(J->kind == M2C_DYNAMIC && J->state == ASLEEP)) {
+            snap sj = motion_at(&J->m, w->now);
+            vj[0] = sj.vx;
+            vj[1] = sj.vy;
+            vj[2] = sj.w;
+            if (J->state == SOLVING) {
+                vj[0] = s->v[3 * j];
+                vj[1] = s->v[3 * j + 1];
+                vj[2] = s->v[3 * j + 2];
+            }
+        }
+        margin += s->h * (body_speed(I, &s->v[3 * i]) + body_speed(J, vj));
+    } else if (J->kind == M2C_DYNAMIC && !s->mark[j] && J->state != ASLEEP) {
+        /* a moving body outside the island touches it: no certificate unless it is apart */
+        int before = w->solver->nc;
+        gen_pair(w, i, j, margin);
+        if (w->solver->nc > before) {
+            g->fail = 1;
+            w->solver->nc = before;
+        }
+        return;
+    }
+    gen_pair(w, i, j, margin);
+}
+
+/* -------------------------------------------------------------------------------------------
+ * Projected Gauss-Seidel. v: per body (vx, vy, w); contacts' impulses ln, lt accumulate.
+ */
+
+static void apply(struct solver *s, const m2c_world *w, const cp *c, double Pn, double Pt)
+{
+    double t[2] = {-c->n[1], c->n[0]};
+    double P[2] = {Pn * c->n[0] + Pt * t[0], Pn * c->n[1] + Pt * t[1]};
+    const body *A = &w->b[c->a];
+    double *va = &s->v[3 * c->a];
+    va[0] -= P[0] * A->inv_mass;
+    va[1] -= P[1] * A->inv_mass;
+    va[2] -= cross(c->ra, P) * A->inv_inertia;
+    if (c->free_b) {
+        const body *B = &w->b[c->b];
+        double *vb = &s->v[3 * c->b];
+        vb[0] += P[0] * B->inv_mass;
+        vb[1] += P[1] * B->inv_mass;
+        vb[2] += cross(c->rb, P) * B->inv_inertia;
+    }
+}
+
+static void rel_velocity(const struct solver *s, const cp *c, double out[2])
+{
+    const double *va = &s->v[3 * c->a];
+    double ua[2] = {va[0] - va[2] * c->ra[1], va[1] + va[2] * c->ra[0]};
+    double ub[2] = {c->vb[0], c->vb[1]};
+    if (c->free_b) {
+        const double *vb = &s->v[3 * c->b];
+        ub[0] = vb[0] - vb[2] * c->rb[1];
+        ub[1] = vb[1] + vb[2] * c->rb[0];
+    }
+    out[0] = ub[0] - ua[0];
+    out[1] = ub[1] - ua[1];
+}
+
+/* One sweep; returns the largest impulse change. */
+static double sweep(struct solver *s, const m2c_world *w, cp *c, int nc, int friction)
+{
+    double worst = 0.0;
+    for (int k = 0; k < nc; k++) {
+        cp *q = &c[k];
+        double u[2];
+        if (friction && q->mu > 0) {
+            rel_velocity(s, q, u);
+            double t[2] = {-q->n[1], q->n[0]};
+            double vt = u[0] * t[0] + u[1] * t[1];
+            double lim = q->mu * q->ln;
+            double nl = q->lt - vt * q->mt;
+            nl = nl > lim ? lim : nl < -lim ? -lim : nl;
+            double d = nl - q->lt;
+            if (d != 0.0) {
+                q->lt = nl;
+                apply(s, w, q, 0.0, d);
+                worst = fmax(worst, fabs(d));
+            }
+        }
+        rel_velocity(s, q, u);
+        double vn = u[0] * q->n[0] + u[1] * q->n[1];
+        double nl = q->ln + (q->bias - vn) * q->mn;
+        if (nl < 0)
+            nl = 0;
+        double d = nl - q->ln;
+        if (d != 0.0) {
+            q->ln = nl;
+            apply(s, w, q, d, 0.0);
+            worst = fmax(worst, fabs(d));
+        }
+    }
+    return worst;
+}
+
+/* Iterate until the largest impulse change is below eps or `limit` sweeps. */
+static int pgs(struct solver *s, const m2c_world *w, cp *c, int nc, int limit, double eps)
+{
+    int it;
+    for (it = 0; it < limit; it++)
+        if (sweep(s, w, c, nc, 1) <= eps)
+            break;
+    return it;
+}
+
+/* -------------------------------------------------------------------------------------------
+ * Warm starting: last tick's impulses of the same (a, b, feature).
+ */
+
+static unsigned hash3(int a, int b, unsigned key)
+{
+    unsigned h = (unsigned)a * 2654435761u ^ (unsigned)b * 40503u ^ key * 2246822519u;
+    return h ^ (h >> 15);
+}
+
+static void remember(struct solver *s)
+{
+    cp *t = s->prev;
+    int cap = s->capprev;
+    s->prev = s->c;
+    s->capprev = s->capc;
+    s->nprev = s->nc;
+    s->c = t;
+    s->capc = cap;
+    s->nc = 0;
+    int want = 16;
+    while (want < 2 * s->nprev)
+        want *= 2;
+    if (want > s->hcap) {
+        int *h = realloc(s->hash, sizeof(int) * (size_t)want);
+        if (!h) {
+            s->nprev = 0;
+            return;
+        }
+        s->hash = h;
+        s->hcap = want;
+    }
+    for (int k = 0; k < s->hcap; k++)
+        s->hash[k] = -1;
+    for (int k = 0; k < s->nprev; k++) {
+        const cp *q = &s->prev[k];
+        unsigned h = hash3(q->a, q->b, q->key) & (unsigned)(s->hcap - 1);
+        while (s->hash[h] >= 0)
+            h = (h + 1) & (unsigned)(s->hcap - 1);
+        s->hash[h] = k;
+    }
+}
+
+static const cp *recall(const struct solver *s, const cp *c)
+{
+    if (s->nprev == 0 || s->hcap == 0)
+        return NULL;
+    unsigned h = hash3(c->a, c->b, c->key) & (unsigned)(s->hcap - 1);
+    while (s->hash[h] >= 0) {
+        const cp *q = &s->prev[s->hash[h]];
+        if (q->a == c->a && q->b == c->b && q->key == c->key)
+            return q;
+        h = (h + 1) & (unsigned)(s->hcap - 1);
+    }
+    return NULL;
+}
+
+/* -------------------------------------------------------------------------------------------
+ * Islands and the sleep certificate.
+ */
+
+static int find(int *uf, int x)
+{
+    while (uf[x] != x) {
+        uf[x] = uf[uf[x]];
+        x = uf[x];
+    }
+    return x;
+}
+
+/* The worst unbalanced force (relative to the weight) and torque (relative to weight x rho)
+ * of the marked bodies under the contact forces c[].ln, c[].lt (forces: the static problem is
+ * solved with h = 1). */
+static double residual(m2c_world *w, const cp *c, int nc, const int *bodies, int nb)
+{
+    struct solver *s = w->solver;
+    for (int m = 0; m < nb; m++) {
+        int i = bodies[m];
+        const body *B = &w->b[i];
+        s->v[3 * i] = B->mass * B->gx;
+        s->v[3 * i + 1] = B->mass * B->gy;
+        s->v[3 * i + 2] = 0.0;
+    }
+    for (int k = 0; k < nc; k++) {
+        const cp *q = &c[k];
+        double t[2] = {-q->n[1], q->n[0]};
+        double F[2] = {q->ln * q->n[0] + q->lt * t[0], q->ln * q->n[1] + q->lt * t[1]};
+        double *fa = &s->v[3 * q->a];
+        fa[0] -= F[0];
+        fa[1] -= F[1];
+        fa[2] -= cross(q->ra, F);
+        if (q->free_b) {
+            double *fb = &s->v[3 * q->b];
+            fb[0] += F[0];
+            fb[1] += F[1];
+            fb[2] += cross(q->rb, F);
+        }
+    }
+    double worst = 0.0;
+    for (int m = 0; m < nb; m++) {
+        int i = bodies[m];
+        const body *B = &w->b[i];
+        double wt = B->mass * glen(B);
+        double r = fmax(hypot(s->v[3 * i], s->v[3 * i + 1]) / wt,
+                        fabs(s->v[3 * i + 2]) / (wt * fmax(B->rho, B->bound)));
+        worst = fmax(worst, r);
+    }
+    return worst;
+}
+
+/* A certificate for the bodies[0..nb) (all dynamic, with gravity): non-negative normal forces
+ * inside the friction cones of their contacts (gap within cert_gap, against each other and
+ * against static or asleep bodies) balancing every body's weight and torque. Returns the worst
+ * relative residual (<= CERT_RESIDUAL: certified), INFINITY when a moving body touches them. */
+static double certify(m2c_world *w, const int *bodies, int nb)
+{
+    struct solver *s = w->solver;
+    int keep_nc = s->nc;      /* the tick's contacts stay below: work above them */
+    for (int m = 0; m < nb; m++)
+        s->mark[bodies[m]] = 1;
+    double gap = 1e3 * w->cfg.tolerance;
+    gen_ctx g = {w, gap, 1, 0};
+    for (int m = 0; m < nb; m++)
+        grid_neighbours(w, bodies[m], gen_visit, &g);
+    cp *c = s->c + keep_nc;
+    int nc = s->nc - keep_nc;
+    double result = INFINITY;
+    if (!g.fail) {
+        for (int k = 0; k < nc; k++) {
+            c[k].free_b = w->b[c[k].b].kind == M2C_DYNAMIC && s->mark[c[k].b];
+            c[k].ln = c[k].lt = 0.0;
+            c[k].bias = 0.0;
+            c[k].vb[0] = c[k].vb[1] = 0.0;
+            /* recompute the effective masses for this body set */
+            const body *A = &w->b[c[k].a], *B = &w->b[c[k].b];
+            double imb = c[k].free_b ? B->inv_mass : 0.0, iib = c[k].free_b ? B->inv_inertia : 0.0;
+            double t[2] = {-c[k].n[1], c[k].n[0]};
+            double rna = cross(c[k].ra, c[k].n), rnb = cross(c[k].rb, c[k].n);
+            double rta = cross(c[k].ra, t), rtb = cross(c[k].rb, t);
+            double kn = A->inv_mass + imb + A->inv_inertia * rna * rna + iib * rnb * rnb;
+            double kt = A->inv_mass + imb + A->inv_inertia * rta * rta + iib * rtb * rtb;
+            c[k].mn = kn > 0 ? 1 / kn : 0;
+            c[k].mt = kt > 0 ? 1 / kt : 0;
+        }
+        for (int it = 0; it < CERT_ITERATIONS; it += 20) {
+            for (int m = 0; m < nb; m++) {  /* the static problem: "velocity" = M^-1 force */
+                int i = bodies[m];
+                s->v[3 * i] = w->b[i].gx;
+                s->v[3 * i + 1] = w->b[i].gy;
+                s->v[3 * i + 2] = 0.0;
+            }
+            for (int k = 0; k < nc; k++)
+                apply(s, w, &c[k], c[k].ln, c[k].lt);
+            for (int r = 0; r < 20; r++)
+                sweep(s, w, c, nc, 1);
+            result = residual(w, c, nc, bodies, nb);
+            if (result <= CERT_RESIDUAL)
+                break;
+        }
+    }
+    s->nc = keep_nc;
+    for (int m = 0; m < nb; m++)
+        s->mark[bodies[m]] = 0;
+    return result;
+}
+
+/* The certificate of body i's sleeping island (the asleep bodies touching it, transitively),
+ * or of its solver island: the residual (see certify); -1 for a body that is neither. */
+int m2c_world_certificate(m2c_world *w, int i, double *res)
+{
+    if (i < 0 || i >= w->n || w->b[i].kind != M2C_DYNAMIC || w->b[i].state != ASLEEP)
+        return -1;
+    if (ensure(w) != 0)
+        return -1;
+    struct solver *s = w->solver;
+    int keep = s->nc;
+    /* flood the asleep island */
+    int top = 0, nb = 0;
+    int *members = w->members;
+    w->stack[top++] = i;
+    s->mark[i] = 2;
+    double gap = 1e3 * w->cfg.tolerance;
+    while (top > 0) {
+        int k = w->stack[--top];
+        members[nb++] = k;
+        int before = s->nc;
+        gen_ctx g = {w, gap, 0, 0};
+        (void)g;
+        /* neighbours within the certificate's gap */
+        const grid *gr = &w->g;
+        int cx = w->b[k].cx, cy = w->b[k].cy;
+        for (int y = cy - 1; y <= cy + 1; y++)
+            for (int x = cx - 1; x <= cx + 1; x++) {
+                if (x < 0 || y < 0 || x >= gr->nx || y >= gr->ny)
+                    continue;
+                for (int j = gr->head[y * gr->nx + x]; j >= 0; j = w->b[j].next) {
+                    if (j == k || s->mark[j] || w->b[j].state != ASLEEP)
+                        continue;
+                    int b0 = s->nc;
+                    gen_pair(w, k, j, gap);
+                    if (s->nc > b0) {
+                        s->mark[j] = 2;
+                        w->stack[top++] = j;
+                    }
+                    s->nc = b0;
+                }
+            }
+        s->nc = before;
+    }
+    for (int m = 0; m < nb; m++)
+        s->mark[members[m]] = 0;
+    s->nc = keep;
+    double r = certify(w, members, nb);
+    if (res)
+        *res = r;
+    return r <= CERT_RESIDUAL ? 1 : 0;
+}
+
+/* -------------------------------------------------------------------------------------------
+ * The tick.
+ */
+
+static void island_sleep(m2c_world *w, int root, const int *bodies, int nb)
+{
+    (void)root;
+    for (int m = 0; m < nb; m++) {
+        int k = bodies[m];
+        struct solver *s = w->solver;
+        int at = s->slot[k];
+        s->list[at] = s->list[--s->n];
+        s->slot[s->list[at]] = at;
+        s->slot[k] = -1;
+        m2c_event e = {w->now, M2C_EVENT_REST, k, -1, 0, 0, 0, 0, 0, 0};
+        world_emit(w, &e);
+        w->b[k].state = AWAKE;
+        fall_asleep(w, k);
+        w->b[k].m.ax = w->b[k].m.ay = 0.0;
+    }
+}
+
+void solver_tick(m2c_world *w)
+{
+    struct solver *s = w->solver;
+    double h = solver_step(w);
+    s->h = h;
+    w->st.solver_ticks++;
+    /* gravity, then the contacts' impulses */
+    for (int m = 0; m < s->n; m++) {
+        int i = s->list[m];
+        body *B = &w->b[i];
+        body_commit(B, w->now);
+        s->v[3 * i] = B->m.vx + B->gx * h;
+        s->v[3 * i + 1] = B->m.vy + B->gy * h;
+        s->v[3 * i + 2] = B->m.w;
+    }
+    remember(s);
+    double slop = 10 * w->cfg.tolerance;
+    gen_ctx g = {w, 4 * slop, 0, 0};
+    int n0 = s->n;
+    for (int m = 0; m < n0; m++)
+        grid_neighbours(w, s->list[m], gen_visit, &g);
+    double scale = 0.0;
+    for (int k = 0; k < s->nc; k++) {
+        cp *q = &s->c[k];
+        q->bias = q->gap > slop ? -(q->gap - slop) / h : q->gap < 0 ? -q->gap / h : 0.0;
+        const cp *p = recall(s, q);
+        if (p) {
+            q->ln = p->ln;
+            q->lt = fmax(-q->mu * q->ln, fmin(q->mu * q->ln, p->lt));
+            apply(s, w, q, q->ln, q->lt);
+        }
+        scale = fmax(scale, w->b[q->a].mass * glen(&w->b[q->a]) * h);
+    }
+    int limit = s->nc > 0 ? WORK_BUDGET / s->nc : 0;
+    limit = limit < MIN_ITERATIONS ? MIN_ITERATIONS : limit > MAX_ITERATIONS ? MAX_ITERATIONS : limit;
+    w->st.solver_iterations += pgs(s, w, s->c, s->nc, limit, 1e-12 * scale);
+    /* islands; which bodies touch anything */
+    for (int m = 0; m < s->n; m++) {
+        int i = s->list[m];
+        s->uf[i] = i;
+        s->flag[i] = 0;   /* bit 1: touches; bit 2: supported; bit 4: touches a mover */
+    }
+    for (int k = 0; k < s->nc; k++) {
+        const cp *q = &s->c[k];
+        s->flag[q->a] |= 1;
+        if (q->free_b) {
+            s->flag[q->b] |= 1;
+            int ra = find(s->uf, q->a), rb = find(s->uf, q->b);
+            if (ra != rb)
+                s->uf[ra < rb ? rb : ra] = ra < rb ? ra : rb;
+        } else {
+            const body *B = &w->b[q->b];
+            int moving = B->kind == M2C_KINEMATIC ? (B->m.vx != 0 || B->m.vy != 0 || B->m.w != 0)
+                                                  : (B->kind == M2C_DYNAMIC && B->state != ASLEEP);
+            if (q->gap <= 1e3 * w->cfg.tolerance)
+                s->flag[q->a] |= moving ? 4 : 2;
+        }
+    }
+    /* motion segments from the solved velocities */
+    int released = 0;
+    for (int m = 0; m < s->n; m++) {
+        int i = s->list[m];
+        body *B = &w->b[i];
+        B->m.vx = s->v[3 * i];
+        B->m.vy = s->v[3 * i + 1];
+        B->m.w = s->v[3 * i + 2];
+        B->m.ax = B->m.ay = 0.0;
+        B->counter++;
+        s->idle[i] = (s->flag[i] & 1) ? 0 : s->idle[i] + 1;
+        double sp = body_speed(B, &s->v[3 * i]);
+        s->calm[i] = sp <= sleep_speed(w, B) ? s->calm[i] + h : 0.0;
+    }
+    for (int m = 0; m < s->n;) {
+        int i = s->list[m];
+        if (s->idle[i] >= IDLE_TICKS) {
+            release(w, i);
+            w->woken[released++] = i;
+            continue;
+        }
+        m++;
+    }
+    /* sleep: per island (root = its smallest id), every body calm long enough, supported,
+     * nothing moving against it, and a certificate */
+    int *members = w->members;
+    for (int m = 0; m < s->n; m++) {
+        int i = s->list[m];
+        int r = find(s->uf, i);
+        s->uf[i] = r;
+    }
+    for (int m = 0; m < s->n; m++) {
+        int root = s->list[m];
+        if (s->uf[root] != root)
+            continue;
+        /* gather this island (order of the list: deterministic) */
+        int nb = 0, ok = 1, supported = 0;
+        for (int q = 0; q < s->n; q++) {
+            int k = s->list[q];
+            if (s->uf[k] != root)
+                continue;
+            members[nb++] = k;
+            if (s->calm[k] < SLEEP_TIME || (s->flag[k] & 4))
+                ok = 0;
+            if (s->flag[k] & 2)
+                supported = 1;
+        }
+        if (!ok || !supported)
+            continue;
+        double r = certify(w, members, nb);
+        if (r <= CERT_RESIDUAL) {
+            w->st.certificates++;
+            island_sleep(w, root, members, nb);
+            m = -1; /* the list changed: start over (islands already asleep are gone) */
+        } else {
+            for (int q = 0; q < nb; q++)
+                s->calm[members[q]] = 0.5 * SLEEP_TIME; /* try again a little later */
+        }
+    }
+    for (int m = 0; m < s->n; m++)
+        world_predict(w, s->list[m]);
+    for (int k = 0; k < released; k++)
+        world_predict(w, w->woken[k]);
+    s->t_next = s->n > 0 ? w->now + h : INFINITY;
+    if (s->n > 0) { /* on the grid of multiples of h (deterministic, whatever the adoption) */
+        double t = round(w->now / h) * h + h;
+        s->t_next = t > w->now ? t : w->now + h;
+    }
+}
+
+/* The second time derivative of the event's gap function now (the bodies' accelerations and
+ * the centripetal and Coriolis terms of their spins; the tangential term of point-point
+ * contacts, which only helps them part, left out). A soft contact whose gap curves down
+ * (a spinning corner sweeping into an edge) parts at -accel h / 2 (response.c), else it would
+ * be found again at the same instant for ever. */
+double solver_gap_accel(const m2c_world *w, int i, int j, const event *ev)
+{
+    const body *A = &w->b[i], *B = &w->b[j];
+    snap a = motion_at(&A->m, w->now), b = motion_at(&B->m, w->now);
+    if (ev->feature == F_PP) {
+        double P[2], Q[2], rp[2], rq[2];
+        world_vector(&a, &w->verts[2 * (A->vert + ev->fa)], rp);
+        world_vector(&b, &w->verts[2 * (B->vert + ev->fb)], rq);
+        P[0] = a.x + rp[0];
+        P[1] = a.y + rp[1];
+        Q[0] = b.x + rq[0];
+        Q[1] = b.y + rq[1];
+        double d[2] = {Q[0] - P[0], Q[1] - P[1]}, len = hypot(d[0], d[1]);
+        if (!(len > 0))
+            return 0.0;
+        double aP[2] = {a.ax - a.w * a.w * rp[0], a.ay - a.w * a.w * rp[1]};
+        double aQ[2] = {b.ax - b.w * b.w * rq[0], b.ay - b.w * b.w * rq[1]};
+        return ((aQ[0] - aP[0]) * d[0] + (aQ[1] - aP[1]) * d[1]) / len;
+    }
+    /* a vertex of V against an edge of E: gap = (P - L) . m, m the edge's normal towards P */
+    const body *V = ev->feature == F_PL ? A : B, *E = ev->feature == F_PL ? B : A;
+    const snap *sv = ev->feature == F_PL ? &a : &b, *se = ev->feature == F_PL ? &b : &a;
+    int vert = ev->feature == F_PL ? ev->fa : ev->fb, edge = ev->feature == F_PL ? ev->fb : ev->fa;
+    double rp[2], rl[2], D[2];
+    world_vector(sv, &w->verts[2 * (V->vert + vert)], rp);
+    world_vector(se, &w->verts[2 * (E->vert + edge)], rl);
+    world_vector(se, &w->edges[3 * (E->vert + edge)], D);
+    double m[2] = {ev->side * D[1], -ev->side * D[0]};
+    double dm[2] = {-se->w * m[1], se->w * m[0]};
+    double vP[2] = {sv->vx - sv->w * rp[1], sv->vy + sv->w * rp[0]};
+    double vL[2] = {se->vx - se->w * rl[1], se->vy + se->w * rl[0]};
+    double aP[2] = {sv->ax - sv->w * sv->w * rp[0], sv->ay - sv->w * sv->w * rp[1]};
+    double aL[2] = {se->ax - se->w * se->w * rl[0], se->ay - se->w * se->w * rl[1]};
+    double PL[2] = {sv->x + rp[0] - se->x - rl[0], sv->y + rp[1] - se->y - rl[1]};
+    return (aP[0] - aL[0]) * m[0] + (aP[1] - aL[1]) * m[1]
+           + 2 * ((vP[0] - vL[0]) * dm[0] + (vP[1] - vL[1]) * dm[1])
+           - se->w * se->w * (PL[0] * m[0] + PL[1] * m[1]);
+}
+
+/* After a soft contact of solver body k: pairwise impulses between contacts at a small angle
+ * (a ball wedged between a floor and a corner just above it) converge only geometrically, at
+ * one instant; after WEDGE_INSTANT of them in a row the body stops (the motion it loses is
+ * lost to the wedge; energy only falls) and the next tick's solve takes over. */
+#define WEDGE_INSTANT 16
+void solver_wedged(m2c_world *w, int k)
+{
+    body *K = &w->b[k];
+    K->instant = w->now - K->last_contact <= 64 * DBL_EPSILON * (1 + fabs(w->now)) ? K->instant + 1 : 0;
+    K->last_contact = w->now;
+    if (K->instant < WEDGE_INSTANT)
+        return;
+    body_commit(K, w->now);
+    K->m.vx = K->m.vy = K->m.w = 0.0;
+    K->instant = 0;
+    K->counter++;
+}
+
+/* -------------------------------------------------------------------------------------------
+ * A soft contact between ticks: every touching contact of the two bodies is solved at once
+ * (no gravity: an instant), so that a box landing flat does not bounce between its two corners
+ * at one instant; then the event's own pair parts at least at -accel h / 2.
+ */
+
+typedef struct {
+    int i, j;
+    double margin;
+} local_ctx;
+
+static void local_visit(m2c_world *w, int k, int j, void *ctx)
+{
+    local_ctx *l = ctx;
+    if (k == l->j && j == l->i)
+        return; /* the pair is generated from i's side */
+    const body *J = &w->b[j];
+    if (J->group >= 0 && J->group == w->b[k].group)
+        return;
+    if (J->kind == M2C_DYNAMIC && J->state != SOLVING && J->state != ASLEEP && j != l->i && j != l->j)
+        return; /* a body in flight: exact events */
+    gen_pair(w, k, j, l->margin);
+}
+
+static void set_partner(m2c_world *w, cp *c, int free_b)
+{
+    const body *A = &w->b[c->a], *B = &w->b[c->b];
+    c->free_b = free_b;
+    c->vb[0] = c->vb[1] = 0.0;
+    if (!free_b && B->kind != M2C_STATIC && B->state != ASLEEP) {
+        snap sb = motion_at(&B->m, w->now);
+        point_velocity(&sb, c->rb, c->vb);
+    }
+    double imb = free_b ? B->inv_mass : 0.0, iib = free_b ? B->inv_inertia : 0.0;
+    double t[2] = {-c->n[1], c->n[0]};
+    double rna = cross(c->ra, c->n), rnb = cross(c->rb, c->n);
+    double rta = cross(c->ra, t), rtb = cross(c->rb, t);
+    double kn = A->inv_mass + imb + A->inv_inertia * rna * rna + iib * rnb * rnb;
+    double kt = A->inv_mass + imb + A->inv_inertia * rta * rta + iib * rtb * rtb;
+    c->mn = kn > 0 ? 1 / kn : 0.0;
+    c->mt = kt > 0 ? 1 / kt : 0.0;
+}
+
+int solver_soft_response(m2c_world *w, int i, int j, const event *ev, double closing, m2c_event *out)
+{
+    if (ensure(w) != 0)
+        return -1;
+    struct solver *s = w->solver;
+    s->h = solver_step(w);
+    int ids[2] = {i, j}, nid = w->b[j].kind == M2C_DYNAMIC ? 2 : 1;
+    for (int m = 0; m < nid; m++) {
+        body *B = &w->b[ids[m]];
+        body_commit(B, w->now);
+        s->v[3 * ids[m]] = B->m.vx;
+        s->v[3 * ids[m] + 1] = B->m.vy;
+        s->v[3 * ids[m] + 2] = B->m.w;
+    }
+    int keep = s->nc;
+    local_ctx l = {i, j, 4 * 10 * w->cfg.tolerance};
+    for (int m = 0; m < nid; m++)
+        grid_neighbours(w, ids[m], local_visit, &l);
+    cp *c = s->c + keep;
+    int nc = s->nc - keep;
+    for (int k = 0; k < nc; k++) {
+        int b = c[k].b;
+        set_partner(w, &c[k], w->b[b].kind == M2C_DYNAMIC && (b == i || b == j));
+        c[k].ln = c[k].lt = 0.0;
+        c[k].bias = 0.0;
+    }
+    pgs(s, w, c, nc, MAX_ITERATIONS, 0.0);
+    double before[6];
+    for (int m = 0; m < nid; m++)
+        memcpy(&before[3 * m], &s->v[3 * ids[m]], sizeof(double) * 3);
+    s->nc = keep;
+    /* the event's pair */
+    double n[2], p[2];
+    contact_geometry(w, i, j, ev, n, p);
+    body *A = &w->b[i], *B = &w->b[j];
+    int fb = B->kind == M2C_DYNAMIC;
+    cp q;
+    memset(&q, 0, sizeof q);
+    q.a = i;
+    q.b = j;
+    q.n[0] = n[0];
+    q.n[1] = n[1];
+    snap sa = motion_at(&A->m, w->now), sb = motion_at(&B->m, w->now);
+    q.ra[0] = p[0] - sa.x;
+    q.ra[1] = p[1] - sa.y;
+    q.rb[0] = p[0] - sb.x;
+    q.rb[1] = p[1] - sb.y;
+    set_partner(w, &q, fb);
+    double u[2];
+    rel_velocity(s, &q, u);
+    double sep = u[0] * n[0] + u[1] * n[1];
+    for (int m = 0; m < nid; m++) { /* the new motion (gravity stays out: the ticks add it) */
+        body *K = &w->b[ids[m]];
+        K->m.vx = s->v[3 * ids[m]];
+        K->m.vy = s->v[3 * ids[m] + 1];
+        K->m.w = s->v[3 * ids[m] + 2];
+    }
+    double acc = solver_gap_accel(w, i, j, ev);
+    double want = acc < 0 ? -0.5 * acc * s->h : 0.0;
+    double J = 0.0;
+    if (sep < want && q.mn > 0) {
+        J = (want - sep) * q.mn;
+        apply(s, w, &q, J, 0.0);
+        for (int m = 0; m < nid; m++) {
+            body *K = &w->b[ids[m]];
+            K->m.vx = s->v[3 * ids[m]];
+            K->m.vy = s->v[3 * ids[m] + 1];
+            K->m.w = s->v[3 * ids[m] + 2];
+        }
+    }
+    /* the impulse reported: the change of the pair's normal momentum at a's side */
+    double dv = (A->m.vx - sa.vx) * n[0] + (A->m.vy - sa.vy) * n[1];
+    *out = (m2c_event){w->now, M2C_EVENT_COLLISION, i, j, n[0], n[1], p[0], p[1], closing,
+                       -dv * A->mass};
+    (void)before;
+    return 0;
+}
