@@ -32,6 +32,7 @@
  * never beyond the tolerance) back out, at most m |g| tolerance per contact.
  */
 #include <float.h>
+#include <stdint.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -183,6 +184,11 @@ double solver_next_tick(const m2c_world *w)
     return s && s->n > 0 ? s->t_next : INFINITY;
 }
 
+int solver_count(const m2c_world *w)
+{
+    return w->solver ? w->solver->n : 0;
+}
+
 int solver_has(const m2c_world *w, int i)
 {
     return w->b[i].kind == M2C_DYNAMIC && w->b[i].state == SOLVING;
@@ -231,6 +237,72 @@ static void release(m2c_world *w, int k)
     K->m.ax = K->gx;
     K->m.ay = K->gy;
     K->counter++;
+}
+
+/* Body k leaves the solver (an edit: removed, kind or motion changed): exact flight again. */
+static int push_contact(m2c_world *w, cp *c);
+
+void solver_forget(m2c_world *w, int k)
+{
+    if (w->solver && k >= 0 && k < w->n && w->solver->slot[k] >= 0)
+        release(w, k);
+}
+
+/* -------------------------------------------------------------------------------------------
+ * Snapshots (snapshot.c): the solver's lasting state -- its step, next tick, bodies with their
+ * calm times and idle ticks, and the last tick's contacts with their impulses (warm starting)
+ * -- so that a loaded world ticks exactly as the saved one would. The rest is scratch.
+ */
+
+void solver_save(const m2c_world *w, void (*put)(void *, const void *, size_t), void *ctx)
+{
+    const struct solver *s = w->solver;
+    int32_t counts[2] = {s ? s->n : 0, s ? s->nc : 0};
+    put(ctx, counts, sizeof counts);
+    if (!s)
+        return;
+    put(ctx, &s->h, sizeof s->h);
+    put(ctx, &s->t_next, sizeof s->t_next);
+    put(ctx, s->list, sizeof(int) * (size_t)s->n);
+    for (int m = 0; m < s->n; m++) {
+        put(ctx, &s->calm[s->list[m]], sizeof(double));
+        put(ctx, &s->idle[s->list[m]], sizeof(int));
+    }
+    put(ctx, s->c, sizeof(cp) * (size_t)s->nc);
+}
+
+int solver_load(m2c_world *w, int (*get)(void *, void *, size_t), void *ctx)
+{
+    int32_t counts[2];
+    w->solver = NULL;
+    if (get(ctx, counts, sizeof counts) != 0 || counts[0] < 0 || counts[0] > w->n || counts[1] < 0)
+        return -1;
+    if (counts[0] == 0 && counts[1] == 0)
+        return 0;
+    if (ensure(w) != 0)
+        return -1;
+    struct solver *s = w->solver;
+    if (get(ctx, &s->h, sizeof s->h) != 0 || get(ctx, &s->t_next, sizeof s->t_next) != 0)
+        return -1;
+    for (int m = 0; m < counts[0]; m++) {
+        int k;
+        if (get(ctx, &k, sizeof k) != 0 || k < 0 || k >= w->n || s->slot[k] >= 0
+            || !solver_has(w, k))
+            return -1;
+        s->slot[k] = m;
+        s->list[s->n++] = k;
+    }
+    for (int m = 0; m < s->n; m++)
+        if (get(ctx, &s->calm[s->list[m]], sizeof(double)) != 0
+            || get(ctx, &s->idle[s->list[m]], sizeof(int)) != 0)
+            return -1;
+    for (int k = 0; k < counts[1]; k++) {
+        cp c;
+        if (get(ctx, &c, sizeof c) != 0 || c.a < 0 || c.a >= w->n || c.b < 0 || c.b >= w->n
+            || push_contact(w, &c) != 0)
+            return -1;
+    }
+    return 0;
 }
 
 /* -------------------------------------------------------------------------------------------

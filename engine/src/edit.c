@@ -106,6 +106,7 @@ static void changed(m2c_world *w, int i)
 /* Commit the body at now and wake what it holds: before any edit of a body's motion. */
 static void begin_edit(m2c_world *w, int i)
 {
+    solver_forget(w, i); /* an edited body flies again; its next slow contact hands it back */
     wake_around(w, i);
     body *b = &w->b[i];
     if (b->kind == M2C_DYNAMIC) {

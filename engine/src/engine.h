@@ -12,6 +12,7 @@
 #ifndef M2C_ENGINE_INTERNAL_H
 #define M2C_ENGINE_INTERNAL_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "max2code_engine.h"
@@ -210,9 +211,13 @@ double solver_step(const m2c_world *w);                 /* h; < 0: off */
 double solver_soft_speed(const m2c_world *w, const body *b);  /* slower contacts join */
 int solver_adopt(m2c_world *w, int k);                  /* 1 when k joined */
 int solver_has(const m2c_world *w, int i);
+int solver_count(const m2c_world *w);                   /* bodies in it */
 double solver_next_tick(const m2c_world *w);            /* INFINITY when no body is in it */
 void solver_tick(m2c_world *w);
 void solver_free(m2c_world *w);
+void solver_forget(m2c_world *w, int k);                /* k flies again (an edit) */
+void solver_save(const m2c_world *w, void (*put)(void *, const void *, size_t), void *ctx);
+int solver_load(m2c_world *w, int (*get)(void *, void *, size_t), void *ctx);  /* 0 or -1 */
 void solver_wedged(m2c_world *w, int k);
 int solver_soft_response(m2c_world *w, int i, int j, const event *ev, double closing, m2c_event *out);
 double solver_gap_accel(const m2c_world *w, int i, int j, const event *ev);

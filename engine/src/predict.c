@@ -120,7 +120,39 @@ typedef struct {
     int ghost;              /* the pair passes through (a veto, a sensor): touching or
                                overlapping now is no contact, only a new crossing is */
     double rx, ry;          /* A's reference point minus B's, at the snapshots' time */
+    double solver_h;        /* a pair the contact solver holds: the time to its next tick
+                               (touching now is its business while the gap stays within the
+                               tolerance until then); else 0 */
 } feat;
+
+/* A pair in sustained contact (contact_solver.c): one side in the solver, the other in it
+ * too or held (static, kinematic, asleep). Its touching contacts are solved at the ticks;
+ * an event for them now would be a rounding-level burst at one instant. */
+static double solver_window(const m2c_world *w, const body *A, const body *B)
+{
+    int sa = A->kind == M2C_DYNAMIC && A->state == SOLVING;
+    int sb = B->kind == M2C_DYNAMIC && B->state == SOLVING;
+    if (!sa && !sb)
+        return 0.0;
+    const body *O = sa ? B : A;
+    if (O->kind == M2C_DYNAMIC && O->state != SOLVING && O->state != ASLEEP)
+        return 0.0;
+    double H = solver_next_tick(w) - w->now;
+    return H > 0 && H < INFINITY ? H : 0.0;
+}
+
+/* Does the gap polynomial c (time from now) stay above -tolp on [0, H]? (A lower bound: the
+ * constant term plus every negative term at its largest.) */
+static int stays_within(const double c[], int n, double H, double tolp)
+{
+    double low = c[0], hk = 1.0;
+    for (int k = 1; k <= n; k++) {
+        hk *= H;
+        if (c[k] < 0)
+            low += c[k] * hk;
+    }
+    return low >= -tolp;
+}
 
 /* A's reference point minus B's at time t, from their own reference states: the difference of
  * the reference positions first (exact when they are close), then the small motions -- never
@@ -273,6 +305,8 @@ static int first_contact(feat *f, double c[MAXC], int n, double tmax, double tol
         c[0] = 0.0; /* on the line, belonging to the other side: only later roots count */
     } else if (c[0] <= tolp) {
         if (c[0] >= -tolp || f->kind == F_PP) {   /* touching (or overlapping: Bannerman) */
+            if (f->solver_h > 0 && c[0] >= -tolp && stays_within(c, n, f->solver_h, tolp))
+                return 0; /* the solver's next tick comes first (solver_window) */
             if (n >= 1 && c[1] < -vthr && !shallow_dip(c, n, tolp) && on_edge(f, 0.0)) {
                 *tau = 0.0;
                 *rate = -c[1];
@@ -603,6 +637,9 @@ static int solve_rotating(feat *f, double tmax, double tolp, double vthr, double
             mode = g1 < 0 ? INSIDE : ABOVE;
             after_root = 1;
         } else if (!after_root && fabs(g0) <= tolp) {
+            if (at_start && f->solver_h > 0 && f->solver_h <= h
+                && stays_within(ca, deg, f->solver_h, tolp))
+                return 0; /* the solver's next tick comes first (solver_window) */
             if (g1 < -vthr) { /* touching and approaching: a contact now, if on the edge */
                 if (on_edge(f, t0)) {
                     *tau = t0;
@@ -878,6 +915,7 @@ int predict_pair(m2c_world *w, int i, int j, contact *c)
     f.no_touch = 0;
     f.ghost = w->nghosts > 0 && ghost_find(w, i, j) >= 0;
     f.dir[0] = f.dir[1] = f.len = 0.0;
+    f.solver_h = solver_window(w, A, B);
     /* the cheapest test first: can the bounding circles about the reference points meet before
      * the current best at all? (1-norm bounds of the relative speed and acceleration; a wall's
      * circle is too large to tell anything) */

@@ -6,6 +6,7 @@
  * The format is this build's memory layout behind a header of sizes: a snapshot is read back
  * by the same library build (anything else is refused, as is any count or index out of range).
  * The pre-solve callback is not saved (give it again). */
+#include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -13,7 +14,7 @@
 #include "engine.h"
 
 #define MAGIC 0x4d324357u /* "M2CW" */
-#define VERSION 1u
+#define VERSION 2u /* 2: the contact solver's state */
 
 typedef struct {
     uint32_t magic, version, body_size, event_size, timer_size, world_size;
@@ -30,6 +31,11 @@ static void put(writer *w, const void *src, size_t size)
     if (w->p && w->used + size <= w->cap)
         memcpy(w->p + w->used, src, size);
     w->used += size;
+}
+
+static void put_any(void *ctx, const void *src, size_t size)
+{
+    put(ctx, src, size);
 }
 
 static int ncells(const m2c_world *w)
@@ -60,6 +66,7 @@ long long m2c_world_save(const m2c_world *w, void *buf, long long capacity)
         put(&out, w->g.fixed_start, sizeof(int) * (size_t)(nc + 1));
         put(&out, w->g.fixed, sizeof(int) * (size_t)h.nfixed);
     }
+    solver_save(w, put_any, &out);
     return (long long)out.used;
 }
 
@@ -79,6 +86,27 @@ static void *take(reader *r, size_t size)
         r->at += size;
     }
     return dst;
+}
+
+/* The next `size` bytes into dst: 0, or -1 when short. */
+static int get_into(void *ctx, void *dst, size_t size)
+{
+    reader *r = ctx;
+    if (size > r->size - r->at)
+        return -1;
+    memcpy(dst, r->p + r->at, size);
+    r->at += size;
+    return 0;
+}
+
+/* Every body the contact solver moves is in its list, and no other. */
+static int solver_consistent(const m2c_world *w)
+{
+    int solving = 0;
+    for (int i = 0; i < w->n; i++)
+        solving += w->b[i].kind == M2C_DYNAMIC && w->b[i].state == SOLVING;
+    return solving == 0 || (w->solver && solver_next_tick(w) < INFINITY
+                            && solving == solver_count(w));
 }
 
 static int in_range(int v, int lo, int hi) /* lo <= v < hi */
@@ -154,6 +182,7 @@ m2c_world *m2c_world_load(const void *buf, long long size)
     w->pending = NULL;
     w->out = NULL;
     w->g.head = w->g.fixed_start = w->g.fixed = NULL;
+    w->solver = NULL; /* (loaded below, after the bodies) */
     w->presolve = NULL;
     w->presolve_user = NULL;
     w->in_presolve = 0;
@@ -206,7 +235,8 @@ m2c_world *m2c_world_load(const void *buf, long long size)
     w->stack = arrays[2];
     w->woken = arrays[3];
     w->members = arrays[4];
-    if (!ok || r.at != r.size || !consistent(w, &h)) {
+    ok = ok && solver_load(w, get_into, &r) == 0;
+    if (!ok || r.at != r.size || !consistent(w, &h) || !solver_consistent(w)) {
         m2c_world_free(w);
         return NULL;
     }
