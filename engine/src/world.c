@@ -34,6 +34,8 @@ m2c_world *m2c_world_new(const m2c_config *config)
         w->cfg = *config;
     if (!(w->cfg.tolerance > 0) || !isfinite(w->cfg.tolerance))
         w->cfg.tolerance = 1e-9;
+    if (!(w->cfg.contact_step > 0) || !isfinite(w->cfg.contact_step))
+        w->cfg.contact_step = 0.0; /* the contact solver off (negative, NaN or infinite) */
     w->broken = predict_check_generated(w) != 0; /* reported by every call that needs it */
     return w;
 }

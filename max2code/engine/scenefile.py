@@ -13,6 +13,8 @@
     collapse_time = 0.0              # the collapse rules' t_c; 0: automatic (1e-3 s); < 0: off
     max_events = 0                   # a step processing more fails (0: no limit): the whole run
                                      # without pictures, one frame with them
+    contact_step = 0.0               # the sustained-contact solver's step h (e.g. 1/240 s);
+                                     # 0: off (docs/engine-contact.md)
 
     [[bodies]]
     name = "ball"                    # optional, unique; default body<N>
@@ -57,7 +59,7 @@ from .located import Located, TextError, parse_json, parse_toml
 from .shapes import mass_properties
 
 TOP_KEYS = {"name", "gravity", "tolerance", "until", "fps", "view", "engine", "bodies", "comment"}
-ENGINE_KEYS = {"cell_size", "rest_speed", "collapse_time", "max_events"}
+ENGINE_KEYS = {"cell_size", "rest_speed", "collapse_time", "max_events", "contact_step"}
 BODY_KEYS = {"name", "kind", "shape", "position", "radius", "offset", "points", "vertices", "size",
              "angle", "velocity", "omega", "gravity", "mass", "density", "inertia",
              "restitution", "friction", "group", "color", "comment"}
@@ -102,6 +104,7 @@ class Scene:
     rest_speed: float = 0.0
     collapse_time: float = 0.0
     max_events: int = 0
+    contact_step: float = 0.0        # the contact solver's h; 0: off (docs/engine-contact.md)
     path: str = ""
     places: tuple[str, ...] = ()     # each body's `file:line:col`, for the engine's refusals
 
@@ -608,6 +611,7 @@ def check(doc: Located, shown: str, stem: str = "scene") -> Scene:
         c.error(("engine", "max_events"), f"expected a whole number of events from 0 to "
                 f"{MAX_EVENTS_LIMIT}, got {max_events:g}")
         max_events = 0.0
+    contact_step = c.number(eng, "contact_step", ("engine",), 0.0, nonneg=True)
     bodies: list[tuple[int, BodySpec]] = []
     names: set[str] = set()
     for k, raw in enumerate(c.bodies(data)):
@@ -620,7 +624,8 @@ def check(doc: Located, shown: str, stem: str = "scene") -> Scene:
         raise SceneError(c.diagnostics())
     places = tuple("{}:{}:{}".format(shown, *doc.where(("bodies", k))) for k, _ in bodies)
     return Scene(name, tuple(b for _, b in bodies), gravity, tolerance, until, fps, view,
-                 cell_size, rest_speed, collapse_time, int(max_events), shown, places)
+                 cell_size, rest_speed, collapse_time, int(max_events), contact_step, shown,
+                 places)
 
 
 def build_world(scene: Scene):
@@ -630,7 +635,7 @@ def build_world(scene: Scene):
 
     w = World(gravity=scene.gravity, tolerance=scene.tolerance, cell_size=scene.cell_size,
               rest_speed=scene.rest_speed, collapse_time=scene.collapse_time,
-              max_events=scene.max_events)
+              max_events=scene.max_events, contact_step=scene.contact_step)
     for k, b in enumerate(scene.bodies):
         try:
             w.add_body(b.vertices, radius=b.radius, kind=b.kind, position=b.position,

@@ -93,6 +93,9 @@ class World:
     def __init__(self, *, gravity: Vec = (0.0, 0.0), tolerance: float = 1e-9,
                  cell_size: float = 0.0, rest_speed: float = 0.0, collapse_time: float = 0.0,
                  max_events: int = 0, contact_step: float = 0.0) -> None:
+        if not (isinstance(contact_step, (int, float)) and 0 <= contact_step < math.inf):
+            raise EngineError(f"contact_step is a step in seconds (> 0; 0: the contact solver "
+                              f"off), not {contact_step!r}")
         self._ffi, self._lib = load()
         cfg = self._ffi.new("m2c_config *")
         cfg.tolerance = tolerance

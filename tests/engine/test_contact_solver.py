@@ -1,0 +1,332 @@
+"""The sustained-contact solver (issue 34, docs/engine-contact.md) against closed-form physics
+and an independent statics check (force_oracle.py), never against the engine's own output.
+
+Without the solver (contact_step = 0, the default) the engine freezes each of these: the tilted
+box balanced on its corner, the sliding box where it lands, the box on the slope where it was
+put -- the rest rule decides there. With it the box tips flat, slides v0^2 / (2 mu g) and
+stops, and accelerates at g (sin - mu cos) down the slope; a body sleeps only when contact
+forces that hold it exist."""
+
+from __future__ import annotations
+
+import copy
+import math
+import pickle
+import random
+
+import pytest
+from hypothesis import given, settings, strategies as st
+
+from .force_oracle import Shape, balance, contacts, sleeping_residual
+from .scenes import assert_apart
+
+G = 9.81
+H = 1 / 240          # the solver's step in these tests
+CERTIFIED = 1e-6     # the oracle's residual (force / weight) below which forces hold a body
+
+
+def _floor(w, mu: float, e: float, half: float = 50.0) -> int:
+    return w.add_segment((-half, 0.0), (half, 0.0), friction=mu, restitution=e)
+
+
+def _box(w, width: float, height: float, **kw) -> int:
+    a, b = width / 2, height / 2
+    return w.add_polygon([(-a, -b), (a, -b), (a, b), (-a, b)], **kw)
+
+
+def _lowest(half: float, angle: float) -> float:
+    """How far the lowest corner of a square (half side) turned by `angle` lies below its centre."""
+    c, s = math.cos(angle), math.sin(angle)
+    return max(-(x * s + y * c) for x in (-half, half) for y in (-half, half))
+
+
+# -- the oracle itself, on cases whose answer is known -----------------------------------------
+
+def _square(cx: float, cy: float, half: float, angle: float, mu: float) -> Shape:
+    c, s = math.cos(angle), math.sin(angle)
+    pts = tuple((cx + c * x - s * y, cy + s * x + c * y)
+                for x, y in ((-half, -half), (half, -half), (half, half), (-half, half)))
+    return Shape(pts, 0.0, (cx, cy), 1.0, mu, False)
+
+
+FLOOR = Shape(((-5.0, 0.0), (5.0, 0.0)), 0.0, (0.0, 0.0), math.inf, 0.5, True)
+
+
+def test_oracle_holds_a_flat_box_and_not_one_on_its_corner() -> None:
+    """Flat: two corner forces of m g / 2 balance it. On a corner at 0.6 rad the weight's arm
+    about the corner is 0.25 (cos 0.6 - sin 0.6) ~ 0.065 m: no force at the corner cancels that
+    torque, whatever the friction."""
+    flat = [FLOOR, _square(0.0, 0.25, 0.25, 0.0, 0.5)]
+    assert balance(flat, contacts(flat, 1e-6), (0.0, -G)) < 1e-12
+    tilted = [FLOOR, _square(0.0, _lowest(0.25, 0.6), 0.25, 0.6, 0.5)]
+    assert len(contacts(tilted, 1e-6)) == 1
+    assert balance(tilted, contacts(tilted, 1e-6), (0.0, -G)) > 0.1
+
+
+def test_oracle_ball_on_ball_offset_sideways_is_not_held() -> None:
+    """The issue's pile.toml at 3 s: a ball asleep on another, 0.0165 to the side. Frictionless,
+    the one contact force points along the centres' line, not up: no balance."""
+    low = Shape(((0.0, 0.1),), 0.1, (0.0, 0.1), 1.0, 0.0, True)
+    dx = 0.0165
+    top = Shape(((dx, 0.1 + math.sqrt(0.04 - dx * dx)),), 0.1,
+                (dx, 0.1 + math.sqrt(0.04 - dx * dx)), 1.0, 0.0, False)
+    found = contacts([low, top], 1e-9)
+    assert len(found) == 1
+    assert balance([low, top], found, (0.0, -G)) > 0.05
+
+
+# -- a box dropped on its corner tips flat ------------------------------------------------------
+
+@pytest.mark.parametrize("angle", [0.2, 0.6, 1.2])
+@pytest.mark.parametrize("e", [0.0, 0.5])
+@pytest.mark.parametrize("mu", [0.0, 0.5])
+def test_tilted_box_ends_flat_and_certified(engine, angle: float, e: float, mu: float) -> None:
+    """A 0.5 m box turned `angle`, its lowest corner 1 cm above the floor. Its centre of mass
+    lies beyond the supporting corner (any angle not a multiple of pi/2), so it must turn to the
+    nearer flat side: 0 for 0.2 and 0.6 rad, pi/2 for 1.2 rad (pymunk: 0.019 rad, Box2D 0.0013)."""
+    w = engine.World(gravity=(0.0, -G), contact_step=H)
+    _floor(w, mu, e)
+    b = _box(w, 0.5, 0.5, position=(0.0, _lowest(0.25, angle) + 0.01), angle=angle,
+             restitution=e, friction=mu)
+    w.step_to(5.0, events=False)
+    x, y, th = w.pose(b)
+    flat = round(angle / (math.pi / 2)) * math.pi / 2
+    assert abs(th - flat) < 0.02
+    assert y == pytest.approx(0.25, abs=1e-6)            # lying on a side, not a corner
+    assert w.asleep(b)
+    assert sleeping_residual(w) < CERTIFIED
+    if mu == 0.0:
+        assert abs(x) < 1e-9       # no horizontal force at all: the centre falls straight down
+    assert_apart(w)
+
+
+# -- sliding on a floor --------------------------------------------------------------------------
+
+def _sliding(engine, mu: float, v0: float = 2.0, drop: float = 1e-6):
+    """A 0.4 x 0.2 box landing flat (from `drop` above the floor) moving sideways at v0."""
+    w = engine.World(gravity=(0.0, -G), contact_step=H)
+    _floor(w, mu, 0.0)
+    b = _box(w, 0.4, 0.2, position=(0.0, 0.1 + drop), velocity=(v0, 0.0), restitution=0.0,
+             friction=mu)
+    return w, b, math.sqrt(2 * drop / G)
+
+
+@pytest.mark.parametrize("mu", [0.3, 0.5])
+def test_sliding_box_stops_after_the_coulomb_distance(engine, mu: float) -> None:
+    """Kinetic friction mu m g decelerates it at mu g: it stops after v0 / (mu g) s, having slid
+    v0^2 / (2 mu g) m (0.680 m for mu = 0.3), and then it stays."""
+    v0 = 2.0
+    w, b, landing = _sliding(engine, mu, v0)
+    t_stop = v0 / (mu * G)
+    stopped = None
+    t = 0.0
+    while t < t_stop + 0.5:
+        t += H / 2
+        w.step_to(t, events=False)
+        if stopped is None and w.velocity(b)[0] <= 1e-12:
+            stopped = t
+    x, y, th = w.pose(b)
+    assert x - v0 * landing == pytest.approx(v0 * v0 / (2 * mu * G), rel=0.02)
+    assert stopped - landing == pytest.approx(t_stop, rel=0.02)
+    assert abs(th) < 1e-9 and y == pytest.approx(0.1, abs=1e-6)
+    w.step_to(t_stop + 2.0, events=False)
+    assert w.pose(b)[0] == x and w.asleep(b)
+    assert sleeping_residual(w) < CERTIFIED
+
+
+def test_frictionless_box_keeps_its_speed(engine) -> None:
+    """mu = 0: nothing acts along the floor, the box slides on at 2 m/s (the rest rule had
+    stopped it dead where it landed)."""
+    w, b, landing = _sliding(engine, 0.0)
+    w.step_to(3.0, events=False)
+    x, y, th = w.pose(b)
+    assert w.velocity(b)[0] == pytest.approx(2.0, rel=1e-12)
+    assert x == pytest.approx(2.0 * 3.0, rel=1e-9)
+    assert y == pytest.approx(0.1, abs=1e-6) and abs(th) < 1e-9
+    assert not w.asleep(b)
+
+
+# -- a slope -------------------------------------------------------------------------------------
+
+def _on_slope(engine, k: float, theta: float = 0.3):
+    """A 0.4 x 0.2 box at rest on a theta slope (descending towards +x), mu = k tan(theta)."""
+    mu = k * math.tan(theta)
+    w = engine.World(gravity=(0.0, -G), contact_step=H)
+    c, s = math.cos(theta), math.sin(theta)
+    w.add_segment((-20 * c, 20 * s), (20 * c, -20 * s), friction=mu, restitution=0.0)
+    start = (s * (0.1 + 1e-6), c * (0.1 + 1e-6))
+    b = _box(w, 0.4, 0.2, position=start, angle=-theta, restitution=0.0, friction=mu)
+    return w, b, start, mu
+
+
+@pytest.mark.parametrize("k", [0.0, 0.8, 0.95])
+def test_box_slides_down_a_slope_at_the_coulomb_acceleration(engine, k: float) -> None:
+    """tan(theta) > mu: it slides, a = g (sin theta - mu cos theta): s = a t^2 / 2 along it."""
+    theta = 0.3
+    w, b, start, mu = _on_slope(engine, k, theta)
+    a = G * (math.sin(theta) - mu * math.cos(theta))
+    for t in (0.5, 1.0):
+        w.step_to(t, events=False)
+        x, y, th = w.pose(b)
+        along = (x - start[0]) * math.cos(theta) - (y - start[1]) * math.sin(theta)
+        assert along == pytest.approx(a * t * t / 2, rel=0.03)
+        assert th == pytest.approx(-theta, abs=1e-9)      # it slides, it does not tip
+    assert not w.asleep(b)
+
+
+@pytest.mark.parametrize("k", [1.05, 1.2])
+def test_box_sticks_on_a_slope_when_friction_holds(engine, k: float) -> None:
+    """tan(theta) <= mu: static friction holds it where it was put, asleep with forces that
+    the oracle finds inside the cone."""
+    w, b, start, mu = _on_slope(engine, k)
+    w.step_to(1.0, events=False)
+    assert math.dist(w.pose(b)[:2], start) < 1e-5
+    assert w.asleep(b)
+    assert sleeping_residual(w) < CERTIFIED
+
+
+# -- stacks --------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("mu", [0.0, 0.5])
+def test_column_of_ten_boxes_stands(engine, mu: float) -> None:
+    """Ten 0.5 m boxes, 1e-6 m apart: they settle onto each other (1e-5 m in all), sleep
+    certified, and then do not move at all for 10 s."""
+    w = engine.World(gravity=(0.0, -G), contact_step=H)
+    _floor(w, mu, 0.0, half=5.0)
+    boxes = [_box(w, 0.5, 0.5, position=(0.0, 0.25 + k * (0.5 + 1e-6) + 1e-6), restitution=0.0,
+                  friction=mu) for k in range(10)]
+    w.step_to(1.0, events=False)
+    settled = [w.pose(b) for b in boxes]
+    assert all(w.asleep(b) for b in boxes)
+    for k, (x, y, th) in enumerate(settled):
+        assert abs(x) < 1e-6 and abs(th) < 1e-6
+        assert y == pytest.approx(0.25 + 0.5 * k, abs=2e-5)
+    assert sleeping_residual(w) < CERTIFIED
+    w.step_to(11.0, events=False)
+    assert [w.pose(b) for b in boxes] == settled
+
+
+def test_pyramid_of_ten_boxes_stands(engine) -> None:
+    """Rows of 4, 3, 2 and 1 boxes, each row centred on the one below (0.02 m between boxes of a
+    row): every box rests on two below (or the floor), sleeps certified and stays."""
+    w = engine.World(gravity=(0.0, -G), contact_step=H)
+    _floor(w, 0.5, 0.0, half=5.0)
+    boxes = []
+    for row in range(4):
+        for k in range(4 - row):
+            x = (k - (3 - row) / 2) * 0.52
+            boxes.append(_box(w, 0.5, 0.5, position=(x, 0.25 + row * (0.5 + 1e-6) + 1e-6),
+                              restitution=0.0, friction=0.5))
+    start = [w.pose(b) for b in boxes]
+    w.step_to(2.0, events=False)
+    assert all(w.asleep(b) for b in boxes)
+    assert max(math.dist(p[:2], q[:2]) for p, q in zip(start, map(w.pose, boxes))) < 1e-5
+    assert sleeping_residual(w) < CERTIFIED
+    assert_apart(w)
+
+
+def test_removing_the_support_wakes_what_it_held(engine) -> None:
+    """A certified sleeper stays certified only while its support is there: remove the bottom
+    box of a column of three and the two above fall (free fall: g t^2 / 2 before they land)."""
+    w = engine.World(gravity=(0.0, -G), contact_step=H)
+    _floor(w, 0.5, 0.0, half=5.0)
+    boxes = [_box(w, 0.5, 0.5, position=(0.0, 0.25 + k * (0.5 + 1e-6) + 1e-6), restitution=0.0,
+                  friction=0.5) for k in range(3)]
+    w.step_to(1.0, events=False)
+    assert all(w.asleep(b) for b in boxes)
+    y0 = w.pose(boxes[1])[1]
+    w.remove(boxes[0])
+    w.step_to(1.2, events=False)
+    assert w.pose(boxes[1])[1] == pytest.approx(y0 - G * 0.2 ** 2 / 2, rel=1e-9)
+    w.step_to(3.0, events=False)
+    assert w.pose(boxes[1])[1] == pytest.approx(0.25, abs=1e-5)
+    assert sleeping_residual(w) < CERTIFIED
+
+
+# -- piles: every sleeper certified by the oracle --------------------------------------------------
+
+def _pile(engine, seed: int, n: int, mu: float, e: float):
+    rng = random.Random(seed)
+    w = engine.World(gravity=(0.0, -G), contact_step=H)
+    for a, b in (((-1.5, 0), (1.5, 0)), ((-1.5, 0), (-1.5, 4)), ((1.5, 0), (1.5, 4))):
+        w.add_segment(a, b, friction=mu, restitution=e)
+    centres: list[tuple[float, float]] = []
+    while len(centres) < n:
+        x, y = rng.uniform(-1.2, 1.2), rng.uniform(0.3, 3.5)
+        if all(math.hypot(x - a, y - b) > 0.45 for a, b in centres):
+            centres.append((x, y))
+    for k, (x, y) in enumerate(centres):
+        if k % 2:
+            _box(w, 0.3, 0.2, position=(x, y), angle=rng.uniform(0, 3), restitution=e, friction=mu)
+        else:
+            w.add_circle((x, y), rng.uniform(0.1, 0.2), restitution=e, friction=mu)
+    return w
+
+
+@settings(max_examples=10, deadline=None)
+@given(seed=st.integers(0, 10_000), n=st.integers(2, 8), mu=st.sampled_from([0.0, 0.5]),
+       e=st.sampled_from([0.0, 0.5]))
+def test_every_sleeper_of_a_pile_is_held(engine, seed: int, n: int, mu: float, e: float) -> None:
+    """Discs and boxes dropped into a bin settle for 5 s: whatever sleeps, the oracle finds
+    non-negative forces inside the friction cones that hold it (the rest rule alone left discs
+    asleep on nothing), and nothing overlaps beyond the tolerance."""
+    w = _pile(engine, seed, n, mu, e)
+    w.step_to(5.0, events=False)
+    assert sleeping_residual(w) < CERTIFIED
+    for b in w.bodies:
+        if b.kind == "dynamic" and w.asleep(b.id):
+            found, residual = w.certificate(b.id)
+            assert found and residual < CERTIFIED
+    assert_apart(w)
+
+
+# -- snapshots and scene files ---------------------------------------------------------------------
+
+def test_snapshot_in_sustained_contact_reproduces_the_future(engine) -> None:
+    """Pickled or copied while the box pivots on its corner (the solver holds it), the world goes
+    on with the same events, bit for bit (the solver's bodies and warm-start impulses are saved)."""
+    w = engine.World(gravity=(0.0, -G), contact_step=H)
+    _floor(w, 0.5, 0.0)
+    b = _box(w, 0.5, 0.5, position=(0.0, _lowest(0.25, 0.6) + 0.01), angle=0.6, restitution=0.0,
+             friction=0.5)
+    w.step_to(0.2)
+    assert w.solving(b)
+    copied, pickled = copy.deepcopy(w), pickle.loads(pickle.dumps(w))
+    future = w.step_to(3.0)
+    assert len(future) > 10
+    assert copied.step_to(3.0) == future
+    assert pickled.step_to(3.0) == future
+
+
+def test_scene_file_turns_the_solver_on(engine, tmp_path) -> None:
+    from max2code.engine.scenefile import SceneError, build_world, load
+
+    text = """gravity = [0.0, -9.81]
+[engine]
+contact_step = %s
+[[bodies]]
+shape = "segment"
+kind = "static"
+points = [[-5, 0], [5, 0]]
+[[bodies]]
+shape = "box"
+size = [0.5, 0.5]
+position = [0.0, %r]
+angle = 0.6
+restitution = 0.0
+"""
+    good = tmp_path / "tip.toml"
+    good.write_text(text % ("0.004166666666666667", _lowest(0.25, 0.6) + 0.01))
+    w = build_world(load(good))
+    w.step_to(3.0, events=False)
+    assert abs(w.pose(1)[2]) < 0.02 and w.asleep(1)
+    bad = tmp_path / "bad.toml"
+    bad.write_text(text % ("-1.0", 1.0))
+    with pytest.raises(SceneError, match=r"bad\.toml:3:\d+: error: engine\.contact_step: must not be negative"):
+        load(bad)
+
+
+@pytest.mark.parametrize("step", [-1.0, math.inf, math.nan])
+def test_world_refuses_a_bad_step(engine, step: float) -> None:
+    with pytest.raises(engine.EngineError, match="contact_step"):
+        engine.World(contact_step=step)
