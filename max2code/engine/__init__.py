@@ -46,7 +46,9 @@ b, contact point, closing speed, impulse) come back from `step_to` in time order
 the callbacks at their time (`step_to(t, events=False)` makes no Event objects: cheaper when
 nothing reads them). Equal times are ordered by body id: the same world gives the same
 events, bit for bit. World(rest_speed=, collapse_time=) tune the rest rule (README): 0 is
-automatic, a negative value turns the rules off.
+automatic, a negative value turns the rules off. World(contact_step=h) turns on the
+sustained-contact solver (docs/engine-contact.md): boxes tip, slide with Coulomb friction and
+stack; `solving(b)` and `certificate(b)` (an asleep body's force check) report on it.
 
 Games (docs/game-api.md): `remove(b)`, `set_pose`, `set_velocity` (kinematic bodies too),
 `set_acceleration`, `set_kind` (fix/unfix), `set_mass`, `apply_impulse`, `cancel_timer`;
