@@ -1,12 +1,13 @@
-"""`max2code serve SCENE`: the scene's world, authoritative on this machine, played from browsers.
+"""`max2code serve SCENE_OR_GAME`: a scene's world (or a PGE game's), authoritative on this machine, played from browsers.
 
     max2code serve examples/scenes/arena.toml            # then open http://127.0.0.1:8036/
-    max2code serve SCENE [--host 127.0.0.1] [--port 8036] [--player NAME ...] [--rooms N] [--speed V] [--tolerance EPS]
+    max2code serve SCENE_OR_GAME [--host 127.0.0.1] [--port 8036] [--player NAME ...] [--rooms N] [--speed V] [--tolerance EPS]
 
 Each browser that joins a room (the page's ?room=NAME, default "main") gets the world and then
 only events (docs/server.md). A joining client controls the first player body nobody else
 controls: --player names them (default: the scene's bodies named player...); the others watch.
-The server binds to loopback unless --host says otherwise.
+The server binds to loopback unless --host says otherwise. A GAME.py is a PGE program
+(server/pgegame.py): its objects are the bodies, its handlers get the keys.
 """
 
 from __future__ import annotations
@@ -17,9 +18,38 @@ import signal
 import sys
 
 
+def _game(path: str, player: list[str]):
+    """A PGE program: run once here to check it builds (its error as GAME.py:line:col and exit
+    1 if not), then again for each room. Players: --player names its objects (box-3,
+    circle-31), default its dynamic ones; their keys go to the game's handlers."""
+    import os
+
+    from .engine.scenefile import Scene
+    from .pge.command import _game_error
+    from .server.pgegame import UNIT_VIEW, GameWorld, load as load_game
+
+    if not os.path.isfile(path):
+        print(f"{path}:1:1: error: no such game file", file=sys.stderr)
+        return 1
+    try:
+        first = GameWorld(load_game(path))
+    except Exception as exc:   # the game's own failure, located in its file
+        print(_game_error(path, exc), file=sys.stderr)
+        return 1
+    names = {b.name: b.id for b in first.bodies}
+    wanted = player or [b.name for b in first.bodies if b.kind == "dynamic"]
+    bad = [n for n in wanted if n not in names]
+    if bad:
+        print(f"{path}: error: --player {bad[0]!r}: no object of that name", file=sys.stderr)
+        return 1
+    scene = Scene(name=os.path.basename(path), bodies=(), view=UNIT_VIEW)
+    return scene, tuple(names[n] for n in wanted), lambda: GameWorld(load_game(path)), wanted
+
+
 def main(argv: list[str]) -> int:
     ap = argparse.ArgumentParser(prog="max2code serve", description=__doc__.split("\n\n")[0])
-    ap.add_argument("scene", metavar="SCENE", help="a scene file (.toml or .json)")
+    ap.add_argument("scene", metavar="SCENE_OR_GAME",
+                    help="a scene file (.toml or .json), or a PGE program (GAME.py)")
     ap.add_argument("--host", default="127.0.0.1",
                     help="address to listen on (default 127.0.0.1: this machine only)")
     ap.add_argument("--port", type=int, default=8036, help="TCP port (default 8036; 0: any free)")
@@ -43,21 +73,29 @@ def main(argv: list[str]) -> int:
     from .engine.scenefile import SceneError, load
     from .server.app import Options, run
 
-    try:
-        scene = load(args.scene)
-    except SceneError as exc:
-        for d in exc.diagnostics:
-            print(d, file=sys.stderr)
-        return 1
-    names = {b.name: i for i, b in enumerate(scene.bodies)}
-    wanted = args.player or [b.name for b in scene.bodies
-                             if b.name.startswith("player") and b.kind == "dynamic"]
-    bad = [n for n in wanted if n not in names or scene.bodies[names[n]].kind != "dynamic"]
-    if bad:
-        print(f"{args.scene}: error: --player {bad[0]!r}: no dynamic body of that name", file=sys.stderr)
-        return 1
-    options = Options(scene, tuple(names[n] for n in wanted), max_rooms=args.rooms, speed=args.speed,
-                      tolerance=None if args.tolerance == -1 else (args.tolerance or 0.0))
+    tolerance = None if args.tolerance == -1 else (args.tolerance or 0.0)
+    if args.scene.endswith(".py"):   # a PGE program (docs/server.md, "Serving a PGE game")
+        made = _game(args.scene, args.player)
+        if isinstance(made, int):
+            return made
+        scene, players, make, wanted = made
+        options = Options(scene, players, max_rooms=args.rooms, tolerance=tolerance, world=make)
+    else:
+        try:
+            scene = load(args.scene)
+        except SceneError as exc:
+            for d in exc.diagnostics:
+                print(d, file=sys.stderr)
+            return 1
+        names = {b.name: i for i, b in enumerate(scene.bodies)}
+        wanted = args.player or [b.name for b in scene.bodies
+                                 if b.name.startswith("player") and b.kind == "dynamic"]
+        bad = [n for n in wanted if n not in names or scene.bodies[names[n]].kind != "dynamic"]
+        if bad:
+            print(f"{args.scene}: error: --player {bad[0]!r}: no dynamic body of that name", file=sys.stderr)
+            return 1
+        options = Options(scene, tuple(names[n] for n in wanted), max_rooms=args.rooms, speed=args.speed,
+                          tolerance=tolerance)
 
     def ready(server, port: int) -> None:
         print(f"max2code serve: {scene.name} on http://{args.host}:{port}/ "

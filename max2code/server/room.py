@@ -263,6 +263,9 @@ class Room:
         if held == was:
             return None
         self.advance(self.clock())
+        to_game = getattr(self.world, "input", None)
+        if to_game is not None:   # a PGE game: the key goes to its handlers (pgegame.py)
+            return self._game_input(body, lambda: to_game("KEYDOWN" if down else "KEYUP", key))
         vx, vy, w = self.world.velocity(body)
         dx = ("right" in held) - ("left" in held)
         dy = ("up" in held) - ("down" in held)
@@ -279,6 +282,8 @@ class Room:
         """A pointer press: the body heads for (x, y) at the input speed."""
         if body not in client.controls:
             return f"body {body} is not yours (you control {list(client.controls)})"
+        if hasattr(self.world, "input"):
+            return "a PGE game takes keys only (pointer input is not passed to it yet)"
         self.advance(self.clock())
         px, py, _ = self.world.pose(body)
         _, _, w = self.world.velocity(body)
@@ -286,6 +291,18 @@ class Room:
         if d == 0:
             return None
         return self._input(body, (x - px) / d * self.speed, (y - py) / d * self.speed, w)
+
+    def _game_input(self, body: int, deliver: Callable[[], None]) -> str | None:
+        if self.failed:
+            return "the world stopped: " + self.failed
+        try:
+            deliver()
+        except EngineError as exc:
+            return str(exc)
+        self.stats.inputs += 1
+        self._send_changes([], (protocol.EVENT_CODES["input"], body, -1))
+        self._wake.set()
+        return None
 
     def _input(self, body: int, vx: float, vy: float, w: float) -> str | None:
         if self.failed:

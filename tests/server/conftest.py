@@ -21,6 +21,12 @@ class Running:
     run f() on the server's loop (rooms belong to that thread) and get its result."""
 
     def __init__(self, options: Options) -> None:
+        # the engine's library first, here: when it must be (re)built (its cache key covers
+        # max2code's own sources), a build inside the server's loop outlasts the clients'
+        # 20 s keepalive on a loaded machine
+        from max2code.engine.binding import load as load_engine
+
+        load_engine()
         self.options = options
         self.loop = asyncio.new_event_loop()
         self.ready = threading.Event()

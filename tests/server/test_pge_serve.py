@@ -1,0 +1,72 @@
+"""`max2code serve GAME.py`: PGE's own breakout (read from the shared corpus, never copied)
+served in-process; its bricks' removals (its collision callbacks, run in the server's steps)
+reach the client, whose bodies are the game's live objects after every message."""
+
+from __future__ import annotations
+
+import asyncio
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from max2code.server.app import Options
+from max2code.server.pgegame import UNIT_VIEW, GameWorld, load
+from max2code.engine.scenefile import Scene
+
+from .client import Client
+from .conftest import Running
+
+BREAKOUT = Path("/work/shared/corpus/pge-python/examples/breakout-breakout.py")
+pytestmark = pytest.mark.skipif(not BREAKOUT.is_file(), reason="no PGE corpus here")
+
+
+def live(world: GameWorld) -> set[int]:
+    return {b.id for b in world.bodies if b.alive}
+
+
+def test_breakout_served_bricks_vanish_on_the_client():
+    first = GameWorld(load(str(BREAKOUT)))
+    bricks = {b.id for b in first.bodies if b.name.startswith("box-") and b.id >= 4}
+    ball = [b.id for b in first.bodies if b.kind == "dynamic"]
+    assert len(bricks) == 27 and len(ball) == 1
+    options = Options(Scene(name="breakout", bodies=(), view=UNIT_VIEW), tuple(ball), tolerance=0.0,
+                      world=lambda: GameWorld(load(str(BREAKOUT))))
+    running = Running(options)
+    try:
+        async def go():
+            c = await Client.join(running.url)
+            await c.receive(0.3)
+            # a key for a body that is not ours is refused; ours reaches the game's handler
+            await c.send({"type": "key", "body": 0, "key": "left", "down": True})
+            await c.send({"type": "key", "body": ball[0], "key": "left", "down": True})
+            await c.receive(2.7)
+            return c
+        c = asyncio.run(go())
+    finally:
+        running.stop()
+    assert c.world["you"] == ball and len(c.world["bodies"]) == 34
+    assert any(m["type"] == "refused" for m in c.messages)
+    assert any(e[0] == 5 for m in c.messages if m["type"] == "ev" for e in m["ev"])
+    removed = [i for m in c.messages if m["type"] == "ev" for i in m.get("rm", [])]
+    assert len(removed) >= 5 and set(removed) <= bricks and len(set(removed)) == len(removed)
+    # replayed against the same game stepped on its own: the client's bodies are its live
+    # objects at every message's time
+    bodies = {b["id"] for b in c.world["bodies"]}
+    reference = GameWorld(load(str(BREAKOUT)))
+    for m in c.messages:
+        if m["type"] != "ev":
+            continue
+        bodies = (bodies - set(m.get("rm", []))) | {b["id"] for b in m.get("add", [])}
+        reference.step_to(m["t"])
+        assert bodies == live(reference), m["t"]
+    assert set(c.bodies) == bodies
+
+
+def test_serve_cli_refuses_a_broken_game(tmp_path):
+    game = tmp_path / "broken.py"
+    game.write_text("import pge\n\npge.box(0, 0, 1, 1)\npge.run()\n")
+    r = subprocess.run([sys.executable, "-m", "max2code", "serve", str(game), "--port", "0"],
+                       capture_output=True, text=True, timeout=120)
+    assert r.returncode == 1 and f"{game}:3:" in r.stderr and "error:" in r.stderr, r.stderr
