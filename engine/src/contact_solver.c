@@ -801,52 +801,60 @@ static double certify(m2c_world *w, const int *bodies, int nb)
     return result;
 }
 
-/* The certificate of body i's sleeping island (the asleep bodies touching it, transitively),
- * or of its solver island: the residual (see certify); -1 for a body that is neither. */
+/* Grow members[0..nb) by every body that `joins` and touches a member (a contact within
+ * `gap`), transitively; returns the new count. The members are the queue. */
+typedef int (*joins_fn)(const m2c_world *w, int j);
+
+typedef struct {
+    int *members, count;
+    double gap;
+    joins_fn joins;
+} flood_ctx;
+
+static void flood_visit(m2c_world *w, int i, int j, void *ctx)
+{
+    flood_ctx *f = ctx;
+    struct solver *s = w->solver;
+    if (s->mark[j] || !f->joins(w, j))
+        return;
+    int before = s->nc;
+    gen_pair(w, i, j, f->gap);
+    if (s->nc > before) {
+        s->mark[j] = 1;
+        f->members[f->count++] = j;
+    }
+    s->nc = before;
+}
+
+static int flood(m2c_world *w, int *members, int nb, double gap, joins_fn joins)
+{
+    struct solver *s = w->solver;
+    flood_ctx f = {members, nb, gap, joins};
+    for (int m = 0; m < nb; m++)
+        s->mark[members[m]] = 1;
+    for (int m = 0; m < f.count; m++)
+        grid_neighbours(w, members[m], flood_visit, &f);
+    for (int m = 0; m < f.count; m++)
+        s->mark[members[m]] = 0;
+    return f.count;
+}
+
+static int asleep_dynamic(const m2c_world *w, int j)
+{
+    return w->b[j].kind == M2C_DYNAMIC && w->b[j].state == ASLEEP;
+}
+
+/* The certificate of asleep body i's island (the asleep bodies touching it, transitively):
+ * 1 or 0 and the residual (see certify); -1 for a body that is not asleep. */
 int m2c_world_certificate(m2c_world *w, int i, double *res)
 {
     if (i < 0 || i >= w->n || w->b[i].kind != M2C_DYNAMIC || w->b[i].state != ASLEEP)
         return -1;
     if (ensure(w) != 0)
         return -1;
-    struct solver *s = w->solver;
-    int keep = s->nc;
-    /* flood the asleep island */
-    int top = 0, nb = 0;
     int *members = w->members;
-    w->stack[top++] = i;
-    s->mark[i] = 2;
-    double gap = 1e3 * w->cfg.tolerance;
-    while (top > 0) {
-        int k = w->stack[--top];
-        members[nb++] = k;
-        int before = s->nc;
-        gen_ctx g = {w, gap, 0, 0};
-        (void)g;
-        /* neighbours within the certificate's gap */
-        const grid *gr = &w->g;
-        int cx = w->b[k].cx, cy = w->b[k].cy;
-        for (int y = cy - 1; y <= cy + 1; y++)
-            for (int x = cx - 1; x <= cx + 1; x++) {
-                if (x < 0 || y < 0 || x >= gr->nx || y >= gr->ny)
-                    continue;
-                for (int j = gr->head[y * gr->nx + x]; j >= 0; j = w->b[j].next) {
-                    if (j == k || s->mark[j] || w->b[j].state != ASLEEP)
-                        continue;
-                    int b0 = s->nc;
-                    gen_pair(w, k, j, gap);
-                    if (s->nc > b0) {
-                        s->mark[j] = 2;
-                        w->stack[top++] = j;
-                    }
-                    s->nc = b0;
-                }
-            }
-        s->nc = before;
-    }
-    for (int m = 0; m < nb; m++)
-        s->mark[members[m]] = 0;
-    s->nc = keep;
+    members[0] = i;
+    int nb = flood(w, members, 1, 1e3 * w->cfg.tolerance, asleep_dynamic);
     double r = certify(w, members, nb);
     if (res)
         *res = r;
@@ -862,36 +870,7 @@ int m2c_world_certificate(m2c_world *w, int i, double *res)
  * Returns the new count. */
 static int add_sleepers(m2c_world *w, int *members, int nb)
 {
-    struct solver *s = w->solver;
-    double gap = 1e3 * w->cfg.tolerance;
-    int keep = s->nc, all = nb;
-    for (int m = 0; m < nb; m++)
-        s->mark[members[m]] = 3;
-    for (int m = 0; m < all; m++) {
-        int i = members[m];
-        const grid *g = &w->g;
-        for (int y = w->b[i].cy - 1; y <= w->b[i].cy + 1; y++)
-            for (int x = w->b[i].cx - 1; x <= w->b[i].cx + 1; x++) {
-                if (x < 0 || y < 0 || x >= g->nx || y >= g->ny)
-                    continue;
-                for (int j = g->head[y * g->nx + x]; j >= 0 && all < w->cap; j = w->b[j].next) {
-                    if (j == i || s->mark[j] || w->b[j].kind != M2C_DYNAMIC
-                        || w->b[j].state != ASLEEP)
-                        continue;
-                    int b0 = s->nc;
-                    gen_pair(w, i, j, gap);
-                    if (s->nc > b0) {
-                        s->mark[j] = 3;
-                        members[all++] = j;
-                    }
-                    s->nc = b0;
-                }
-            }
-    }
-    s->nc = keep;
-    for (int m = 0; m < all; m++)
-        s->mark[members[m]] = 0;
-    return all;
+    return flood(w, members, nb, 1e3 * w->cfg.tolerance, asleep_dynamic);
 }
 
 static void island_sleep(m2c_world *w, int root, const int *bodies, int nb)
@@ -1103,37 +1082,11 @@ double solver_gap_accel(const m2c_world *w, int i, int j, const event *ev)
  * the next tick solves the whole island again, warm started. Energy only falls. */
 static void halt_island(m2c_world *w, int k)
 {
-    struct solver *s = w->solver;
-    int top = 0, nb = 0, keep = s->nc;
-    double margin = 4 * 10 * w->cfg.tolerance;
-    w->stack[top++] = k;
-    s->mark[k] = 1;
-    while (top > 0) {
-        int i = w->stack[--top];
-        w->members[nb++] = i;
-        const grid *g = &w->g;
-        for (int y = w->b[i].cy - 1; y <= w->b[i].cy + 1; y++)
-            for (int x = w->b[i].cx - 1; x <= w->b[i].cx + 1; x++) {
-                if (x < 0 || y < 0 || x >= g->nx || y >= g->ny)
-                    continue;
-                for (int j = g->head[y * g->nx + x]; j >= 0; j = w->b[j].next) {
-                    if (j == i || s->mark[j] || !solver_has(w, j))
-                        continue;
-                    int b0 = s->nc;
-                    gen_pair(w, i, j, margin);
-                    if (s->nc > b0) {
-                        s->mark[j] = 1;
-                        w->stack[top++] = j;
-                    }
-                    s->nc = b0;
-                }
-            }
-    }
-    s->nc = keep;
+    w->members[0] = k;
+    int nb = flood(w, w->members, 1, 4 * 10 * w->cfg.tolerance, solver_has);
     for (int m = 0; m < nb; m++) {
         int i = w->members[m];
         body *B = &w->b[i];
-        s->mark[i] = 0;
         body_commit(B, w->now);
         B->m.vx = B->m.vy = B->m.w = 0.0;
         B->instant = 0;
