@@ -231,11 +231,12 @@ int respond(m2c_world *w, int i, int j, const event *ev)
      * for a rotating body what its rotation adds (a spinning corner curves into a ball even
      * without gravity). Without the rotation's part the prediction reported the pressed
      * pair again at the same instant, no impulse parted it, and the step ended "stuck"
-     * (tests/engine/test_snapshot.py). Against a fixed body (the rest rule's case when
-     * gravity presses) only rotation's pressing is parted here. */
+     * (tests/engine/test_snapshot.py). Rotation's pressing is parted only there, with no
+     * approach (an impact's bounce parts the pair already), and against a fixed body only
+     * where gravity does not press (the rest rule's case). */
     double an = (b.ax - a.ax) * n[0] + (b.ay - a.ay) * n[1];
     int press = awake_b && an < 0;
-    if (A->m.w != 0.0 || B->m.w != 0.0) {
+    if ((A->m.w != 0.0 || B->m.w != 0.0) && !(closing > 0)) { /* no approach: J = 0 above */
         double curve = contact_gap_accel(w, i, j, ev);
         if (curve < 0 && (awake_b || !(an < 0))) {
             an = fmin(an, curve);
