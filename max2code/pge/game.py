@@ -51,7 +51,9 @@ class Options:
     fps: float | None = None      # frames per simulated second (default: the game's pge.fps)
     record: bool = False          # keep every frame (for --gif/--mp4/--png-dir)
     inputs: list = field(default_factory=list)   # (time, type name, attributes) of scripted input
-    serve: bool = False           # `max2code serve GAME.py`: run() hands the game to the server
+    # `max2code serve GAME.py`: run(t) calls serve(game, end) instead of looping, which returns
+    # once the server has run the game to `end` (max2code.server.pgegame)
+    serve: Callable[["Game", float], None] | None = None
 
 
 def call_back(p: Callable, *args) -> None:
@@ -129,10 +131,11 @@ class Game:
     def run(self, t: float = -1) -> None:
         """Simulate t seconds (PGE: t < 0 runs on, 30 s in batch mode), drawing every frame."""
         self._queue_inputs()
-        if self.options.serve:   # the server's room steps it from now on (max2code.server.pgegame)
+        if self.options.serve is not None:   # the server's room steps it (server/pgegame.py)
             self.physics.advance(self.now)
             self.handed_off = True
-            raise GameOver(0)
+            self.options.serve(self, self.now + (float(t) if t >= 0 else math.inf))
+            return
         t = float(t)
         end = self.now + (t if t >= 0 else (math.inf if not self.options.headless else BATCH_RUN))
         until = self.options.until if self.options.until is not None else math.inf

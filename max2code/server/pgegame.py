@@ -1,7 +1,7 @@
 """A PGE program served: `max2code serve GAME.py` (docs/server.md, "Serving a PGE game").
 
 The program runs as under `max2code pge` until its first `pge.run()`, which under serve hands
-the built game over instead of looping (pge.game.Options.serve). From then on the room steps
+the built game over instead of looping and waits (pge.game.Options.serve). From then on the room steps
 it: GameWorld below shows the room the part of the World API it uses, with PGE's objects as
 bodies. Ids on the wire are the objects' order of creation (stable, never reused), because PGE
 rebuilds its engine World on structural changes (fix, mass, a new object), which renumbers the
@@ -9,14 +9,17 @@ engine's bodies; a rebuild counts as a change of every body. The game's timers (
 collision callbacks run inside the room's steps; a client's keys reach the game's handlers
 (register_handler) as pygame KEYDOWN/KEYUP events at the server's time.
 
-Not served: PGE's decorations (text, objects off level 0), colour changes after the start, and
-whatever the program does after its first run() returns (it never returns here).
+The program itself runs in a thread of its own, strictly alternating with the room (Program):
+code after a run() goes on at that run's end, as under `max2code pge`.
+
+Not served: PGE's decorations (text, objects off level 0) and colour changes after the start.
 """
 
 from __future__ import annotations
 
 import math
 import os
+import threading
 from dataclasses import dataclass, replace
 
 from ..engine.world import BodyInfo, EngineError
@@ -35,18 +38,57 @@ class GameEvent:
     b: int = -1
 
 
-def load(path: str) -> Game:
-    """Run the program to its first pge.run(); the handed-over game (or EngineError saying
-    why the program ended without one)."""
-    os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
-    os.environ.setdefault("SDL_AUDIODRIVER", "dummy")
-    os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
-    from ..pge.command import run_game
+class Program:
+    """The program in a thread of its own, strictly alternating with the room: it runs until
+    it calls pge.run(t), then waits while the room steps the game to the run's end, then goes
+    on (breakout's `out_of_time` after its `run(10.0)`) until its next run() or its end. Only
+    one of the two ever runs, so the game is never touched by both at once."""
 
-    code, game = run_game(path, Options(headless=True, serve=True))
-    if not game.handed_off:
-        raise EngineError(f"{path}: the program ended (exit {code}) without calling pge.run()")
-    return game
+    def __init__(self, path: str) -> None:
+        os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
+        os.environ.setdefault("SDL_AUDIODRIVER", "dummy")
+        os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
+        self.path = path
+        self.game: Game | None = None
+        self.end = math.inf              # the current run()'s end (game time)
+        self.code: int | None = None     # the program's exit status once it ended
+        self.failure: BaseException | None = None
+        self._to_room = threading.Event()
+        self._to_program = threading.Event()
+        threading.Thread(target=self._main, name=f"pge {os.path.basename(path)}", daemon=True).start()
+        self._to_room.wait()
+        self._to_room.clear()
+        if self.failure is not None:
+            raise self.failure
+        if self.game is None:
+            raise EngineError(f"{path}: the program ended (exit {self.code}) without calling pge.run()")
+
+    def _main(self) -> None:
+        from ..pge.command import run_game
+
+        try:
+            self.code, _ = run_game(self.path, Options(headless=True, serve=self._handed))
+        except BaseException as exc:   # the game's own error: the room (or load) reports it
+            self.failure, self.code = exc, 1
+        self._to_room.set()
+
+    def _handed(self, game: Game, end: float) -> None:
+        """pge.run(t) under serve, in the program's thread: wait for the room."""
+        self.game, self.end = game, end
+        self._to_room.set()
+        self._to_program.wait()
+        self._to_program.clear()
+
+    def resume(self) -> None:
+        """The room reached the run's end: the program goes on to its next run() or its end."""
+        self._to_program.set()
+        self._to_room.wait()
+        self._to_room.clear()
+
+
+def load(path: str) -> Program:
+    """The program run to its first pge.run() (or the exception it failed with)."""
+    return Program(path)
 
 
 def _hex(colour) -> str:
@@ -57,13 +99,14 @@ class GameWorld:
     """A handed-over PGE game with the World calls a Room makes (bodies, time, step_to,
     motions, next_time, pose, velocity) and `input` for its handlers."""
 
-    def __init__(self, game: Game) -> None:
-        self.game = game
+    def __init__(self, program: Program) -> None:
+        self.program = program
+        self.game = program.game
         self.objects: list = []          # by wire id
         self._wire: dict[int, int] = {}  # id(object) -> wire id
         self.bodies: list[BodyInfo] = []
         self._gravity: list[tuple[float, float]] = []
-        self._log = len(game.log)
+        self._log = len(self.game.log)
         self._core = None                # the engine World last read (a rebuild replaces it)
         self._base: list[int] = []       # counters carried over rebuilds
         self._last: list[int] = []
@@ -133,7 +176,7 @@ class GameWorld:
         physics = self.game.physics
         t = physics.world.next_time() + physics.t0 if not physics.stale else self.time
         queue = self.game.queue
-        return min(t, queue[0].time) if queue else t
+        return min(t, queue[0].time if queue else math.inf, self.program.end)
 
     # -- stepping ---------------------------------------------------------------------------------
 
@@ -151,6 +194,11 @@ class GameWorld:
             self.over = over.code
         except SystemExit as exc:
             self.over = exc.code if isinstance(exc.code, int) else 1
+        except Exception as exc:   # the game's own error (a callback's, or its program's)
+            from ..pge.command import _game_error
+
+            self.over = 1
+            raise EngineError(_game_error(self.program.path, exc)) from None
         finally:
             pge._game = saved
         self._sync()
@@ -171,13 +219,24 @@ class GameWorld:
         return -1
 
     def step_to(self, t: float, events: bool = True) -> list[GameEvent]:
-        game = self.game
+        """Timers and collisions up to t; at the end of the program's run(), the program goes
+        on (with `pge` pointing at this game) until its next run() or its end."""
+        game, program = self.game, self.program
 
         def go():
-            while game.queue and game.queue[0].time <= t:
-                game.physics.advance(max(game.queue[0].time, game.now))
-                game._pop()
-            game.physics.advance(t)
+            while True:
+                target = min(t, program.end)
+                while game.queue and game.queue[0].time <= target:
+                    game.physics.advance(max(game.queue[0].time, game.now))
+                    game._pop()
+                game.physics.advance(target)
+                if target < program.end:
+                    return
+                program.resume()
+                if program.failure is not None:
+                    raise program.failure
+                if program.code is not None:
+                    raise GameOver(program.code)
         return self._run(go)
 
     def input(self, kind: str, key: str) -> None:

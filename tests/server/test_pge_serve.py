@@ -12,20 +12,73 @@ from pathlib import Path
 import pytest
 
 from max2code.server.app import Options
-from max2code.server.pgegame import UNIT_VIEW, GameWorld, load
+import json
+
 from max2code.engine.scenefile import Scene
+from max2code.server.pgegame import UNIT_VIEW, GameWorld, load
+from max2code.server.room import Room
 
 from .client import Client
 from .conftest import Running
 
 BREAKOUT = Path("/work/shared/corpus/pge-python/examples/breakout-breakout.py")
-pytestmark = pytest.mark.skipif(not BREAKOUT.is_file(), reason="no PGE corpus here")
+corpus = pytest.mark.skipif(not BREAKOUT.is_file(), reason="no PGE corpus here")
+SEQUENCE = """import pge
+
+gold = pge.rgb(0.8, 0.6, 0.15)
+floor = pge.box(0.0, 0.0, 1.0, 0.02, gold).fix()
+ball = pge.circle(0.5, 0.8, 0.03, gold).mass(1.0)
+pge.gravity()
+pge.run(0.3)
+late = pge.box(0.1, 0.5, 0.1, 0.1, gold).fix()
+pge.run(0.3)
+late.rm()
+pge.run(0.2)
+"""
 
 
 def live(world: GameWorld) -> set[int]:
     return {b.id for b in world.bodies if b.alive}
 
 
+def test_the_program_goes_on_after_each_run(tmp_path):
+    """Code after a run() runs at that run's end, in the room's time: an object added at 0.3
+    (a PGE rebuild) reaches the client as an addition, its removal at 0.6 as a removal, and the
+    program's end stops the room with an error frame."""
+    from .test_membership import Clock, joined
+
+    game = tmp_path / "sequence.py"
+    game.write_text(SEQUENCE)
+    clock = Clock()
+    room = Room("r", Scene(name="seq", bodies=(), view=UNIT_VIEW), (1,), clock=clock,
+                world=GameWorld(load(str(game))))
+    inbox: list[str] = []
+    _, text = room.join(inbox.append, "a")
+    c = joined(text)
+    assert [b["name"] for b in c.bodies.values()] == ["box-0", "circle-1"]
+    added = removed = None
+    for k in range(1, 101):
+        clock.t = k * 0.01
+        room.advance(clock.t)
+        for m in map(json.loads, inbox):
+            if m["type"] == "error":
+                assert "ended" in m["reason"] and clock.t >= 0.8
+                continue
+            c.apply(m)
+            if m.get("add"):
+                added = (m["t"], [b["name"] for b in m["add"]])
+            if m.get("rm"):
+                removed = (m["t"], m["rm"])
+        inbox.clear()
+        if room.failed is None:
+            assert set(c.bodies) == {b.id for b in room.world.bodies if b.alive}
+            for i in c.bodies:   # every pose as the game has it (a rebuild re-sends them all)
+                assert c.pose(i, clock.t)[:2] == pytest.approx(room.world.pose(i)[:2], abs=1e-9)
+    assert added == (pytest.approx(0.3), ["box-2"]) and removed == (pytest.approx(0.6), [2])
+    assert room.failed and "ended" in room.failed and set(c.bodies) == {0, 1}
+
+
+@corpus
 def test_breakout_served_bricks_vanish_on_the_client():
     first = GameWorld(load(str(BREAKOUT)))
     bricks = {b.id for b in first.bodies if b.name.startswith("box-") and b.id >= 4}
