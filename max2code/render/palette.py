@@ -90,8 +90,16 @@ class Mapper:
         if changed is None or self.index is None or self.index.shape != pixels.shape[:2]:
             self.index = self._entries(pixels)
         else:
-            for j0, j1, i0, i1 in changed:
-                self.index[j0:j1, i0:i1] = self._entries(pixels[j0:j1, i0:i1])
+            # (all boxes in one lookup: per box, the lookup's dozen numpy calls cost more
+            # than its pixels when a frame has a hundred small boxes)
+            boxes = [(slice(j0, j1), slice(i0, i1)) for j0, j1, i0, i1 in changed if j0 < j1 and i0 < i1]
+            if boxes:
+                entries = self._entries(np.concatenate([pixels[b].reshape(-1, 3) for b in boxes]))
+                at = 0
+                for rows, cols in boxes:
+                    region = self.index[rows, cols]
+                    region[...] = entries[at:at + region.size].reshape(region.shape)
+                    at += region.size
         out = Image.fromarray(self.index.copy(), "P")   # (a 'P' image would share the array)
         out.putpalette(self.flat)
         return out

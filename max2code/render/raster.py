@@ -106,11 +106,16 @@ class Canvas:
 
 # --- signed distances in pixel space (negative inside) -----------------------------------------
 
+def _norm(dx: np.ndarray, dy: np.ndarray) -> np.ndarray:
+    """np.hypot(dx, dy), which took twice as long (no overflow guard is needed: pixels)."""
+    return np.sqrt(dx * dx + dy * dy)
+
+
 def _segment_distance(x: np.ndarray, y: np.ndarray, a: Point, b: Point) -> np.ndarray:
     dx, dy = b[0] - a[0], b[1] - a[1]
     length2 = dx * dx + dy * dy
     t = _clip01(((x - a[0]) * dx + (y - a[1]) * dy) / length2) if length2 > 0 else 0.0
-    return np.hypot(x - (a[0] + t * dx), y - (a[1] + t * dy))
+    return _norm(x - (a[0] + t * dx), y - (a[1] + t * dy))
 
 
 def _polygon_distance(x: np.ndarray, y: np.ndarray, pts: Sequence[Point]) -> np.ndarray:
@@ -147,7 +152,7 @@ class _Outline:
         if isinstance(shape, Circle):
             c, r = px(shape.centre), shape.radius * s
             self.box = (c[0] - r, c[1] - r, c[0] + r, c[1] + r)
-            self.distance = lambda x, y: np.hypot(x - c[0], y - c[1]) - r
+            self.distance = lambda x, y: _norm(x - c[0], y - c[1]) - r
         elif isinstance(shape, Polygon):
             pts = [px(v) for v in shape.vertices]
             r = shape.radius * s
@@ -162,14 +167,6 @@ class _Outline:
             self.distance = lambda x, y: _segment_distance(x, y, a, b) - r
         else:
             raise RenderModelError(f"unknown shape {type(shape).__name__}")
-
-
-def _line(canvas: Canvas, a: Point, b: Point, width: float, colour: str) -> None:
-    pad = width / 2 + 1
-    g = canvas.grid((min(a[0], b[0]) - pad, min(a[1], b[1]) - pad, max(a[0], b[0]) + pad, max(a[1], b[1]) + pad))
-    if g:
-        rows, cols, x, y = g
-        canvas.paint(rows, cols, _stroke(_segment_distance(x, y, a, b), width), colour)
 
 
 def contrast(colour: str | None) -> str:
@@ -206,15 +203,79 @@ def draw_body(canvas: Canvas, body: Body, pose) -> None:
 
 def draw_contact(canvas: Canvas, contact: Contact, size: float) -> None:
     """A ring at the contact point and the normal as a short line from it."""
-    p = canvas.view.to_pixel(contact.point)
-    g = canvas.grid((p[0] - size - 2, p[1] - size - 2, p[0] + size + 2, p[1] + size + 2))
-    if g:
-        rows, cols, x, y = g
-        canvas.paint(rows, cols, _stroke(np.hypot(x - p[0], y - p[1]) - size, 1.5), CONTACT_COLOUR)
-    n = math.hypot(*contact.normal)
-    if n > 0:
-        q = (p[0] + 2.5 * size * contact.normal[0] / n, p[1] - 2.5 * size * contact.normal[1] / n)
-        _line(canvas, p, q, 1.5, CONTACT_COLOUR)
+    draw_contacts(canvas, [contact], size)
+
+
+CONTACT_WIDTH = 1.5   # pixels, of the ring and of the normal's line
+CONTACT_REACH = 2.5   # the normal's line, in ring radii
+
+
+def draw_contacts(canvas: Canvas, contacts: Sequence[Contact], size: float) -> None:
+    """Each contact as a ring of radius `size` at its point and its normal as a line from it,
+    all contacts at once: every one is a patch of the same size around its point, so numpy
+    computes their distances in one (contacts x rows x columns) array. One opaque colour
+    blended over and over in any order leaves 1 - prod(1 - coverage) of it, so the patches are
+    merged by multiplying what each leaves uncovered (np.multiply.at), then painted once, in
+    tiles of a patch's size (only those that a patch touches: contacts far apart do not paint
+    the picture between them). (A pile of 40 bodies has 120 contacts a frame: one at a time,
+    they cost 80% of it.)"""
+    view = canvas.view
+    reach = math.ceil(CONTACT_REACH * size + CONTACT_WIDTH / 2 + 1.5)
+    side = 2 * reach + 1
+    points = np.array([view.to_pixel(c.point) for c in contacts], dtype=np.float64).reshape(-1, 2)
+    normals = np.array([c.normal for c in contacts], dtype=np.float64).reshape(-1, 2)
+    near = ((points[:, 0] > -reach) & (points[:, 0] < view.width + reach)
+            & (points[:, 1] > -reach) & (points[:, 1] < view.height + reach))
+    if not near.any():
+        return
+    points, normals = points[near], normals[near]
+    length = np.sqrt((normals * normals).sum(axis=1))
+    unit = np.divide(normals, length[:, None], out=np.zeros_like(normals), where=length[:, None] > 0)
+    corner = np.floor(points).astype(np.int64) - reach                      # patches' (i0, j0)
+    steps = np.arange(side)
+    # (float32 from here, relative to each patch's corner: small numbers, exact enough)
+    p = (points - corner).astype(np.float32)[:, :, None, None]
+    d = (CONTACT_REACH * size * unit * np.array([1.0, -1.0])).astype(np.float32)[:, :, None, None]
+    x = (steps.astype(np.float32) + np.float32(0.5))[None, None, :]
+    y = x.reshape(1, side, 1)
+    rx, ry = x - p[:, 0], y - p[:, 1]
+    ring = _stroke(_norm(rx, ry) - np.float32(size), CONTACT_WIDTH)
+    dx, dy = d[:, 0], d[:, 1]
+    length2 = np.maximum(dx * dx + dy * dy, np.float32(1e-30))
+    t = _clip01((rx * dx + ry * dy) / length2)
+    line = _stroke(_norm(rx - t * dx, ry - t * dy), CONTACT_WIDTH)
+    line *= (length > 0).astype(np.float32)[:, None, None]
+    left = (1 - ring) * (1 - line)
+    j0, i0 = corner[:, 1].min(), corner[:, 0].min()
+    h, w = corner[:, 1].max() - j0 + side, corner[:, 0].max() - i0 + side
+    flat = ((corner[:, 1, None, None] - j0 + steps[None, :, None]) * w
+            + (corner[:, 0, None, None] - i0 + steps[None, None, :]))
+    uncovered = np.ones(h * w, dtype=np.float32)
+    np.multiply.at(uncovered, flat.ravel(), left.ravel())
+    uncovered = uncovered.reshape(h, w)
+    # (a patch meets at most 2 x 2 tiles: its first and last rows' and columns')
+    rows = np.stack([corner[:, 1] // side, (corner[:, 1] + side - 1) // side], axis=1)
+    cols = np.stack([corner[:, 0] // side, (corner[:, 0] + side - 1) // side], axis=1)
+    pairs = np.stack([np.repeat(rows, 2, axis=1), np.tile(cols, 2)], axis=2).reshape(-1, 2)
+    tiles = [(int(a), int(b)) for a, b in np.unique(pairs, axis=0)]
+    j0, i0, h, w = int(j0), int(i0), int(h), int(w)
+    for tj, first, last in _runs(tiles):   # (each run of tiles side by side is one paint)
+        r0, r1 = max(tj * side, 0, j0), min((tj + 1) * side, view.height, j0 + h)
+        c0, c1 = max(first * side, 0, i0), min((last + 1) * side, view.width, i0 + w)
+        if r0 < r1 and c0 < c1:
+            canvas.paint(slice(r0, r1), slice(c0, c1),
+                         1 - uncovered[r0 - j0:r1 - j0, c0 - i0:c1 - i0], CONTACT_COLOUR)
+
+
+def _runs(tiles: list[tuple[int, int]]) -> list[tuple[int, int, int]]:
+    """Sorted (row, column) tiles as (row, first column, last column) runs of neighbours."""
+    runs: list[list[int]] = []
+    for row, col in tiles:
+        if runs and runs[-1][0] == row and runs[-1][2] == col - 1:
+            runs[-1][2] = col
+        else:
+            runs.append([row, col, col])
+    return [(r, a, b) for r, a, b in runs]
 
 
 @lru_cache(maxsize=16)
@@ -291,9 +352,7 @@ def _draw_text_boxed(pixels: np.ndarray, bodies: Sequence[Body], frame: Frame, v
 def _draw_contacts(canvas: Canvas, frame: Frame) -> None:
     view = canvas.view
     if view.show_contacts:
-        size = max(3.0, min(view.width, view.height) / 100)
-        for contact in frame.contacts:
-            draw_contact(canvas, contact, size)
+        draw_contacts(canvas, frame.contacts, max(3.0, min(view.width, view.height) / 100))
 
 
 def frame_image(bodies: Sequence[Body], frame: Frame, view: View) -> Image.Image:
@@ -387,7 +446,7 @@ class FrameDrawer:
         text = _draw_text_boxed(self.work_bytes, self.bodies, frame, self.view)
         # (text is in the bytes only: put back like paint, where the floats are the layer's)
         self._painted = canvas.painted | set(text)
-        self.changed = None if rebuilt or first else [*restored, *self._painted]
+        self.changed = None if rebuilt or first else list(restored | self._painted)
         return self.work_bytes
 
     def image(self, frame: Frame) -> Image.Image:
