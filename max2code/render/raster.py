@@ -62,13 +62,17 @@ Box = tuple[int, int, int, int]   # rows j0:j1, columns i0:i1 of a picture
 
 
 def _to_bytes(rgb: np.ndarray) -> np.ndarray:
-    return np.rint(_clip01(rgb) * 255).astype(np.uint8)
+    """Planar floats (3, rows, columns) to RGB bytes (rows, columns, 3) (a view: assign or copy)."""
+    return np.rint(_clip01(rgb) * 255).astype(np.uint8).transpose(1, 2, 0)
 
 
 class Canvas:
     """An RGB picture in floats, painted shape by shape with coverage as alpha; `painted` keeps
     the pixel boxes (rows, columns) touched since it was made, so that only those need converting
-    to bytes when the rest is known (FrameDrawer)."""
+    to bytes when the rest is known (FrameDrawer).
+
+    `rgb` is planar, (3, rows, columns): numpy's loops run along the last axis, and a blend over
+    (rows, columns, 3) ran them three values long, which made painting three times slower."""
 
     def __init__(self, view: View, rgb: np.ndarray | None = None) -> None:
         """A fresh picture of the background, or one painting into `rgb` itself."""
@@ -77,8 +81,8 @@ class Canvas:
         if rgb is not None:
             self.rgb = rgb
         else:
-            self.rgb = np.empty((view.height, view.width, 3), dtype=np.float32)
-            self.rgb[:] = rgba(view.background)[:3]
+            self.rgb = np.empty((3, view.height, view.width), dtype=np.float32)
+            self.rgb[:] = _rgb32(view.background)[:, None, None]
 
     def grid(self, box: tuple[float, float, float, float]) -> tuple[slice, slice, np.ndarray, np.ndarray] | None:
         """Pixel centres of the pixels a pixel-space box (x0, y0, x1, y1) touches, or None."""
@@ -95,13 +99,13 @@ class Canvas:
     def paint(self, rows: slice, cols: slice, coverage: np.ndarray, colour: str) -> None:
         """Blend `colour` over the region by coverage x the colour's alpha."""
         a = rgba(colour)[3]
-        alpha = coverage[..., None] if a == 1.0 else (coverage * np.float32(a))[..., None]
-        region = self.rgb[rows, cols]
-        region += alpha * (_rgb32(colour) - region)
+        alpha = coverage if a == 1.0 else coverage * np.float32(a)
+        region = self.rgb[:, rows, cols]
+        region += alpha * (_rgb32(colour)[:, None, None] - region)
         self.painted.add((rows.start, rows.stop, cols.start, cols.stop))
 
     def image(self) -> Image.Image:
-        return Image.fromarray(_to_bytes(self.rgb), "RGB")
+        return Image.fromarray(np.ascontiguousarray(_to_bytes(self.rgb)), "RGB")
 
 
 # --- signed distances in pixel space (negative inside) -----------------------------------------
@@ -415,7 +419,7 @@ class FrameDrawer:
         for body, pose in zip(self.bodies, poses):
             draw_body(canvas, body, pose)
         self.layer_poses, self.layer = poses, canvas.rgb
-        self.layer_bytes = _to_bytes(canvas.rgb)
+        self.layer_bytes = np.ascontiguousarray(_to_bytes(canvas.rgb))
         self.work, self.work_bytes = self.layer.copy(), self.layer_bytes.copy()
         self._painted = set()
         self.layers_painted += 1
@@ -435,14 +439,14 @@ class FrameDrawer:
             kept = still
         restored = self._painted
         for j0, j1, i0, i1 in restored:
-            self.work[j0:j1, i0:i1] = self.layer[j0:j1, i0:i1]
+            self.work[:, j0:j1, i0:i1] = self.layer[:, j0:j1, i0:i1]
             self.work_bytes[j0:j1, i0:i1] = self.layer_bytes[j0:j1, i0:i1]
         canvas = Canvas(self.view, self.work)
         for body, pose in zip(self.bodies[kept:], poses[kept:]):
             draw_body(canvas, body, pose)
         _draw_contacts(canvas, frame)
         for j0, j1, i0, i1 in canvas.painted:
-            self.work_bytes[j0:j1, i0:i1] = _to_bytes(self.work[j0:j1, i0:i1])
+            self.work_bytes[j0:j1, i0:i1] = _to_bytes(self.work[:, j0:j1, i0:i1])
         text = _draw_text_boxed(self.work_bytes, self.bodies, frame, self.view)
         # (text is in the bytes only: put back like paint, where the floats are the layer's)
         self._painted = canvas.painted | set(text)

@@ -37,7 +37,7 @@ def one_at_a_time(contacts) -> np.ndarray:
             d = np.hypot(x - p[0] - t * dx, y - p[1] - t * dy)
             line = np.clip(np.minimum(1.25 - d, 1.5), 0, 1)
             canvas.paint(*every, line.astype(np.float32), raster.CONTACT_COLOUR)
-    return canvas.rgb
+    return canvas.rgb.transpose(1, 2, 0)
 
 
 coordinate = st.floats(-3, 13, allow_nan=False)
@@ -53,10 +53,11 @@ def test_all_at_once_is_one_at_a_time(contacts, clustered) -> None:
                     for c in contacts]
     canvas = raster.Canvas(VIEW)
     raster.draw_contacts(canvas, contacts, SIZE)
+    got = canvas.rgb.transpose(1, 2, 0)     # (planar: channel, row, column)
     expected = one_at_a_time(contacts)
-    assert np.abs(canvas.rgb - expected).max() < 1e-4
+    assert np.abs(got - expected).max() < 1e-4
     # painted boxes cover every changed pixel
-    changed = (canvas.rgb != raster.Canvas(VIEW).rgb).any(axis=2)
+    changed = (canvas.rgb != raster.Canvas(VIEW).rgb).any(axis=0)
     covered = np.zeros_like(changed)
     for j0, j1, i0, i1 in canvas.painted:
         covered[j0:j1, i0:i1] = True
@@ -66,8 +67,9 @@ def test_all_at_once_is_one_at_a_time(contacts, clustered) -> None:
 def test_a_contact_is_red_at_its_ring_and_along_its_normal() -> None:
     canvas = raster.Canvas(VIEW)
     raster.draw_contacts(canvas, [Contact((5.05, 3.95), (1.0, 0.0))], SIZE)   # pixel (50, 40)
+    rgb = canvas.rgb.transpose(1, 2, 0)
     red = np.array(raster.rgba(raster.CONTACT_COLOUR)[:3], dtype=np.float32)
-    assert np.allclose(canvas.rgb[40 + 4, 50], red, atol=1e-6)       # on the ring, below
-    assert np.allclose(canvas.rgb[40, 50 + 8], red, atol=1e-6)       # on the normal, past the ring
-    assert np.allclose(canvas.rgb[40 - 8, 50], 1.0)                  # above: no line, white
-    assert np.allclose(canvas.rgb[40, 50 - 2], 1.0)                  # inside the ring, behind: white
+    assert np.allclose(rgb[40 + 4, 50], red, atol=1e-6)       # on the ring, below
+    assert np.allclose(rgb[40, 50 + 8], red, atol=1e-6)       # on the normal, past the ring
+    assert np.allclose(rgb[40 - 8, 50], 1.0)                  # above: no line, white
+    assert np.allclose(rgb[40, 50 - 2], 1.0)                  # inside the ring, behind: white
