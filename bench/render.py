@@ -5,12 +5,15 @@
 
 Each scene is run for SECONDS at 30 frames per second and its frames drawn three ways, each
 against the old path, kept here as the named baseline `frame_image` and measured in the same
-run: the frames alone (raster.frame_image, which paints every body on a fresh canvas, vs
-raster.FrameDrawer), an animated GIF (per frame: frame_image and a median cut to 256 colours,
-as write_gif did, vs write_gif), and an MP4 (write_mp4 with frame_image vs as it is). Frames
-and GIF are timed in CPU seconds of this process (the machine is shared: its wall clock
-measures the neighbours too); MP4 in wall seconds, as ffmpeg encodes in a process of its own.
-The drawer's frames are checked to be the baseline's, byte for byte, before anything is timed.
+run: the frames alone (frame_image as it was at BASELINE_COMMIT, which paints every body on a
+fresh canvas, vs raster.FrameDrawer), an animated GIF (per frame: that frame_image and a median
+cut to 256 colours, as write_gif did, vs write_gif), and an MP4 (write_mp4 with that
+frame_image and x264's default preset vs as it is). The baseline's raster.py is read from git
+(`git show`), so that making today's frame_image faster does not make the baseline faster
+too. Frames and GIF are timed in CPU seconds of this process (the machine is shared: its
+wall clock measures the neighbours too); MP4 in wall seconds, as ffmpeg encodes in a process
+of its own. The drawer's frames are checked to be today's frame_image's, byte for byte, and
+within MOST_DIFFERENT levels of the baseline's (float rounding), before anything is timed.
 """
 
 from __future__ import annotations
@@ -18,9 +21,11 @@ from __future__ import annotations
 import argparse
 import io
 import os
+import subprocess
 import sys
 import tempfile
 import time
+import types
 from pathlib import Path
 
 from benchtools import command_line, machine_and_date, publish, results_dir, smoke
@@ -39,6 +44,25 @@ from max2code.sim import picture_view  # noqa: E402
 SCENES = ("billiards-break", "bullet", "idle-orbit", "paddles", "pile", "pinball")
 FPS = 30.0
 SIZE = (640, 480)
+BASELINE_COMMIT = "fd2e4b758a86fd51e922558ac4250feb199795e4"   # before issue 37 item 6
+MOST_DIFFERENT = 2   # levels of 255 a pixel of today's frames may differ from the baseline's
+
+
+def baseline_raster() -> types.ModuleType:
+    """max2code/render/raster.py as it was at BASELINE_COMMIT, as a module of the package."""
+    try:
+        source = subprocess.run(["git", "-C", str(ROOT), "show",
+                                 f"{BASELINE_COMMIT}:max2code/render/raster.py"],
+                                capture_output=True, text=True, check=True).stdout
+    except (OSError, subprocess.CalledProcessError) as exc:
+        sys.exit(f"render: the baseline needs the git history (commit {BASELINE_COMMIT}): {exc}")
+    module = types.ModuleType("max2code.render.baseline_raster")
+    module.__package__ = "max2code.render"
+    exec(compile(source, f"{BASELINE_COMMIT[:7]}:max2code/render/raster.py", "exec"), module.__dict__)
+    return module
+
+
+old = baseline_raster()
 
 
 class BaselineDrawer:
@@ -48,7 +72,7 @@ class BaselineDrawer:
         self.bodies, self.view = bodies, view
 
     def image(self, frame) -> Image.Image:
-        return raster.frame_image(self.bodies, frame, self.view)
+        return old.frame_image(self.bodies, frame, self.view)
 
     def pixels(self, frame) -> np.ndarray:
         return np.asarray(self.image(frame))
@@ -57,7 +81,7 @@ class BaselineDrawer:
 def baseline_gif(bodies, frames, view) -> bytes:
     """write_gif as it was: each frame drawn by frame_image and cut to its own 256 colours."""
     step, delays = write.gif_timing(len(frames), FPS)
-    images = [raster.frame_image(bodies, f, view).quantize(
+    images = [old.frame_image(bodies, f, view).quantize(
         colors=256, method=Image.Quantize.MEDIANCUT, dither=Image.Dither.NONE) for f in frames[::step]]
     out = io.BytesIO()
     images[0].save(out, format="GIF", save_all=True, append_images=images[1:], duration=delays,
@@ -80,14 +104,15 @@ def scene_frames(name: str, seconds: float):
     return bodies, frames, picture_view(scene, bodies, frames, *SIZE)
 
 
-def mp4_with(drawer_class, bodies, frames, view, path: str) -> None:
-    """write_mp4 drawing with `drawer_class` (the baseline's, or FrameDrawer)."""
-    saved = raster.FrameDrawer
-    raster.FrameDrawer = drawer_class
+def mp4_with(drawer_class, preset: str, bodies, frames, view, path: str) -> None:
+    """write_mp4 drawing with `drawer_class` (the baseline's, or FrameDrawer) and encoding with
+    x264's `preset` (the baseline's was x264's default, "medium")."""
+    saved = raster.FrameDrawer, write.MP4_PRESET
+    raster.FrameDrawer, write.MP4_PRESET = drawer_class, preset
     try:
         write.write_mp4(path, bodies, frames, view, FPS)
     finally:
-        raster.FrameDrawer = saved
+        raster.FrameDrawer, write.MP4_PRESET = saved
 
 
 def measure(name: str, seconds: float, tmp: str) -> dict[str, tuple[float, float]]:
@@ -97,15 +122,18 @@ def measure(name: str, seconds: float, tmp: str) -> dict[str, tuple[float, float
     for f in frames:
         if drawer.image(f).tobytes() != raster.frame_image(bodies, f, view).tobytes():
             sys.exit(f"render: {name}: FrameDrawer's frame at t={f.time} is not frame_image's")
+        then = np.asarray(old.frame_image(bodies, f, view)).astype(int)
+        if np.abs(np.asarray(drawer.image(f)).astype(int) - then).max() > MOST_DIFFERENT:
+            sys.exit(f"render: {name}: the frame at t={f.time} is not the baseline's")
     n = len(frames)
     gif = os.path.join(tmp, "a.gif")
     mp4 = os.path.join(tmp, "a.mp4")
-    base_frames = timed(lambda: [raster.frame_image(bodies, f, view) for f in frames])[0]
+    base_frames = timed(lambda: [old.frame_image(bodies, f, view) for f in frames])[0]
     new_frames = timed(lambda: [d.pixels(f) for d in [raster.FrameDrawer(bodies, view)] for f in frames])[0]
     base_gif = timed(lambda: baseline_gif(bodies, frames, view))[0]
     new_gif = timed(lambda: write.write_gif(gif, bodies, frames, view, FPS))[0]
-    base_mp4 = timed(lambda: mp4_with(BaselineDrawer, bodies, frames, view, mp4))[1]
-    new_mp4 = timed(lambda: mp4_with(raster.FrameDrawer, bodies, frames, view, mp4))[1]
+    base_mp4 = timed(lambda: mp4_with(BaselineDrawer, "medium", bodies, frames, view, mp4))[1]
+    new_mp4 = timed(lambda: mp4_with(raster.FrameDrawer, write.MP4_PRESET, bodies, frames, view, mp4))[1]
     return {"frames": (n / base_frames, n / new_frames), "gif": (n / base_gif, n / new_gif),
             "mp4": (n / base_mp4, n / new_mp4), "count": n, "bodies": len(bodies)}
 
@@ -122,10 +150,12 @@ def main() -> int:
              f"`{command_line('bench/render.py', args, {'seconds': 3.0})}`. "
              f"Each example scene {args.seconds:g} s at {FPS:g} frames per second, "
              f"{SIZE[0]}x{SIZE[1]}; frames per second of each path, and the new path's speed-up "
-             "against the old one (`frame_image`: every frame painted from scratch; GIF: each "
+             "against the old one (`frame_image` as of commit "
+             f"{BASELINE_COMMIT[:7]}, read from git: every frame painted from scratch; GIF: each "
              "frame also cut to its own 256 colours), both measured in this run. Frames and GIF "
              "in CPU seconds of the process, MP4 in wall seconds (ffmpeg runs beside it). "
-             "FrameDrawer's frames are checked equal to frame_image's, byte for byte, first.", "",
+             "FrameDrawer's frames are checked equal to frame_image's, byte for byte, and within "
+             f"{MOST_DIFFERENT} levels of the baseline's, first.", "",
              "| scene | bodies | frames | frames: old / new fps | speed-up | GIF: old / new fps "
              "| speed-up | MP4: old / new fps | speed-up |",
              "|---|---|---|---|---|---|---|---|---|"]

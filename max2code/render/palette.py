@@ -64,6 +64,9 @@ class Mapper:
         self.flat = [int(v) for v in entries.ravel()]
         self.table = np.zeros(1 << 24, dtype=np.uint16)   # entry + 1; 0: not looked up yet
         self.index: np.ndarray | None = None               # the last image's entries
+        # (the entries themselves, the background among them, known from the start: a first
+        # frame is then mostly known colours, not 300,000 pixels for np.unique to sort)
+        self._learn(np.unique(_packed(entries)))
 
     def _learn(self, colours: np.ndarray) -> None:
         """Nearest entries of new colours: |c - e|^2 = |c|^2 - 2 c.e + |e|^2, and |c|^2 is the

@@ -20,7 +20,8 @@ pixels painted over that layer are converted to bytes again (bench/render.py mea
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
@@ -146,31 +147,56 @@ def _stroke(d: np.ndarray, width: float) -> np.ndarray:
     return _clip01(np.minimum(width / 2 + 0.5 - np.abs(d), width))
 
 
-class _Outline:
-    """One shape placed in pixel space: its bounding box and its signed distance function."""
+Distance = Callable[[np.ndarray, np.ndarray], np.ndarray]
+ToPixel = Callable[[Point], Point]
 
-    def __init__(self, shape: object, pose_apply, view: View) -> None:
-        s = view.scale
-        px = lambda p: view.to_pixel(pose_apply(p))  # noqa: E731
-        self.area = True
-        if isinstance(shape, Circle):
-            c, r = px(shape.centre), shape.radius * s
-            self.box = (c[0] - r, c[1] - r, c[0] + r, c[1] + r)
-            self.distance = lambda x, y: _norm(x - c[0], y - c[1]) - r
-        elif isinstance(shape, Polygon):
-            pts = [px(v) for v in shape.vertices]
-            r = shape.radius * s
-            self.box = (min(p[0] for p in pts) - r, min(p[1] for p in pts) - r,
-                        max(p[0] for p in pts) + r, max(p[1] for p in pts) + r)
-            self.distance = lambda x, y: _polygon_distance(x, y, pts) - r
-        elif isinstance(shape, (Capsule, Segment)):
-            a, b = px(shape.a), px(shape.b)
-            r = shape.radius * s if isinstance(shape, Capsule) else 0.0
-            self.area = isinstance(shape, Capsule)
-            self.box = (min(a[0], b[0]) - r, min(a[1], b[1]) - r, max(a[0], b[0]) + r, max(a[1], b[1]) + r)
-            self.distance = lambda x, y: _segment_distance(x, y, a, b) - r
-        else:
-            raise RenderModelError(f"unknown shape {type(shape).__name__}")
+
+@dataclass(frozen=True)
+class Outline:
+    """One shape placed in pixel space: its bounding box (x0, y0, x1, y1), its signed distance,
+    whether it has an inside (a segment has none), and the spoke that shows a circle's turn."""
+    box: tuple[float, float, float, float]
+    distance: Distance
+    area: bool = True
+    spoke: tuple[Point, Point] | None = None
+
+
+def _box_around(points: Sequence[Point], r: float) -> tuple[float, float, float, float]:
+    return (min(p[0] for p in points) - r, min(p[1] for p in points) - r,
+            max(p[0] for p in points) + r, max(p[1] for p in points) + r)
+
+
+def _circle(shape: Circle, px: ToPixel, scale: float) -> Outline:
+    c, r = px(shape.centre), shape.radius * scale
+    rim = px((shape.centre[0] + shape.radius, shape.centre[1]))
+    return Outline(_box_around([c], r), lambda x, y: _norm(x - c[0], y - c[1]) - r, spoke=(c, rim))
+
+
+def _polygon(shape: Polygon, px: ToPixel, scale: float) -> Outline:
+    pts, r = [px(v) for v in shape.vertices], shape.radius * scale
+    return Outline(_box_around(pts, r), lambda x, y: _polygon_distance(x, y, pts) - r)
+
+
+def _capsule(shape: Capsule, px: ToPixel, scale: float) -> Outline:
+    a, b, r = px(shape.a), px(shape.b), shape.radius * scale
+    return Outline(_box_around([a, b], r), lambda x, y: _segment_distance(x, y, a, b) - r)
+
+
+def _segment(shape: Segment, px: ToPixel, scale: float) -> Outline:
+    a, b = px(shape.a), px(shape.b)
+    return Outline(_box_around([a, b], 0.0), lambda x, y: _segment_distance(x, y, a, b), area=False)
+
+
+OUTLINES: dict[type, Callable[[object, ToPixel, float], Outline]] = {
+    Circle: _circle, Polygon: _polygon, Capsule: _capsule, Segment: _segment}
+
+
+def outline(shape: object, pose_apply: ToPixel, view: View) -> Outline:
+    """The shape at a pose, in the view's pixels (OUTLINES: one function per kind of shape)."""
+    make = OUTLINES.get(type(shape))
+    if make is None:
+        raise RenderModelError(f"unknown shape {type(shape).__name__}")
+    return make(shape, lambda p: view.to_pixel(pose_apply(p)), view.scale)
 
 
 def contrast(colour: str | None) -> str:
@@ -182,26 +208,24 @@ def contrast(colour: str | None) -> str:
 
 
 def draw_body(canvas: Canvas, body: Body, pose) -> None:
-    view, style, shape = canvas.view, body.style, body.shape
-    outline = _Outline(shape, pose.apply, view)
+    style = body.style
+    shape = outline(body.shape, pose.apply, canvas.view)
     width = style.stroke_width
-    if not outline.area:  # a segment has no inside: its stroke is the whole picture of it
+    if not shape.area:  # a segment has no inside: its stroke is the whole picture of it
         width = max(width, 1.0)
     pad = width / 2 + 1
-    g = canvas.grid((outline.box[0] - pad, outline.box[1] - pad, outline.box[2] + pad, outline.box[3] + pad))
+    g = canvas.grid((shape.box[0] - pad, shape.box[1] - pad, shape.box[2] + pad, shape.box[3] + pad))
     if g is None:
         return
     rows, cols, x, y = g
-    d = outline.distance(x, y)
-    if outline.area and style.fill is not None:
+    d = shape.distance(x, y)
+    if shape.area and style.fill is not None:
         canvas.paint(rows, cols, _fill(d), style.fill)
-    line_colour = style.stroke if style.stroke is not None else (None if outline.area else style.fill)
+    line_colour = style.stroke if style.stroke is not None else (None if shape.area else style.fill)
     if line_colour is not None and width > 0:
         canvas.paint(rows, cols, _stroke(d, width), line_colour)
-    if isinstance(shape, Circle) and style.spoke:   # the spoke lies inside the circle's box
-        centre = view.to_pixel(pose.apply(shape.centre))
-        rim = view.to_pixel(pose.apply((shape.centre[0] + shape.radius, shape.centre[1])))
-        canvas.paint(rows, cols, _stroke(_segment_distance(x, y, centre, rim), max(width, 1.0)),
+    if shape.spoke is not None and style.spoke:   # (it lies inside the circle's box)
+        canvas.paint(rows, cols, _stroke(_segment_distance(x, y, *shape.spoke), max(width, 1.0)),
                      style.stroke or contrast(style.fill))
 
 
@@ -340,9 +364,10 @@ def _draw_text_boxed(pixels: np.ndarray, bodies: Sequence[Body], frame: Frame, v
     boxes = []
     for item in _text_items(bodies, frame, view):
         (x, y), text, _, anchor, back = item
-        left, top, right, bottom = label_font.getbbox(text, anchor=anchor)
-        if back is not None:
+        if back is not None:   # (the text lies inside its box: no second measuring)
             left, top, right, bottom = back[0] - x, back[1] - y, back[2] - x, back[3] - y
+        else:
+            left, top, right, bottom = label_font.getbbox(text, anchor=anchor)
         j0, j1, i0, i1 = box = _box(view, x + left, y + top, x + right, y + bottom)
         if j0 >= j1 or i0 >= i1:
             continue
