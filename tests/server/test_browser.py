@@ -41,16 +41,19 @@ class Served:
     """`max2code serve` in a process of its own (as a player starts it), and a protocol client
     (tests/server/client.py) in the same room: what the server says, message by message."""
 
-    def __init__(self) -> None:
+    def __init__(self, path=ARENA, watch: bool = True) -> None:
         self.process = subprocess.Popen(
-            [sys.executable, "-m", "max2code", "serve", str(ARENA), "--port", "0"],
-            stderr=subprocess.PIPE, text=True)
+            [sys.executable, "-m", "max2code", "serve", str(path), "--port", "0"],
+            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
         line = self.process.stderr.readline()
         m = re.search(r"http://127\.0\.0\.1:(\d+)/", line)
         assert m, line
         self.port = int(m.group(1))
         self.watcher: Client | None = None
         self.done = threading.Event()
+        self.thread = None
+        if not watch:
+            return
         self.failure: BaseException | None = None
         self.thread = threading.Thread(target=self._main, daemon=True)
         self.thread.start()
@@ -82,7 +85,8 @@ class Served:
 
     def stop(self) -> None:
         self.done.set()
-        self.thread.join(30)
+        if self.thread is not None:
+            self.thread.join(30)
         self.process.terminate()
         self.process.wait(30)
 
@@ -176,3 +180,45 @@ def test_two_browsers_share_one_world(browser, server):
     # player2 went left, player1 down: both moved in both pages' world
     assert found[4][3][1] < -0.05 and found[5][3][0] < 0.95
     assert errors_a == errors_b == []
+
+
+BREAKOUT = "/work/shared/corpus/pge-python/examples/breakout-breakout.py"
+
+
+@pytest.mark.skipif(not os.path.exists(BREAKOUT), reason="no PGE corpus here")
+def test_page_stops_drawing_removed_bricks(browser):
+    """PGE's breakout served (`max2code serve GAME.py`): once the ball has knocked bricks out,
+    the page draws the bricks still there and nothing where the removed ones were."""
+    served = Served(BREAKOUT, watch=False)
+    try:
+        page, errors = open_page(browser, served)
+        # (in one evaluation: the game runs on meanwhile, knocking bricks out)
+        start = page.evaluate("""Object.values(m2c.state.bodies).map((b) => [b.id, b.name, b.fill,
+            m2c.toPixel(...m2c.poseAt(b.id, m2c.serverNow()).slice(0, 2))])""")
+        ids = [i for i, *_ in start]
+        bricks = [i for i, name, _, _ in start if name.startswith("box-") and i >= 4]
+        centres = {i: c for i, _, _, c in start}
+        fill = hex_rgb(next(f for i, _, f, _ in start if i in bricks))
+        page.wait_for_function(f"Object.keys(m2c.state.bodies).length <= {len(ids) - 4}", timeout=20000)
+        t = page.evaluate("m2c.freeze(m2c.serverNow())")
+        live = set(page.evaluate("Object.keys(m2c.state.bodies).map(Number)"))
+        # where the ball is drawn in the frozen frame (a brick under it is not probed)
+        balls = page.evaluate(f"""Object.values(m2c.state.bodies).filter((b) => b.kind === "dynamic")
+            .map((b) => [...m2c.toPixel(...m2c.poseAt(b.id, {t!r}).slice(0, 2)),
+                         b.shape.r * (m2c.toPixel(1, 0)[0] - m2c.toPixel(0, 0)[0]) + 8])""")
+
+        def covered(c) -> bool:
+            return any(math.hypot(c[0] - x, c[1] - y) < r for x, y, r in balls)
+        from PIL import Image
+        image = Image.open(io.BytesIO(page.locator("#view").screenshot())).convert("RGB")
+        gone = [i for i in bricks if i not in live]
+        kept = [i for i in bricks if i in live]
+        assert len(gone) >= 4 and kept
+        for i in kept:
+            if not covered(centres[i]):
+                assert image.getpixel(tuple(int(v) for v in centres[i])) == fill, (i, t, balls)
+        for i in gone:
+            assert image.getpixel(tuple(int(v) for v in centres[i])) != fill, (i, t, balls)
+        assert errors == []
+    finally:
+        served.stop()
