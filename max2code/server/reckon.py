@@ -30,8 +30,9 @@ def _first_exceed(c: float, b: float, a: float, e: float) -> float:
         return 0.0      # beyond already, or on the edge and going out
     best = math.inf
     for level in (e, -e):
-        # a/2 s^2 + b s + (c - level) = 0
-        qa, qb, qc = 0.5 * a, b, c - level
+        # a s^2 + 2 b s + 2 (c - level) = 0 (doubled rather than a/2: half the least
+        # subnormal a is 0, which would take the linear root of a quadratic)
+        qa, qb, qc = a, 2.0 * b, 2.0 * (c - level)
         if qa == 0:
             if qb != 0:
                 s = -qc / qb
@@ -45,8 +46,24 @@ def _first_exceed(c: float, b: float, a: float, e: float) -> float:
         q = -0.5 * (qb + math.copysign(r, qb))     # the stable form of the two roots
         for s in ((q / qa) if qa else math.inf, (qc / q) if q else math.inf):
             if s > 0:
-                best = min(best, s)
+                best = min(best, _polish(c - level, b, a, s))
     return best
+
+
+def _polish(c: float, b: float, a: float, s: float) -> float:
+    """Newton steps on c + b s + a s^2/2 = 0 from a root s of the formula: when the products
+    of the discriminant fall into subnormal numbers (a tiny acceleration over a long time) the
+    formula's root is off by percents; a few steps make it exact to rounding. ((a s) s, not
+    a s^2: s^2 alone may overflow.)"""
+    for _ in range(60):
+        slope = b + a * s
+        if not math.isfinite(s) or slope == 0:
+            break
+        step = (c + b * s + (a * s) * s / 2) / slope
+        if not math.isfinite(step) or abs(step) <= 1e-15 * abs(s) or s - step <= 0:
+            break
+        s -= step
+    return s
 
 
 SOON = 0.05   # seconds: a change visible within this is sent at once, with its event
