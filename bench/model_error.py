@@ -36,10 +36,10 @@ import mpmath
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-from max2code import expr as E  # noqa: E402
-from max2code.generate import load  # noqa: E402
-from max2code.variants import family  # noqa: E402
-from max2code.scene import bisect_crossing  # noqa: E402
+from max2code.codegen import expr as E  # noqa: E402
+from max2code.codegen.generate import load  # noqa: E402
+from max2code.codegen.variants import family  # noqa: E402
+from max2code.commands.scene import bisect_crossing  # noqa: E402
 
 MODELS_DIR = ROOT / "bench" / "models"
 RESULTS = ROOT / "bench" / "results"

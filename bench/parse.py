@@ -4,7 +4,7 @@ Six families of input, each scaled from 10 kB to 50 MB: a valid program of many 
 the input that used to blow up (an unbalanced '{' near the top of a header full of // comments:
 a 1.7 kB file took 3.3 s); 10,000 to 25 million levels of nested braces; an unterminated string
 of escaped quotes in a block; unterminated comment openers and a run of quotes in the program.
-Each input is parsed (`max2code.parse.parse_text`, which takes any size; the command line
+Each input is parsed (`max2code.front.parse.parse_text`, which takes any size; the command line
 refuses files above 4 MiB) in a fresh interpreter, which reports the time and its peak memory.
 
     python bench/parse.py [--max-mb 50] [--checkout DIR]   # DIR: another checkout, e.g. a baseline
@@ -55,7 +55,7 @@ FAMILIES = ("valid program", "unbalanced { near the top", "nested braces",
 CHILD = """
 import json, sys, time
 from max2code.diagnostics import Max2CodeError
-from max2code.parse import parse_text
+from max2code.front.parse import parse_text
 text = open(sys.argv[1], encoding="utf-8").read()
 parse_text("begin\\n(t - 1)^2;\\nend\\n", "warm-up.mxm")  # the grammar is built once, not timed
 start = time.perf_counter()

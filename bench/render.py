@@ -39,7 +39,7 @@ from PIL import Image  # noqa: E402
 from max2code.engine.frames import render_bodies, run_frames  # noqa: E402
 from max2code.engine.scenefile import build_world, load  # noqa: E402
 from max2code.render import raster, write  # noqa: E402
-from max2code.sim import picture_view  # noqa: E402
+from max2code.commands.sim import picture_view  # noqa: E402
 
 SCENES = ("billiards-break", "bullet", "idle-orbit", "paddles", "pile", "pinball")
 FPS = 30.0

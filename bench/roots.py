@@ -913,7 +913,7 @@ def runtime_table(cmp: dict, meta: dict) -> str:
 def scenes_report(meta: dict) -> str:
     """`max2code scene --check` on the example frozen scenes, as a table."""
     sys.path.insert(0, str(ROOT))
-    from max2code import scene
+    from max2code.commands import scene
     lines = [f"# Example scenes ({meta['date']}, {meta['machine']})", "",
              "`max2code scene FILE --check`: every pair's first contact predicted by the engine "
              "(C core), solves by polynomial degree, rotating-model windows, the prediction time, "

@@ -20,10 +20,10 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(ROOT / "tests"))
 
-from max2code.emit import module_name  # noqa: E402
-from max2code.generate import generate, load  # noqa: E402
+from max2code.codegen.emit import module_name  # noqa: E402
+from max2code.codegen.generate import generate, load  # noqa: E402
 from max2code.languages import LANGUAGES  # noqa: E402
-from max2code.variants import STRATEGIES, family  # noqa: E402
+from max2code.codegen.variants import STRATEGIES, family  # noqa: E402
 from oracle import random_samples  # noqa: E402
 
 HARNESS = r"""

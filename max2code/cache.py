@@ -24,7 +24,7 @@ A second kind of entry (`results/`) serves `max2code build` the way ccache's dir
 a compiler: keyed by the .mxm's bytes and path, the contents of the files it loads, Maxima's
 identity and a digest of max2code's own code and templates, it holds the finished outputs, so
 a rebuild of unchanged equations neither parses nor renders (and imports neither Lark nor Jinja).
-An entry names its outputs relative to the output folder only (build.py checks them), so even a
+An entry names its outputs relative to the output folder only (commands/build.py checks them), so even a
 valid-looking entry can never make `build` write elsewhere.
 """
 

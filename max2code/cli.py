@@ -9,24 +9,25 @@ import os
 import signal
 import sys
 
-from . import __version__, children, depfile
+from . import __version__
+from .maxima import children, depfile
 from .diagnostics import Max2CodeError
-from .options import add_maxima_options, add_quiet_option, apply_maxima_options, shown
+from .commands.options import add_maxima_options, add_quiet_option, apply_maxima_options, shown
 from .output import require_folder, write_if_changed
 
 
 # `max2code NAME ...` runs the module's main(argv); one line per subcommand.
 SUBCOMMANDS = {
-    "build": "build",
-    "check": "check",
+    "build": "commands.build",
+    "check": "commands.check",
     "pge": "pge.command",
-    "report": "report",
-    "roles": "roles",
-    "runtime": "runtime_info",
-    "scene": "scene",
-    "serve": "serve",
-    "sim": "sim",
-    "vectors": "vectors",
+    "report": "commands.report",
+    "roles": "commands.roles",
+    "runtime": "commands.runtime_info",
+    "scene": "commands.scene",
+    "serve": "commands.serve",
+    "sim": "commands.sim",
+    "vectors": "commands.vectors",
 }
 # What each subcommand does, for the top-level --help (tests/test_cli.py: one per subcommand).
 SUMMARIES = {
@@ -46,7 +47,7 @@ SUMMARIES = {
 
 def _parser() -> argparse.ArgumentParser:
     from .languages import LANGUAGES
-    from .variants import DEFAULT_STRATEGY, STRATEGIES
+    from .codegen.variants import DEFAULT_STRATEGY, STRATEGIES
 
     ap = argparse.ArgumentParser(
         prog="max2code",
@@ -94,7 +95,7 @@ def report(exc: Max2CodeError) -> int:
 
 def main(argv: list[str] | None = None) -> int:
     """Entry point; an unexpected failure is reported in one line, not as a traceback.
-    SIGTERM, SIGINT and SIGHUP stop every Maxima this process started (children.py) and exit
+    SIGTERM, SIGINT and SIGHUP stop every Maxima this process started (maxima/children.py) and exit
     with 128 + the signal's number."""
     children.install_signal_handlers()
     try:
@@ -133,9 +134,9 @@ def closed_pipe() -> int:
 def print_name(path: str, lang_name: str) -> int:
     """What `max2code build` and CMake's max2code_generate() name an equation's outputs after,
     so that a build system can know the file before generating it."""
-    from .emit import check_module_name, module_name
+    from .codegen.emit import check_module_name, module_name
     from .languages import LANGUAGES
-    from .parse import parse_file
+    from .front.parse import parse_file
 
     spec = parse_file(path)
     check_module_name(spec, LANGUAGES[lang_name])
@@ -159,7 +160,7 @@ def _main(argv: list[str] | None) -> int:
     for path in (opts.output, dep_path):  # before Maxima runs, as a compiler would fail at once
         if path and path != "-":
             require_folder(path)
-    from .generate import generate, load
+    from .codegen.generate import generate, load
     from .languages import LANGUAGES
 
     try:

@@ -1,4 +1,4 @@
-"""The tests' side of the independent oracle (max2code/oracle.py, which `max2code vectors` and
+"""The tests' side of the independent oracle (max2code/commands/oracle.py, which `max2code vectors` and
 `max2code check` use too): Maxima evaluates the ORIGINAL equation at exact rational parameters,
 mpmath finds the roots at 60 digits. Nothing of max2code's coefficient extraction, printers or
 templates is involved. Here: samples as `Exact` values, and the bounds generated code is held to.
@@ -14,9 +14,9 @@ from pathlib import Path
 
 import mpmath
 
-from max2code import oracle
-from max2code.parse import parse_file
-from max2code.vectors import random_samples  # noqa: F401 - the tests' samples come from here
+from max2code.commands import oracle
+from max2code.front.parse import parse_file
+from max2code.commands.vectors import random_samples  # noqa: F401 - the tests' samples come from here
 
 
 @dataclass(frozen=True)
@@ -31,7 +31,7 @@ class Exact:
 
 def exact_coefficients(mxm: str | Path, names: tuple[str, ...],
                        samples: list[tuple[float, ...]]) -> list[Exact]:
-    """The oracle's exact coefficients (max2code/oracle.py) of each sample."""
+    """The oracle's exact coefficients (max2code/commands/oracle.py) of each sample."""
     spec = parse_file(str(mxm))
     found = oracle.exact_coefficients(spec, names, samples, timeout=600)
     assert all(cs is not None for cs in found), "the oracle could not evaluate a sample"
@@ -62,7 +62,7 @@ ROOT_REL = 1e-10
 def sampled_equation(path: Path, count: int):
     """(spec, poly, exact samples) for a shipped equation, with enough collisions and misses
     among the samples that both outcomes are tested."""
-    from max2code.generate import load
+    from max2code.codegen.generate import load
 
     spec, poly = load(str(path))
     samples = random_samples(poly.parameters, count, seed=zlib.crc32(path.stem.encode()))

@@ -37,10 +37,10 @@ NO_MAXIMA_NEEDED = {  # diagnosed before Maxima runs
     "duplicate-declaration", "parameter-twice", "unknown-language-tag", "unterminated-string",
     "unterminated-comment", "unterminated-statement", "empty-program", "header-garbage",
     "no-maxima",
-    # names Maxima gives a value (maxima_names.py), a name too long
+    # names Maxima gives a value (max2code/maxima/names.py), a name too long
     "parameter-maxima-option", "maxima-option-read", "parameter-maxima-flag",
     "maxima-system-variable", "name-too-long",
-    # refused by the lock-down before Maxima runs (lockdown.py)
+    # refused by the lock-down before Maxima runs (max2code/maxima/lockdown.py)
     "unsafe-backslash", "unsafe-eval-string", "unsafe-lisp", "unsafe-lisp-after-comment",
     "unsafe-load-computed", "unsafe-load-lisp", "unsafe-load-outside", "unsafe-load-parent",
     "unsafe-load-variable", "unsafe-map-system", "unsafe-plot", "unsafe-question-mark",
@@ -117,8 +117,8 @@ def test_maxima_syntax_error_columns(text: str, shown: str, caret: str,
     """Maxima's caret (a byte offset into the line it shows, spaces printed as 'Space') is
     mapped back to the .mxm; here the statement starts at line 5, column 11."""
     from max2code.diagnostics import Pos
-    from max2code.maxima import syntax_error_pos
-    from max2code.spec import Statement
+    from max2code.maxima.session import syntax_error_pos
+    from max2code.front.spec import Statement
 
     pos = syntax_error_pos(Statement(text, Pos("f.mxm", 5, 11)), shown, caret)
     assert (pos.line, pos.col) == expected

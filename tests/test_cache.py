@@ -4,7 +4,7 @@ and runtime discovery.
 Whether Maxima runs is controlled through a wrapper given as MAXIMA: while a flag file exists
 it fails at once ("a forbidden Maxima run"), so a run that succeeds then was served by the
 cache, and one that fails asked for Maxima. (A wrapper cannot log its calls to a file: Maxima
-is confined and writes nothing, see confine.py.)
+is confined and writes nothing, see max2code/maxima/confine.py.)
 """
 
 from __future__ import annotations
@@ -21,7 +21,8 @@ import pytest
 
 from conftest import ROOT
 
-from max2code import cache, depfile
+from max2code import cache
+from max2code.maxima import depfile
 
 
 def run(*args: str, env: dict[str, str], cwd: Path = ROOT) -> subprocess.CompletedProcess[str]:
@@ -374,7 +375,8 @@ def test_runtime_discovery_and_cmake_follow_the_registry(monkeypatch: pytest.Mon
     "LANG must be one of c, python, rust, m2")."""
     import dataclasses
 
-    from max2code import languages, runtime_info
+    from max2code import languages
+    from max2code.commands import runtime_info
     from max2code.languages.python import Python
 
     monkeypatch.setitem(languages.LANGUAGES, "toy", dataclasses.replace(Python(), extension=".toy"))

@@ -2,7 +2,7 @@
 
 One check builds every language for every shipped equation (one Rust crate with all modules,
 Cargo's target folder kept in build/check) and runs each on tests/vectors/<stem>.jsonl, the
-oracle's vectors; every language must meet the tolerances of max2code/check.py on every family.
+oracle's vectors; every language must meet the tolerances of max2code/commands/check.py on every family.
 A perturbed expected root must make the check fail (so it can fail), the vector files must be
 what tests/vectors/make_vectors.py makes today, and they must cover the families the issue
 asks for.
@@ -24,7 +24,7 @@ import pytest
 
 from conftest import ROOT, require
 
-from max2code import check as chk
+from max2code.commands import check as chk
 
 EQUATIONS = chk.shipped_equations()
 LANGS = ["c", "python", "m2", "rust"]

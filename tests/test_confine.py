@@ -1,4 +1,4 @@
-"""What confine.py gives a child process, observed from inside the child: the environment, the
+"""What max2code/maxima/confine.py gives a child process, observed from inside the child: the environment, the
 resource limits, the parent-death signal, and (with Landlock) no writes and no reads outside
 what it is given. The child is a Python interpreter reporting on itself, started exactly as
 Maxima is (confine.environment, confine.preexec)."""
@@ -13,7 +13,7 @@ from pathlib import Path
 
 import pytest
 
-from max2code import confine, maxima
+from max2code.maxima import confine, session as maxima
 from max2code.diagnostics import Max2CodeError
 
 CHILD = r"""

@@ -196,7 +196,7 @@ def test_the_python_example_reads_every_depfile_escape(tmp_path: Path) -> None:
     run when '\\:' was not read back."""
     import importlib.util
 
-    from max2code import depfile
+    from max2code.maxima import depfile
 
     spec = importlib.util.spec_from_file_location("generate_example",
                                                   ROOT / "examples" / "python" / "generate.py")

@@ -19,10 +19,10 @@ import pytest
 
 from conftest import ROOT
 
-from max2code.expr import MAX_DEPTH, Add, ExprSyntaxError, parse_maxima
+from max2code.codegen.expr import MAX_DEPTH, Add, ExprSyntaxError, parse_maxima
 from max2code.languages import LANGUAGES
-from max2code.straight import count_ops
-from max2code.tpoly import optimise
+from max2code.codegen.straight import count_ops
+from max2code.codegen.tpoly import optimise
 
 
 def oracle(text: str, values: dict[str, float]) -> float:
@@ -112,8 +112,8 @@ def test_powers_above_maxposex_are_expanded(tmp_path: Path, maxima_exe: str,
                                             monkeypatch: pytest.MonkeyPatch) -> None:
     """Maxima's expand() leaves a power above maxposex (1000) alone, which made (t - 1)^1001
     look like a coefficient holding t. Checked against math.comb."""
-    from max2code.parse import parse_text
-    from max2code.poly import polynomial
+    from max2code.front.parse import parse_text
+    from max2code.codegen.poly import polynomial
 
     monkeypatch.setenv("MAX2CODE_CACHE", str(tmp_path))
     spec = parse_text("begin\n(t - 1)^1001;\nend\n", str(tmp_path / "p.mxm"))

@@ -34,8 +34,8 @@ from hypothesis import strategies as st
 from conftest import ROOT
 
 from max2code.diagnostics import Max2CodeError
-from max2code.generate import check_tags
-from max2code.parse import decode_source, parse_text
+from max2code.codegen.generate import check_tags
+from max2code.front.parse import decode_source, parse_text
 
 SEEDS = sorted((ROOT / "equations").rglob("*.mxm"))
 SEED_BYTES = [p.read_bytes() for p in SEEDS]

@@ -16,7 +16,7 @@ import pytest
 from conftest import ROOT, require
 from oracle import TMAX, Exact, check_sample, sampled_equation
 
-from max2code.generate import generate, load
+from max2code.codegen.generate import generate, load
 from max2code.languages import LANGUAGES
 
 EQUATIONS = sorted((ROOT / "equations").glob("*.mxm"))

@@ -12,8 +12,8 @@ import pytest
 
 from conftest import ROOT
 
-from max2code.emit import module_name
-from max2code.generate import generate, load
+from max2code.codegen.emit import module_name
+from max2code.codegen.generate import generate, load
 from max2code.languages import LANGUAGES
 
 GOLDEN = ROOT / "tests" / "golden"

@@ -24,8 +24,8 @@ import pytest
 
 from conftest import corrected_paper_point_line, ROOT, require
 
-from max2code.emit import module_name
-from max2code.generate import generate, load
+from max2code.codegen.emit import module_name
+from max2code.codegen.generate import generate, load
 from max2code.languages import LANGUAGES
 
 MXM = ROOT / "equations" / "circles-accel.mxm"

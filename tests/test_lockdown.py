@@ -21,7 +21,7 @@ import pytest
 
 from conftest import ROOT
 
-from max2code import confine, maxima
+from max2code.maxima import confine, session as maxima
 from max2code.diagnostics import Pos
 
 

@@ -35,11 +35,11 @@ from conftest import corrected_paper_point_line, ROOT, require
 from oracle import TMAX, Exact, check_sample, exact_coefficients, random_samples, sampled_equation
 
 from max2code.diagnostics import Pos
-from max2code.emit import module_name
-from max2code.generate import generate, load
+from max2code.codegen.emit import module_name
+from max2code.codegen.generate import generate, load
 from max2code.languages import LANGUAGES
-from max2code.names import choose
-from max2code.variants import family
+from max2code.codegen.names import choose
+from max2code.codegen.variants import family
 
 EQUATIONS = sorted((ROOT / "equations").glob("*.mxm"))
 SAMPLES = 120
@@ -583,7 +583,7 @@ def test_m2_fragment_compiles_as_the_paper_used_it(tmp_path: Path) -> None:
 def test_printer_signs_literals_and_constants() -> None:
     from fractions import Fraction
 
-    from max2code.expr import Add, Div, Float, Mul, Neg, Num, Pow, Sym
+    from max2code.codegen.expr import Add, Div, Float, Mul, Neg, Num, Pow, Sym
 
     a, b, c = Sym("a"), Sym("b"), Sym("c")
     # Modula-2 allows a sign only at the start of an expression; Rust would accept more, but
@@ -613,7 +613,7 @@ def test_printer_signs_literals_and_constants() -> None:
 
 
 def test_identifiers() -> None:
-    """(max2code/names.py decides; tests/test_names.py tests it on every name.)"""
+    """(max2code/codegen/names.py decides; tests/test_names.py tests it on every name.)"""
     m2, rust = LANGUAGES["m2"], LANGUAGES["rust"]
     names = ("type", "match", "self", "VAR", "TYPE", "int", "char", "BEGIN", "MOD", "DIV", "REAL")
     where = Pos("k.mxm", 1, 1)

@@ -12,10 +12,11 @@ from fractions import Fraction
 import pytest
 
 from conftest import ROOT
-from max2code import maxima, maxima_names, oracle
+from max2code.maxima import session as maxima, names as maxima_names
+from max2code.commands import oracle
 from max2code.diagnostics import Max2CodeError
-from max2code.parse import parse_text
-from max2code.spec import Declared
+from max2code.front.parse import parse_text
+from max2code.front.spec import Declared
 
 # the names the issue found, and a few of each kind
 FOUND = ["fpprec", "expop", "linel", "maxposex", "ibase", "fpprintprec", "ratepsilon",
@@ -83,7 +84,7 @@ def test_oracle_does_not_share_the_blind_spot(maxima_exe: str) -> None:
 
 
 def test_list_is_maxima_s_own(maxima_exe: str) -> None:
-    """max2code/maxima_variables.txt is what the installed Maxima says (scripts/maxima-variables)."""
+    """max2code/maxima/variables.txt is what the installed Maxima says (scripts/maxima-variables)."""
     proc = subprocess.run([str(ROOT / "scripts" / "maxima-variables"), "--check"],
                           capture_output=True, text=True, timeout=300)
     assert proc.returncode == 0, proc.stdout + proc.stderr

@@ -1,7 +1,7 @@
 """Issue 12's generated-name clashes that exit 0: a parameter named like a name the generated
 code (or its runtime) defines. Either max2code refuses the equation with a diagnostic, or what
 it writes compiles. The general scheme (no generated identifier can clash with a user's name,
-in any language) is issue 11 item 1 (max2code/names.py); tests/test_names.py checks it on a
+in any language) is issue 11 item 1 (max2code/codegen/names.py); tests/test_names.py checks it on a
 corpus of every language's keywords and predeclared names, these are the issue's reproducers.
 """
 

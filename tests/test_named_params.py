@@ -22,7 +22,7 @@ import pytest
 from conftest import ROOT, require
 from oracle import TMAX, Exact, check_sample, exact_coefficients, random_samples
 
-from max2code.generate import generate, load
+from max2code.codegen.generate import generate, load
 from max2code.languages import LANGUAGES
 
 NAMED_MXM = """\

@@ -1,7 +1,7 @@
 """Every name compiles: no generated identifier can clash with a user's parameter, in any
 language, and fragments keep the user's names.
 
-* The naming rules (max2code/names.py, each language's lists) without any tool: ordinary names
+* The naming rules (max2code/codegen/names.py, each language's lists) without any tool: ordinary names
   are kept, keywords escaped, fragments touch keywords only (with a warning), renamed
   identifiers are unique.
 * The lists are complete: every object-like macro gcc defines after the C library's headers and
@@ -28,16 +28,16 @@ import pytest
 
 from conftest import ROOT, require
 
-from max2code import check as chk
-from max2code import maxima_names
+from max2code.commands import check as chk
+from max2code.maxima import names as maxima_names
 from max2code.diagnostics import Pos
-from max2code.emit import context
-from max2code.generate import generate, load
+from max2code.codegen.emit import context
+from max2code.codegen.generate import generate, load
 from max2code.languages import LANGUAGES
 from max2code.languages.m2.printer import M2_FORMALS
 from max2code.languages.python.printer import PY_PREDECLARED
 from max2code.languages.rust.printer import RUST_FUNCTIONS
-from max2code.names import choose
+from max2code.codegen.names import choose
 
 ORDINARY = "p c i k n t0 tmax degree result variant x q t1 tmin value c0 c1".split()
 # Names Maxima does not read as plain symbols (its keywords, constants and option variables

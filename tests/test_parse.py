@@ -7,7 +7,7 @@ import pytest
 from conftest import ROOT
 
 from max2code.diagnostics import Max2CodeError
-from max2code.parse import parse_file, parse_text
+from max2code.front.parse import parse_file, parse_text
 
 ORIGINAL_DIALECT = """\
 // circle against circle, as the original tool's files were written
@@ -118,7 +118,7 @@ def test_bad_input_positions(text: str, where: str, message: str) -> None:
 def test_a_parameter_named_begin_is_a_name_not_the_program() -> None:
     """The block pre-pass must not take a header name `BEGIN` (a comma list, a role) for the
     program's start; the grammar's own lexer never did (test_names' corpus has such names)."""
-    from max2code.parse import parse_text
+    from max2code.front.parse import parse_text
     spec = parse_text("function f\nparameters a, BEGIN\nrole r = BEGIN\nbegin\n"
                       "a*t - BEGIN;\nend\n", "begin.mxm")
     assert list(spec.parameters.value) == ["a", "BEGIN"]

@@ -15,7 +15,7 @@ import pytest
 
 from conftest import ROOT, require
 
-from max2code.roles import suggest
+from max2code.commands.roles import suggest
 
 
 def test_report_files_and_figure6(tmp_path: Path, maxima_exe: str) -> None:
@@ -286,7 +286,7 @@ def test_markdown_outputs_hold_paths_as_text(tmp_path: Path, maxima_exe: str) ->
 
 def _equation(expanded: list[tuple[str, int, int]], optimised: list[tuple[str, int, int]]):
     """An EquationReport from (label, degree, operations) rows, no Maxima needed."""
-    from max2code.report import EquationReport, VariantRow
+    from max2code.commands.report import EquationReport, VariantRow
     rows = lambda vs: [VariantRow(i, l, [], d, ops, 0, 0) for i, (l, d, ops) in enumerate(vs)]  # noqa: E731
     return EquationReport("eq.mxm", 4, ["a"], 0.5, {"expanded": rows(expanded),
                                                     "optimised": rows(optimised)}, {})
@@ -298,7 +298,7 @@ def test_the_chart_marks_a_missing_variant_and_shows_degrees() -> None:
     chart has a title, the machine and the date."""
     import re
 
-    from max2code.report import chart
+    from max2code.commands.report import chart
 
     eq = _equation([("general", 4, 90), ("no flat", 3, 40), ("only expanded", 2, 12)],
                    [("general", 4, 50), ("no flat", 3, 20), ("only optimised", 1, 7)])
@@ -317,7 +317,7 @@ def test_the_chart_marks_a_missing_variant_and_shows_degrees() -> None:
 
 def test_the_chart_names_this_machine_and_today_by_default() -> None:
     from max2code.machine import cpu, today
-    from max2code.report import chart
+    from max2code.commands.report import chart
 
     svg = chart(_equation([("general", 4, 9)], [("general", 4, 5)]))
     assert cpu() in svg and today() in svg and 'class="missing"' not in svg

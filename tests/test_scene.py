@@ -23,7 +23,7 @@ SCENES = ROOT / "examples" / "frozen"
 
 @pytest.fixture(scope="module")
 def scene_mod(maxima_exe: str):
-    from max2code import scene
+    from max2code.commands import scene
     return scene
 
 
@@ -118,7 +118,7 @@ def test_frozen_circles_placed_to_touch_are_accepted(tmp_path: Path) -> None:
     """Circles of radius 0.1 at x = 0.1 and 0.3 touch; their centres' distance rounds to 2.8e-17
     less than the radii's sum.  sim's check allows its tolerance; the frozen scene's allows a
     few ulps of its figures (a reviewer's case was refused as an overlap)."""
-    from max2code import scene as scene_mod
+    from max2code.commands import scene as scene_mod
 
     path = tmp_path / "touch.json"
     path.write_text('{"horizon": 1, "tolerance": 1e-6, "bodies": [{"centre": [0.1, 0], "radius": 0.1},'

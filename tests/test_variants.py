@@ -15,10 +15,10 @@ import pytest
 from conftest import ROOT, require
 from oracle import exact_coefficients, first_root_exact, random_samples
 
-from max2code.emit import module_name
-from max2code.generate import generate, load
+from max2code.codegen.emit import module_name
+from max2code.codegen.generate import generate, load
 from max2code.languages import LANGUAGES
-from max2code.variants import family
+from max2code.codegen.variants import family
 
 EQUATIONS = sorted((ROOT / "equations").glob("*.mxm"))
 PER_VARIANT = 12

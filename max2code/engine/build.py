@@ -58,9 +58,10 @@ def _generator_files() -> list[Path]:
     (not the engine's own Python, the renderer or the subcommands: editing those must not
     rebuild the library)."""
     pkg = PACKAGE
-    skip = {"sim.py", "scene.py", "check.py", "report.py", "roles.py", "build.py"}
-    files = [p for p in sorted(pkg.glob("*.py")) if p.name not in skip]
-    files += sorted(pkg.glob("*.lark")) + sorted((pkg / "languages").glob("*.py"))
+    files = sorted(pkg.glob("*.py"))
+    for stage in ("maxima", "front", "codegen", "languages"):
+        files += sorted((pkg / stage).glob("*.py"))
+    files += sorted((pkg / "front").glob("*.lark"))
     files += sorted((ROOT / "templates" / "c").glob("*"))
     return files
 

@@ -13,7 +13,7 @@ from fractions import Fraction
 from functools import cached_property
 
 from ..diagnostics import Pos, visible
-from ..expr import Add, Call, Div, Expr, Float, Mul, Neg, Num, Pow, Ref, Sym
+from ..codegen.expr import Add, Call, Div, Expr, Float, Mul, Neg, Num, Pow, Ref, Sym
 
 # Binding strength, loosest first.
 P_ADD, P_MUL, P_NEG, P_POW, P_ATOM = 1, 2, 3, 4, 5
@@ -37,7 +37,7 @@ class Language:
     title: str = ""
     extension: str = ""
     # Words the language itself reserves: never an identifier, in any scope. A fragment (pasted
-    # into the user's code) renames only these; see names.py.
+    # into the user's code) renames only these; see codegen/names.py.
     keywords: frozenset[str] = frozenset()
     # Names a generated module's code can see where it binds the user's names: library
     # modules and macros, builtins, preludes, pervasive identifiers, functions the printer calls.
@@ -122,7 +122,7 @@ class Language:
     def condition(self, idents: list[str]) -> str:
         return self.and_op.join(self.zero_test.format(i) for i in idents)
 
-    # Parameter name -> identifier, for printing (names.py decides; empty: names as they are).
+    # Parameter name -> identifier, for printing (codegen/names.py decides; empty: names as they are).
     names: tuple[tuple[str, str], ...] = ()
 
     def generated(self, module: str) -> frozenset[str]:
@@ -155,7 +155,7 @@ class Language:
         return None
 
     def escape(self, ident: str, why: str) -> str:
-        """A first try at another identifier for a reserved one (names.py makes it unique)."""
+        """A first try at another identifier for a reserved one (codegen/names.py makes it unique)."""
         if why in ("pattern", "invalid"):
             return "p" + ("" if ident.startswith("_") else "_") + ident
         return ident + "_"
@@ -171,7 +171,7 @@ class Language:
 
     # ---- shared rules ---------------------------------------------------------------------
     def identifier(self, name: str) -> str:
-        """How a parameter is written: as names.py decided, else its name (a `%` made `_`)."""
+        """How a parameter is written: as codegen/names.py decided, else its name (a `%` made `_`)."""
         return self._names.get(name) or name.replace("%", "_")
 
     def number(self, value: Fraction) -> str:
@@ -179,7 +179,7 @@ class Language:
             if value.denominator == 1 or Fraction(float(value)) == value:  # exact as a double
                 return self.float_literal(float(value))
             return f"({self.float_literal(float(value.numerator))}/{self.float_literal(float(value.denominator))})"
-        except OverflowError:  # a ValueError is reported at the equation by emit.py
+        except OverflowError:  # a ValueError is reported at the equation by codegen/emit.py
             raise ValueError(f"the constant {_digits(value)} does not fit in a double") from None
 
     def expr(self, e: Expr) -> str:

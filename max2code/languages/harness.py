@@ -14,12 +14,12 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
 
-from ..emit import module_name, template
-from ..generate import generate
+from ..codegen.emit import module_name, template
+from ..codegen.generate import generate
 from . import LANGUAGES
-from ..poly import Polynomial
-from ..spec import Spec
-from ..variants import DEFAULT_STRATEGY
+from ..codegen.poly import Polynomial
+from ..front.spec import Spec
+from ..codegen.variants import DEFAULT_STRATEGY
 
 
 class HarnessError(Exception):

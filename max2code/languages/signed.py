@@ -3,7 +3,7 @@ neither imports from the other."""
 
 from __future__ import annotations
 
-from ..expr import Add, Expr, Neg, Num
+from ..codegen.expr import Add, Expr, Neg, Num
 from .base import P_ADD, P_MUL, P_NEG, Language
 
 

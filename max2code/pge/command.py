@@ -76,7 +76,7 @@ def read_inputs(path: str) -> list[tuple[float, str, dict]]:
     return out
 
 
-def _game_error(path: str, exc: BaseException) -> str:
+def game_error(path: str, exc: BaseException) -> str:
     """`GAME.py:line:col: error: ...` at the game's innermost line in the traceback."""
     where = Pos(path, 1, 1)
     real = os.path.realpath(path)
@@ -177,7 +177,7 @@ def main(argv: list[str]) -> int:
     try:
         code, game = run_game(args.game, options)
     except Exception as exc:  # the game's own failure, or a PGE call it got wrong
-        print(_game_error(args.game, exc), file=sys.stderr)
+        print(game_error(args.game, exc), file=sys.stderr)
         return 1
     seconds = time.perf_counter() - start
     if pictures:

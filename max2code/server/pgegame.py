@@ -195,10 +195,10 @@ class GameWorld:
         except SystemExit as exc:
             self.over = exc.code if isinstance(exc.code, int) else 1
         except Exception as exc:   # the game's own error (a callback's, or its program's)
-            from ..pge.command import _game_error
+            from ..pge.command import game_error
 
             self.over = 1
-            raise EngineError(_game_error(self.program.path, exc)) from None
+            raise EngineError(game_error(self.program.path, exc)) from None
         finally:
             pge._game = saved
         self._sync()

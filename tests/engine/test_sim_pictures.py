@@ -86,7 +86,7 @@ def test_poses_in_bulk_equal_each_pose(engine) -> None:
 
 
 def _sim(argv: list[str], capsys: pytest.CaptureFixture) -> tuple[int, str]:
-    from max2code import sim
+    from max2code.commands import sim
     rc = sim.main(argv)
     return rc, capsys.readouterr().err
 
@@ -107,7 +107,7 @@ def test_view_holds_every_frame(engine, tmp_path: Path, capsys: pytest.CaptureFi
     from max2code.engine.frames import render_bodies, run_frames
     from max2code.engine.scenefile import build_world, load
     from max2code.render.fit import world_extent
-    from max2code.sim import picture_view
+    from max2code.commands.sim import picture_view
     world = build_world(load(str(scene)))
     frames = list(run_frames(world, 2.0, 10.0))
     bodies = render_bodies(world)

@@ -67,7 +67,7 @@ def scene(name: str, seconds: float):
     pytest.importorskip("cffi")
     from max2code.engine.frames import render_bodies, run_frames
     from max2code.engine.scenefile import build_world, load
-    from max2code.sim import picture_view
+    from max2code.commands.sim import picture_view
     s = load(str(ROOT / "examples" / "scenes" / f"{name}.toml"))
     world = build_world(s)
     frames = list(run_frames(world, seconds, 30.0))

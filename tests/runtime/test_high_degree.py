@@ -13,7 +13,7 @@ from pathlib import Path
 import pytest
 
 from conftest import require
-from max2code import check as chk
+from max2code.commands import check as chk
 
 ROOT = Path(__file__).resolve().parents[2]
 MODELS = [ROOT / "bench" / "models" / f"orbit-taylor{k}.mxm" for k in (6, 8)]

@@ -5,13 +5,13 @@ the circles-orbit cases).
     python tests/vectors/make_vectors.py            # all of them
     python tests/vectors/make_vectors.py circles-accel
 
-The answers come from the independent oracle (max2code/oracle.py): Maxima runs the ORIGINAL .mxm
+The answers come from the independent oracle (max2code/commands/oracle.py): Maxima runs the ORIGINAL .mxm
 program with the parameters substituted as exact rationals (every double is one) and expands
 the polynomial in t exactly; the first root in (0, tmax] comes from mpmath at 60 digits, and
 whether it is a multiple root (a graze) from an exact gcd of p and p'. Nothing of max2code's
 coefficient extraction, printers or templates is used. The output is deterministic.
 
-The file format is max2code/vectors.py's (the one `max2code vectors` writes for any equation);
+The file format is max2code/commands/vectors.py's (the one `max2code vectors` writes for any equation);
 these hand-made cases add what only knowing the motion can build. The families and what each
 case is meant to exercise are listed in FAMILIES below.
 """
@@ -27,13 +27,13 @@ HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent.parent
 sys.path.insert(0, str(ROOT))
 
-from max2code import oracle, vectors  # noqa: E402
-from max2code.generate import load  # noqa: E402
-from max2code.vectors import random_samples  # noqa: E402
+from max2code.commands import oracle, vectors  # noqa: E402
+from max2code.codegen.generate import load  # noqa: E402
+from max2code.commands.vectors import random_samples  # noqa: E402
 
 TMAX = vectors.TMAX
 FAMILIES = {
-    "generic": "random game-like parameters (max2code/vectors.py's random_samples), general variant",
+    "generic": "random game-like parameters (max2code/commands/vectors.py's random_samples), general variant",
     "no_root": "separating, passing wide, or colliding only after tmax",
     "graze": "closest approach exactly at contact, exact binary values: a double root",
     "cluster": "two (or four) roots close together: a shallow clip",

@@ -7,7 +7,7 @@ import textwrap
 from dataclasses import dataclass
 
 from ...diagnostics import Pos
-from ...expr import Add, Expr
+from ...codegen.expr import Add, Expr
 from ..base import P_ATOM, Language
 
 # Python's hard keywords (soft ones, `match`, `case`, `type`, `_`, are ordinary names). Written

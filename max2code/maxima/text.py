@@ -10,8 +10,8 @@ from __future__ import annotations
 
 import re
 
-from .diagnostics import Pos, error
-from .spec import Statement
+from ..diagnostics import Pos, error
+from ..front.spec import Statement
 
 _QUIT = re.compile(r"^\s*quit\s*\(\s*\)\s*[;$]\s*$", re.DOTALL)
 

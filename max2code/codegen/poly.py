@@ -12,10 +12,10 @@ import itertools
 import re
 from dataclasses import dataclass, replace
 
-from . import maxima
-from .diagnostics import Diagnostic, Max2CodeError, Pos, error
+from ..maxima import session as maxima
+from ..diagnostics import Diagnostic, Max2CodeError, Pos, error
 from .expr import ZERO, Expr, ExprSyntaxError, calls, parse_maxima, symbols
-from .spec import Spec
+from ..front.spec import Spec
 
 CONSTANTS = frozenset({"%pi", "%e"})
 E = "m2c__e"

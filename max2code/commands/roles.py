@@ -23,10 +23,10 @@ import re
 import sys
 from dataclasses import dataclass
 
-from .diagnostics import Max2CodeError
-from .parse import parse_file
-from .poly import polynomial
-from .variants import cheaper, straight
+from ..diagnostics import Max2CodeError
+from ..front.parse import parse_file
+from ..codegen.poly import polynomial
+from ..codegen.variants import cheaper, straight
 
 
 @dataclass(frozen=True)

@@ -17,13 +17,13 @@ from dataclasses import asdict, dataclass
 from html import escape
 from pathlib import Path
 
-from .diagnostics import Max2CodeError
-from .generate import generate, load
-from .languages import LANGUAGES
-from .mdtext import inline
-from .output import write_if_changed
-from .paths import ROOT, display, inputs_or_folder, no_inputs
-from .variants import STRATEGIES, family
+from ..diagnostics import Max2CodeError
+from ..codegen.generate import generate, load
+from ..languages import LANGUAGES
+from ..mdtext import inline
+from ..output import write_if_changed
+from ..paths import ROOT, display, inputs_or_folder, no_inputs
+from ..codegen.variants import STRATEGIES, family
 
 # The paper's figure 6: lines of max2code input, of Maxima output, of generated Modula-2.
 PAPER_FIGURE_6 = {"circle-circle": (33, 835, 977), "point-line": (34, 18, 24)}
@@ -187,7 +187,7 @@ def chart(eq: EquationReport, made: str | None = None) -> str:
     hatched 'no variant' mark, never an empty place that reads as zero operations. Title, then
     the machine and date (`made`, default machine.machine_and_date()); every text 13 px, the
     label column as wide as the longest label needs (long role names were cut off)."""
-    from .machine import machine_and_date
+    from ..machine import machine_and_date
     made = machine_and_date() if made is None else made
     rows = {s: {v.label: v for v in eq.variants[s]} for s in STRATEGIES}
 

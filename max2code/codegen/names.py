@@ -18,8 +18,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .diagnostics import Diagnostic, Pos
-from .languages.base import Language
+from ..diagnostics import Diagnostic, Pos
+from ..languages.base import Language
 
 REASONS = {
     "keyword": "a {title} keyword",

@@ -4,13 +4,13 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from . import maxima
-from .diagnostics import Diagnostic, error
+from ..maxima import session as maxima
+from ..diagnostics import Diagnostic, error
 from .emit import render
-from .languages import LANGUAGES, Language
-from .parse import parse_file
+from ..languages import LANGUAGES, Language
+from ..front.parse import parse_file
 from .poly import Polynomial, check_declared_terms, polynomial
-from .spec import Spec
+from ..front.spec import Spec
 from .variants import DEFAULT_STRATEGY
 
 

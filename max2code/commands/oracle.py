@@ -16,9 +16,9 @@ import re
 from fractions import Fraction
 from typing import Any, Sequence
 
-from . import maxima, maxima_names
-from .diagnostics import Pos, error
-from .spec import Spec
+from ..maxima import session as maxima, names as maxima_names
+from ..diagnostics import Pos, error
+from ..front.spec import Spec
 
 DIGITS = 60
 # Coefficients are exact rationals, or (with %pi and the like in them) bigfloats of this many

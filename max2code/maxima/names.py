@@ -19,11 +19,11 @@ import functools
 import re
 from pathlib import Path
 
-from .diagnostics import Pos, error
-from .maxima_text import advance, comment_end, string_end
-from .spec import Statement
+from ..diagnostics import Pos, error
+from .text import advance, comment_end, string_end
+from ..front.spec import Statement
 
-LIST = Path(__file__).with_name("maxima_variables.txt")
+LIST = Path(__file__).with_name("variables.txt")
 
 _KINDS = {"number": "a numeric option variable", "flag": "a flag (true or false)",
           "other": "a system variable"}

@@ -17,7 +17,7 @@ Maxima itself is locked down before the program's first statement (`prelude`):
 * `:lisp` and every other break command are refused, except the exact marker lines max2code
   itself writes between statements.
 
-A refusal prints `@@M2C-REFUSED what` and stops the program; maxima.py reports it at the
+A refusal prints `@@M2C-REFUSED what` and stops the program; session.py reports it at the
 statement that ran into it. The operating system confines Maxima as well (confine.py).
 `--allow-unsafe-maxima` turns all of this off (the resource limits stay).
 """
@@ -28,10 +28,10 @@ import os
 import re
 from dataclasses import dataclass
 
-from .diagnostics import Pos, error
-from . import depfile, maxima_text
-from .maxima_text import advance
-from .spec import Statement
+from ..diagnostics import Pos, error
+from . import depfile, text as maxima_text
+from .text import advance
+from ..front.spec import Statement
 
 LIFTED = "--allow-unsafe-maxima lifts this"
 

@@ -19,8 +19,8 @@ import math
 import sys
 import time
 
-from .jsonsafe import json_safe
-from .output import write_if_changed
+from ..jsonsafe import json_safe
+from ..output import write_if_changed
 
 
 # Frames a run with pictures may ask for: every frame is kept until the end (the view is fit to
@@ -88,8 +88,8 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--json", action="store_true", help="print the summary as JSON")
     args = ap.parse_args(argv)
 
-    from .engine.scenefile import SceneError, build_world, load
-    from .engine.world import EngineError
+    from ..engine.scenefile import SceneError, build_world, load
+    from ..engine.world import EngineError
 
     try:
         scene = load(args.scene)
@@ -121,7 +121,7 @@ def main(argv: list[str]) -> int:
         log: list | _Counter = [] if args.events else _Counter()
         start = time.perf_counter()
         if pictures:
-            from .engine.frames import render_bodies, run_frames
+            from ..engine.frames import render_bodies, run_frames
             # (--png and --svg draw the state at T itself, a frame of its own when T is not
             # a frame time)
             frames = list(run_frames(world, until, fps, log, end_frame=bool(args.png or args.svg)))
@@ -164,8 +164,8 @@ def main(argv: list[str]) -> int:
 def picture_view(scene, bodies, frames, width: int, height: int):
     """The scene's view, else the smallest one holding every body in every frame (bodies that
     travel stay in the picture: fitting the first frame only would lose them)."""
-    from .render.fit import fit_view
-    from .render.model import View
+    from ..render.fit import fit_view
+    from ..render.model import View
 
     if scene.view:
         return View(*scene.view, width=width, height=height)
@@ -175,12 +175,12 @@ def picture_view(scene, bodies, frames, width: int, height: int):
 def _pictures(args, scene, world, frames, fps: float) -> int:
     """Write the pictures asked for; 0, or 1 after an `error:` line (a writer's failure leaves
     no partial file: every writer renames a finished temporary file into place)."""
-    from .diagnostics import Max2CodeError
-    from .engine.frames import render_bodies
-    from .render.model import RenderModelError
+    from ..diagnostics import Max2CodeError
+    from ..engine.frames import render_bodies
+    from ..render.model import RenderModelError
 
     try:
-        from .render import write
+        from ..render import write
     except ImportError as exc:
         print(f"max2code sim: error: pictures are not available ({exc})", file=sys.stderr)
         return 1
@@ -216,8 +216,8 @@ def _pictures(args, scene, world, frames, fps: float) -> int:
 
 def _live(bodies, frames, view, fps: float) -> None:
     """The window is a convenience: without pygame (or a display) say so and go on."""
-    from .render import live
-    from .render.write import RenderUnavailable
+    from ..render import live
+    from ..render.write import RenderUnavailable
 
     try:
         live.show(bodies, frames, view, fps)

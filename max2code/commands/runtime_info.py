@@ -22,14 +22,14 @@ import site
 import sys
 from pathlib import Path
 
-from . import __version__, cache
-from .output import write_if_changed
-from .paths import PACKAGE, runtime_dir
+from .. import __version__, cache
+from ..output import write_if_changed
+from ..paths import PACKAGE, runtime_dir
 
 def info(lang: str) -> dict[str, str]:
     """The answers for one language, from its registry entry; every value is one line of text
     ('' when not relevant). A language without build flags gets its runtime folder."""
-    from .languages import REGISTRY
+    from ..languages import REGISTRY
 
     entry = REGISTRY.get(lang)
     if entry is not None and entry.runtime is not None:
@@ -87,7 +87,7 @@ def cmake_dir() -> Path:
         command = ["${CMAKE_COMMAND}", "-E", "env", f"PYTHONPATH={root}", *command]
     words = " ".join(w if w.startswith("${") else _bracket(w) for w in command)
     functions = _bracket((PACKAGE / "cmake" / "max2code-functions.cmake").as_posix())
-    from .languages import LANGUAGES
+    from ..languages import LANGUAGES
     extensions = " ".join(f"{name} {lang.extension}" for name, lang in LANGUAGES.items())
     config = CONFIG.format(functions=functions, version=__version__, command=words,
                            extensions=extensions)
@@ -100,7 +100,7 @@ def cmake_dir() -> Path:
 
 
 def _languages() -> list[str]:
-    from .languages import LANGUAGES
+    from ..languages import LANGUAGES
     return sorted(LANGUAGES)
 
 

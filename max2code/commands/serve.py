@@ -24,9 +24,9 @@ def _game(path: str, player: list[str]):
     circle-31), default its dynamic ones; their keys go to the game's handlers."""
     import os
 
-    from .engine.scenefile import Scene
-    from .pge.command import _game_error
-    from .server.pgegame import UNIT_VIEW, GameWorld, load as load_game
+    from ..engine.scenefile import Scene
+    from ..pge.command import game_error
+    from ..server.pgegame import UNIT_VIEW, GameWorld, load as load_game
 
     if not os.path.isfile(path):
         print(f"{path}:1:1: error: no such game file", file=sys.stderr)
@@ -34,7 +34,7 @@ def _game(path: str, player: list[str]):
     try:
         first = GameWorld(load_game(path))
     except Exception as exc:   # the game's own failure, located in its file
-        print(_game_error(path, exc), file=sys.stderr)
+        print(game_error(path, exc), file=sys.stderr)
         return 1
     names = {b.name: b.id for b in first.bodies}
     wanted = player or [b.name for b in first.bodies if b.kind == "dynamic"]
@@ -70,8 +70,8 @@ def main(argv: list[str]) -> int:
               file=sys.stderr)
         return 2
 
-    from .engine.scenefile import SceneError, load
-    from .server.app import Options, run
+    from ..engine.scenefile import SceneError, load
+    from ..server.app import Options, run
 
     tolerance = None if args.tolerance == -1 else (args.tolerance or 0.0)
     if args.scene.endswith(".py"):   # a PGE program (docs/server.md, "Serving a PGE game")

@@ -13,9 +13,9 @@ from lark.exceptions import (UnexpectedCharacters, UnexpectedEOF, UnexpectedInpu
                              VisitError)
 from lark.tree import Meta
 
-from . import maxima_names
-from .diagnostics import Max2CodeError, Pos, error
-from .maxima_text import split_statements, string_end
+from ..maxima import names as maxima_names
+from ..diagnostics import Max2CodeError, Pos, error
+from ..maxima.text import split_statements, string_end
 from .spec import CodeBlock, Declared, Program, Role, Spec, Term
 
 

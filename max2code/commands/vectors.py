@@ -39,10 +39,11 @@ from fractions import Fraction
 from pathlib import Path
 from typing import Any, Sequence
 
-from . import __version__, cache, depfile, maxima
-from .diagnostics import Max2CodeError
-from .output import write_if_changed
-from .paths import display
+from .. import __version__, cache
+from ..maxima import depfile, session as maxima
+from ..diagnostics import Max2CodeError
+from ..output import write_if_changed
+from ..paths import display
 
 FORMAT = 1
 TMAX = 10.0
@@ -209,8 +210,8 @@ def random_samples(names: Sequence[str], count: int, seed: int) -> list[tuple[fl
 def generic_vectors(path: str, count: int = GENERIC_COUNT,
                     timeout: float = maxima.DEFAULT_TIMEOUT) -> str:
     """The whole vector file of any equation (deterministic: seeded by the file's bytes)."""
-    from .generate import load
-    from .variants import family
+    from ..codegen.generate import load
+    from ..codegen.variants import family
 
     spec, poly = load(path, timeout)
     names = poly.parameters
@@ -243,12 +244,12 @@ def header(path: str, names: Sequence[str], families: dict[str, str], generator:
         "max2code_vectors": FORMAT,
         "equation": path,
         "parameters": list(names),
-        "oracle": "max2code/oracle.py: Maxima expands the original equation at exact rational "
+        "oracle": "max2code/commands/oracle.py: Maxima expands the original equation at exact rational "
                   f"parameters; first root by mpmath at {DIGITS} digits; graze by exact "
                   "gcd(p, p')",
         "generator": generator,
         "families": families,
-        "tolerances": "max2code/check.py (TOLERANCES)",
+        "tolerances": "max2code/commands/check.py (TOLERANCES)",
     }
 
 

@@ -9,7 +9,7 @@ go on burning a core). So:
   `Interrupted`: folders are removed on the way out and the CLI exits 128 + the signal
   (143, 130, 129). No new Maxima starts once a signal has arrived (`build -j` workers);
 * SIGKILL cannot be caught: the kernel kills Maxima then (PR_SET_PDEATHSIG, see confine.py),
-  and a private folder is removed as soon as Maxima has opened its script (maxima.py), so only
+  and a private folder is removed as soon as Maxima has opened its script (session.py), so only
   one killed in its first tenth of a second is left behind; the next run removes those whose
   max2code is gone (`sweep`).
 """

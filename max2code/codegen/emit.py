@@ -12,14 +12,14 @@ from pathlib import Path
 
 import jinja2
 
-from . import __version__
-from .diagnostics import Diagnostic, Pos, error
-from .languages.base import Language
+from .. import __version__
+from ..diagnostics import Diagnostic, Pos, error
+from ..languages.base import Language
 from .names import choose
-from .paths import templates_dir
+from ..paths import templates_dir
 from .expr import symbols
 from .poly import Polynomial
-from .spec import CodeBlock, Spec
+from ..front.spec import CodeBlock, Spec
 from .variants import DEFAULT_STRATEGY, Variant, family, role_notes
 
 RESUME = "@@M2C_RESUME@@"
@@ -124,7 +124,7 @@ def _environment(folder: str) -> jinja2.Environment:
     )
     # `{{ path | comment }}`: a path or name in a comment of the folder's language, escaped by
     # that language's printer so it can never end the comment (see Language.comment_text).
-    from .languages import LANGUAGES
+    from ..languages import LANGUAGES
     lang = LANGUAGES.get(Path(folder).name)
     if lang is not None:
         env.filters["comment"] = lang.comment_text

@@ -24,12 +24,13 @@ from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 
-from . import cache, depfile, maxima
-from .mdtext import inline
-from .diagnostics import Max2CodeError, Pos
+from .. import cache
+from ..maxima import depfile, session as maxima
+from ..mdtext import inline
+from ..diagnostics import Max2CodeError, Pos
 from .options import add_maxima_options, add_quiet_option, apply_maxima_options
-from .output import write_if_changed
-from .paths import inputs_or_folder, no_inputs
+from ..output import write_if_changed
+from ..paths import inputs_or_folder, no_inputs
 
 
 @dataclass(frozen=True)
@@ -53,9 +54,9 @@ class Outcome:
 
 
 def build_one(path: str, out: Path, langs: list[str] | None, timeout: float) -> Outcome:
-    from .emit import module_name
-    from .generate import generate, load
-    from .languages import LANGUAGES
+    from ..codegen.emit import module_name
+    from ..codegen.generate import generate, load
+    from ..languages import LANGUAGES
 
     langs = langs or sorted(LANGUAGES)
     spec, poly = load(path, timeout)
@@ -193,7 +194,7 @@ def summary(rows: list[Row], failed: list[str], langs: list[str]) -> str:
 
 
 def _languages() -> list[str]:
-    from .languages import LANGUAGES
+    from ..languages import LANGUAGES
     return sorted(LANGUAGES)
 
 

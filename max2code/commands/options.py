@@ -8,8 +8,9 @@ import argparse
 import math
 from collections.abc import Iterable
 
-from . import cache, maxima
-from .diagnostics import Diagnostic
+from .. import cache
+from ..maxima import session as maxima
+from ..diagnostics import Diagnostic
 
 
 def seconds(text: str) -> float:
@@ -25,7 +26,7 @@ def seconds(text: str) -> float:
 
 def mebibytes(text: str) -> int:
     """--maxima-memory's type: 0 (no limit), or at least what GCL needs to start."""
-    from .confine import MIN_MEMORY_MIB
+    from ..maxima.confine import MIN_MEMORY_MIB
 
     try:
         value = int(text)
@@ -40,7 +41,7 @@ def mebibytes(text: str) -> int:
 def add_maxima_options(ap: argparse.ArgumentParser) -> None:
     """The options of every command that runs Maxima on a .mxm (README: Security), so that an
     error's advice (--allow-unsafe-maxima, --maxima-memory) holds in each."""
-    from .confine import DEFAULT_MEMORY_MIB
+    from ..maxima.confine import DEFAULT_MEMORY_MIB
 
     ap.add_argument("--timeout", type=seconds, default=maxima.DEFAULT_TIMEOUT, metavar="SECONDS",
                     help=f"limit on one Maxima run (default {maxima.DEFAULT_TIMEOUT:g})")

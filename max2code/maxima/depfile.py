@@ -18,10 +18,10 @@ import re
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from .diagnostics import Pos, error, visible
+from ..diagnostics import Pos, error, visible
 
 if TYPE_CHECKING:
-    from .spec import Statement
+    from ..front.spec import Statement
 
 ANY_LOAD = re.compile(r"\b(?:load|batchload|batch)\s*\(")
 _SYMBOL_ARG = re.compile(r"\s*([A-Za-z_%][\w%]*)\s*[,)]")
@@ -49,7 +49,7 @@ def load_call_at(text: str, start: int) -> LoadCall | None:
     """The load call whose name starts at `start`, or None if there is none. Its string is
     read with maxima_text.string_end: a regular expression over a long string of escapes would
     cost memory per character."""
-    from .maxima_text import string_end
+    from .text import string_end
 
     m = ANY_LOAD.match(text, start)
     if m is None:

@@ -18,10 +18,11 @@ import tempfile
 import time
 from dataclasses import dataclass
 
-from . import cache, children, confine, depfile, lockdown, maxima_names
-from .diagnostics import Pos, error
-from .maxima_text import advance
-from .spec import Statement
+from .. import cache
+from . import children, confine, depfile, lockdown, names as maxima_names
+from ..diagnostics import Pos, error
+from .text import advance
+from ..front.spec import Statement
 
 MARK = "@@M2C"
 DEFAULT_TIMEOUT = 120.0

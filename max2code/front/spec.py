@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .diagnostics import Pos
+from ..diagnostics import Pos
 
 
 @dataclass(frozen=True)

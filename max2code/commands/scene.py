@@ -36,7 +36,7 @@ from collections import Counter
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
-from .jsonsafe import json_safe
+from ..jsonsafe import json_safe
 
 
 # ---------------------------------------------------------------------------
@@ -96,7 +96,7 @@ def load_scene(path: str | Path) -> Scene:
     checker: every problem a `file:line:col: error:` line, raised together as SceneError):
     known keys only, finite numbers, positive radii, unique names, and no two bodies of
     different groups overlapping at 0 -- a contact already under way has no first time."""
-    from .engine.scenefile import SceneError, Checker, read_located
+    from ..engine.scenefile import SceneError, Checker, read_located
 
     path = Path(path)
     shown = str(path)
@@ -140,7 +140,7 @@ def _overlapping(c, bodies: list[tuple[int, Body]]) -> None:
     """Bodies of different groups (or none) overlapping at 0, located at the later one (their
     positions at 0 are centre + offset; the circles near each other by the grid of
     engine.scenefile.near_pairs)."""
-    from .engine.scenefile import MAX_OVERLAPS, near_pairs, report_overlaps
+    from ..engine.scenefile import MAX_OVERLAPS, near_pairs, report_overlaps
 
     circles = [(*b.position(0.0), b.radius) for _, b in bodies]
     found = []
@@ -203,7 +203,7 @@ def bisect_crossing(f, lo, hi, digits: int = 30):
 
 def world(scene: Scene):
     """The scene as an engine World: each circle a kinematic body at its centre of rotation."""
-    from .engine import World
+    from ..engine import World
 
     w = World()
     for b in scene.bodies:
@@ -215,7 +215,7 @@ def world(scene: Scene):
 
 def predict(scene: Scene) -> tuple[list[Prediction], float]:
     """Every pair's first contact, and the seconds the engine spent on them."""
-    from .engine import EngineError
+    from ..engine import EngineError
 
     w = world(scene)
     out = []
@@ -392,7 +392,7 @@ def main(argv: list[str]) -> int:
                     help="compare with the exact motion (mpmath)")
     ap.add_argument("--json", action="store_true", help="print the report as JSON")
     args = ap.parse_args(argv)
-    from .engine.scenefile import SceneError
+    from ..engine.scenefile import SceneError
 
     try:
         scene = load_scene(args.scene)

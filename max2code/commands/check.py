@@ -35,9 +35,10 @@ from dataclasses import asdict, dataclass, field
 from fractions import Fraction
 from pathlib import Path
 
-from . import cache, maxima
-from .diagnostics import Max2CodeError
-from .paths import ROOT, inputs_or_folder, no_inputs
+from .. import cache
+from ..maxima import session as maxima
+from ..diagnostics import Max2CodeError
+from ..paths import ROOT, inputs_or_folder, no_inputs
 from .vectors import Vector, VectorError, cached_vectors, load_vectors, parse_double
 
 __all__ = ["Vector", "VectorError", "load_vectors", "parse_double", "check", "judge", "Report"]
@@ -185,7 +186,7 @@ class Report:
         t = TOLERANCES
         out = [f"tolerances: coefficients {t.coef:.2g} of the largest; first root "
                f"{t.root_rel:.2g} relative + what that coefficient error allows "
-               f"(max2code/check.py); missed 0, spurious 0", *self.sources, ""]
+               f"(max2code/commands/check.py); missed 0, spurious 0", *self.sources, ""]
         header = (f"{'equation':<18} {'lang':<7} {'family':<12} {'n':>3} {'coef err':>9} "
                   f"{'root rel err':>12} {'of bound':>9} {'missed':>6} {'spurious':>8}  result")
         out += [header, "-" * len(header)]
@@ -211,7 +212,7 @@ def shipped_equations() -> list[Path]:
 
 
 def languages() -> list[str]:
-    from .languages import harnesses
+    from ..languages import harnesses
     return list(harnesses())
 
 
@@ -227,7 +228,7 @@ def check(equations: list[Path], vectors: dict[Path, Path] | None = None,
 
     `vectors` maps an equation to its vector file (default: `vectors_for`). No language is
     built for an equation without vectors (an error in the report instead)."""
-    from .languages import harnesses
+    from ..languages import harnesses
 
     report = Report()
     langs = langs or list(harnesses())
@@ -241,9 +242,9 @@ def check(equations: list[Path], vectors: dict[Path, Path] | None = None,
 
 def _check(equations: list[Path], vectors: dict[Path, Path] | None, langs: list[str],
            build_dir: Path, timeout: float, tmp: Path, report: Report) -> None:
-    from .generate import load
-    from .languages import harnesses
-    from .languages.harness import Case, HarnessError, Unit
+    from ..codegen.generate import load
+    from ..languages import harnesses
+    from ..languages.harness import Case, HarnessError, Unit
 
     units, by_name = [], {}
     for mxm in equations:
