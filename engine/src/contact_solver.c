@@ -738,6 +738,29 @@ static double residual(m2c_world *w, const cp *c, int nc, const int *bodies, int
     return worst;
 }
 
+/* The candidate forces of the certificate's contacts c[0..nc) from the tick's solve
+ * (s->c[0..ntick), impulses over h), matched by (a, b, feature); 1 when every contact found
+ * one inside its cone. */
+static int tick_forces(const struct solver *s, cp *c, int nc, int ntick)
+{
+    if (!(s->h > 0) || ntick == 0)
+        return 0;
+    for (int k = 0; k < nc; k++) {
+        int found = 0;
+        for (int q = 0; q < ntick && !found; q++) {
+            const cp *t = &s->c[q];
+            if (t->a == c[k].a && t->b == c[k].b && t->key == c[k].key) {
+                c[k].ln = t->ln / s->h;
+                c[k].lt = fmax(-c[k].mu * c[k].ln, fmin(c[k].mu * c[k].ln, t->lt / s->h));
+                found = 1;
+            }
+        }
+        if (!found)
+            c[k].ln = c[k].lt = 0.0;
+    }
+    return 1;
+}
+
 /* A certificate for the bodies[0..nb) (all dynamic, with gravity): non-negative normal forces
  * inside the friction cones of their contacts (gap within cert_gap, against each other and
  * against static or asleep bodies) balancing every body's weight and torque. Returns the worst
@@ -772,9 +795,13 @@ static double certify(m2c_world *w, const int *bodies, int nb)
             c[k].mn = kn > 0 ? 1 / kn : 0;
             c[k].mt = kt > 0 ? 1 / kt : 0;
         }
-        /* first without friction (normal forces alone that balance are a certificate for
-         * any friction: zero tangential force lies in every cone; a tall stack's static
-         * problem converges much faster so), then with it */
+        /* first the forces of the tick's own solve (impulse / h of the same contact): a
+         * converged pile's are an equilibrium, checked here like any other candidate; then
+         * without friction (normal forces alone that balance are a certificate for any
+         * friction: zero tangential force lies in every cone; a tall stack's static problem
+         * converges much faster so), then with it */
+        if (tick_forces(s, c, nc, keep_nc))
+            result = residual(w, c, nc, bodies, nb);
         for (int friction = 0; friction < 2 && !(result <= CERT_RESIDUAL); friction++) {
             for (int k = 0; k < nc; k++)
                 c[k].ln = c[k].lt = 0.0;
@@ -1021,15 +1048,16 @@ void solver_tick(m2c_world *w)
             }
         }
     }
-    for (int m = 0; m < s->n; m++)
-        world_predict(w, s->list[m]);
-    for (int k = 0; k < released; k++)
-        world_predict(w, w->woken[k]);
+    /* the next tick first: the predictions below leave the touching pairs to it */
     s->t_next = s->n > 0 ? w->now + h : INFINITY;
     if (s->n > 0) { /* on the grid of multiples of h (deterministic, whatever the adoption) */
         double t = round(w->now / h) * h + h;
         s->t_next = t > w->now ? t : w->now + h;
     }
+    for (int m = 0; m < s->n; m++)
+        world_predict(w, s->list[m]);
+    for (int k = 0; k < released; k++)
+        world_predict(w, w->woken[k]);
 }
 
 /* The second time derivative of the event's gap function now (the bodies' accelerations and

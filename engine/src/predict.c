@@ -298,6 +298,8 @@ static int first_contact(feat *f, double c[MAXC], int n, double tmax, double tol
     double t0 = 0.0;
     if (clearly_apart(c, n, tmax, tolp))
         return 0;
+    if (f->solver_h > 0 && stays_within(c, n, fmin(f->solver_h, tmax), tolp))
+        return 0; /* the solver's next tick comes first (solver_window) */
     if (c[0] <= tolp && f->ghost) {
         if (c[0] >= -tolp)
             c[0] = 0.0; /* touching: only later roots count; deeper: its crossings, below */
@@ -305,8 +307,6 @@ static int first_contact(feat *f, double c[MAXC], int n, double tmax, double tol
         c[0] = 0.0; /* on the line, belonging to the other side: only later roots count */
     } else if (c[0] <= tolp) {
         if (c[0] >= -tolp || f->kind == F_PP) {   /* touching (or overlapping: Bannerman) */
-            if (f->solver_h > 0 && c[0] >= -tolp && stays_within(c, n, f->solver_h, tolp))
-                return 0; /* the solver's next tick comes first (solver_window) */
             if (n >= 1 && c[1] < -vthr && !shallow_dip(c, n, tolp) && on_edge(f, 0.0)) {
                 *tau = 0.0;
                 *rate = -c[1];
@@ -622,6 +622,9 @@ static int solve_rotating(feat *f, double tmax, double tolp, double vthr, double
          * re-expansion that finds the gap closed has passed the crossing: it lies after the
          * last point known to be apart, and is refined there on the exact motion */
         int at_start = t0 == 0.0;
+        if (at_start && f->solver_h > 0 && f->solver_h <= h
+            && stays_within(ca, deg, f->solver_h, tolp))
+            return 0; /* the solver's next tick comes first (solver_window) */
         if (!after_root && !at_start && mode == ABOVE && g0 <= 0 && t_safe >= 0) {
             if (take_crossing(f, w->now + t_safe, tabs, &t0, tau)) {
                 *rate = -g1;
@@ -637,9 +640,6 @@ static int solve_rotating(feat *f, double tmax, double tolp, double vthr, double
             mode = g1 < 0 ? INSIDE : ABOVE;
             after_root = 1;
         } else if (!after_root && fabs(g0) <= tolp) {
-            if (at_start && f->solver_h > 0 && f->solver_h <= h
-                && stays_within(ca, deg, f->solver_h, tolp))
-                return 0; /* the solver's next tick comes first (solver_window) */
             if (g1 < -vthr) { /* touching and approaching: a contact now, if on the edge */
                 if (on_edge(f, t0)) {
                     *tau = t0;

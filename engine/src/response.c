@@ -141,15 +141,21 @@ static void friction_impulse(body *A, body *B, double bound, double sep, const d
 
 /* Does the contact of i with j join the contact solver (sustained contact, contact_solver.c)?
  * When it closes slower than v_soft and one side is held (static, kinematic, asleep, resting
- * or already in the solver). A ball on a static body is left to the rest rule's bounce series
- * (rest.c, rule 1), which ends it exactly (and hands it on when it cannot simply lie there). */
+ * or already in the solver), or both are in a burst. A ball on a static body is left to the
+ * rest rule's bounce series (rest.c, rule 1), which ends it exactly (and hands it on when it
+ * cannot simply lie there). */
 static int soft_contact(const m2c_world *w, int i, int j, double closing)
 {
     const body *A = &w->b[i], *B = &w->b[j];
     double vs = solver_soft_speed(w, A);
     if (!(vs > 0) || closing > vs)
         return 0;
-    int held = B->kind != M2C_DYNAMIC || B->state != AWAKE || A->state == SOLVING;
+    /* ... or the two are in a burst (both touched something within t_c): a pair in free
+     * space closing ever slower (e < 1 between a ball and a spinning box: a Zeno series of
+     * 10^5 contacts within 1e-9 s) is sustained contact too */
+    double tc = collapse_time(w);
+    int burst = tc > 0 && w->now - A->last_contact < tc && w->now - B->last_contact < tc;
+    int held = B->kind != M2C_DYNAMIC || B->state != AWAKE || A->state == SOLVING || burst;
     if (!held)
         return 0;
     if (A->state != SOLVING && A->nvert == 1 && B->kind == M2C_STATIC)

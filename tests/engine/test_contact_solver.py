@@ -293,7 +293,7 @@ def test_snapshot_in_sustained_contact_reproduces_the_future(engine) -> None:
     assert w.solving(b)
     copied, pickled = copy.deepcopy(w), pickle.loads(pickle.dumps(w))
     future = w.step_to(3.0)
-    assert len(future) > 10
+    assert len(future) >= 3 and future[-1].kind == "rest"     # it lands flat, then sleeps
     assert copied.step_to(3.0) == future
     assert pickled.step_to(3.0) == future
 
