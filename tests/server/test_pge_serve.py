@@ -123,3 +123,26 @@ def test_serve_cli_refuses_a_broken_game(tmp_path):
     r = subprocess.run([sys.executable, "-m", "max2code", "serve", str(game), "--port", "0"],
                        capture_output=True, text=True, timeout=120)
     assert r.returncode == 1 and f"{game}:3:" in r.stderr and "error:" in r.stderr, r.stderr
+
+
+@corpus
+def test_rooms_of_one_game_are_independent():
+    """Each room runs the program afresh, and `pge` calls inside one room's step (breakout's
+    `pge.at_time(4.0, finish_game)` when its last brick goes) reach that room's game only."""
+    from max2code.engine.world import EngineError
+
+    a, b = GameWorld(load(str(BREAKOUT))), GameWorld(load(str(BREAKOUT)))
+    alive_a, ended = {}, None
+    for k in range(1, 41):
+        try:
+            a.step_to(k * 0.25)
+        except EngineError as exc:
+            ended = (k * 0.25, str(exc))
+            break
+        alive_a[k * 0.25] = live(a)
+    assert ended and "ended (exit 0)" in ended[1] and not any(
+        b_.name.startswith("box-") and b_.id >= 4 for b_ in a.bodies if b_.alive)
+    for t in (0.25, 0.5, 1.0, 2.0):   # b, stepped only now, is where a was at those times
+        b.step_to(t)
+        assert live(b) == alive_a[t]
+    assert b.over is None and b.next_time() < 3.0
