@@ -3346,17 +3346,133 @@ NOINLINE static int cleared_at_once(const double c[], const int e[],
     return bounds_positive(qt, tol, n, tmax, 1);
 }
 
+/* Which side of the rounding band x is on, for p = c_0..c_n plus the
+ * terms reduce dropped, tail[j] x^(n+1+j) (m of them, scaled as c): p's
+ * own by compensated Horner (its error within u |v| + gamma_{2n}^2 sum
+ * |c_i| x^i, Graillat, Langlois & Louvet), the tail's -- at most 4 degree
+ * eps of the rest there -- by plain Horner (within 2 gamma_{2(n+m)} of its
+ * sum of |terms|), all taken twice: 1 where p(x) > 0 certainly (p(0) > 0
+ * after normalise: nothing there), -1 where p(x) < 0 certainly (past a
+ * crossing), 0 within the band. */
+static int band_side(const double c[], int n, const double tail[], int m, double x)
+{
+    double g = 0.5 * noise_factor(n); /* gamma_{2n} */
+    double v = horner_compensated(c, n, x);
+    double a = horner_abs(c, n, x, 0);
+    double et = 0;
+    if (m > 0) {
+        double xp = x, tv = tail[m - 1], ta = fabs(tail[m - 1]);
+        for (int i = 0; i < n; i++)
+            xp *= x; /* x^(n+1) */
+        for (int j = m - 2; j >= 0; j--) {
+            tv = tv * x + tail[j];
+            ta = ta * x + fabs(tail[j]);
+        }
+        v += tv * xp;
+        et = noise_factor(n + m) * (ta * xp);
+    }
+    double eb = 2 * (UNIT_ROUNDOFF * fabs(v) + g * g * a) + et;
+    return v > eb ? 1 : v < -eb ? -1 : 0;
+}
+
+/* Never later than the first root (issue 33, item 11).  Inside a cluster's
+ * rounding band the polish can settle on a later root of the cluster, or on
+ * a point where the plain sign was noise, and a touch found at a critical
+ * point can follow a real crossing within the band.  A root (not a touch)
+ * stands when p is certainly positive just before it, at r (1 - 2^-50):
+ * one compensated evaluation, and almost always so (kappa below about
+ * 1 / (n^2 u)).  A touch stands unless p is certainly negative at it: p
+ * falls monotonely to it (the piece before it), so only then can a
+ * crossing lie before it (an exact multiple root, (t - 1000)^4, stays
+ * where it is).  Otherwise the earliest point that cannot be excluded is
+ * the answer: steps to the left, doubling, until p is certainly positive,
+ * then bisection between that and the last point that was not, until they
+ * are r 2^-50 apart; reported as a crossing where p is certainly negative
+ * there, else as a touch.  "Certainly" is for the polynomial as given: the
+ * m leading terms reduce dropped (tail) are evaluated with it.  (Windows
+ * beyond 2^60 are left as they are: compensated Horner is unscaled.) */
+static void never_late(const double c[], int n, const double tail[], int m, double *root,
+                       int *g)
+{
+    double r = *root;
+    if (!(r > 0 && r <= 0x1p60))
+        return;
+    double d = r * 0x1p-50; /* (exact, as ldexp: no library call) */
+    if (!(d > 0))
+        return; /* (r below 2^-1024: the steps would not move) */
+    double before = r - d;
+    int hs = band_side(c, n, tail, m, *g ? r : before);
+    if (*g ? hs != -1 : hs == 1)
+        return;
+    double hi = *g ? r : before, lo = 0, step = 2 * d;
+    for (;;) {
+        double x = r - step;
+        if (!(x > 0))
+            break; /* lo = 0: p(0) > 0 */
+        int s = band_side(c, n, tail, m, x);
+        if (s == 1) {
+            lo = x;
+            break;
+        }
+        hi = x;
+        hs = s;
+        step *= 2;
+    }
+    while (hi - lo > d) { /* (to d: what a root that stands may be late by) */
+        double mid = lo + 0.5 * (hi - lo);
+        if (!(mid > lo && mid < hi))
+            break;
+        int s = band_side(c, n, tail, m, mid);
+        if (s == 1) {
+            lo = mid;
+        } else {
+            hi = mid;
+            hs = s;
+        }
+    }
+    *root = hi;
+    *g = hs != -1;
+}
+
+/* never_late with the m terms reduce dropped (dropped[], as given), scaled
+ * as c was: by sign 2^-E.  (Out of line: rare, and its array kept out of
+ * the common path.) */
+NOINLINE static void late_with_tail(const double c[], int n, const double dropped[], int m,
+                                    double sign, int E, double *root, int *g)
+{
+    double tail[MAXN] = {0};
+    for (int j = 0; j < m; j++)
+        tail[j] = ldexp(sign * dropped[j], -E);
+    never_late(c, n, tail, m, root, g);
+}
+
+/* The leading terms reduce dropped from c_in (of the given degree; n kept
+ * after the factors of t it divided out): *m of them from the returned
+ * pointer on, the last nonzero.  *m = 0 where it dropped none. */
+static const double *dropped_terms(const double c_in[], int degree, int n, int *m)
+{
+    int low = 0, top = degree;
+    while (c_in[low] == 0)
+        low++;
+    while (top > low + n && c_in[top] == 0)
+        top--;
+    *m = top - (low + n);
+    return c_in + low + n + 1;
+}
+
 /* solve() once the coefficients span at most 2^MAX_SPREAD (always, but for
  * extremes): scaled exactly, then by degree and method. */
 static int solve_normalised(double c[], const int e[], const int nz[], int n,
                             int emax, double tu, int method, double eps,
-                            double failed_w, double bound, double *root, int *g)
+                            double failed_w, double bound, const double dropped[], int m,
+                            double *root, int *g)
 {
     int closed = method == M2C_METHOD_CLOSED && n <= 4;
     int interval = n > 2 && method != M2C_METHOD_GSL && !closed;
     /* the interval method wants p(0) > 0: p = -c has the same roots (the
      * sign goes into the exact scaling: no pass of its own) */
-    int E = normalise(c, n, emax, interval && c[0] < 0 ? -1 : 1);
+    double sign = interval && c[0] < 0 ? -1 : 1;
+    int E = normalise(c, n, emax, sign);
     /* skin < 0: no graze check; else the skin in the normalised units */
     double skin = method == M2C_METHOD_INTERVAL_NOGRAZE ? -1
                   : eps == 0                           ? 0
@@ -3377,7 +3493,12 @@ static int solve_normalised(double c[], const int e[], const int nz[], int n,
     /* (the exponents before scaling: the same; reduce's where it has it) */
     double B = bound >= 0 ? bound : root_bound(e, nz, skin > 0 ? NULL : c, n);
     double T = tu < B ? tu : B;      /* (fmin is a library call) */
-    return T > 0 && first_root_interval_fixed(c, n, T, skin, failed_w, root, g);
+    int found = T > 0 && first_root_interval_fixed(c, n, T, skin, failed_w, root, g);
+    if (found && skin == 0 && m == 0)
+        never_late(c, n, NULL, 0, root, g);
+    else if (found && skin == 0)
+        late_with_tail(c, n, dropped, m, sign, E, root, g);
+    return found;
 }
 
 /* The common path of every entry point: eps is the contact skin (>= 0, in
@@ -3444,8 +3565,12 @@ static ALWAYS_INLINE int solve_core(const double c_in[], int degree, double tmax
     if (sp > MAX_SPREAD)
         found = first_root_sliced(c, n, tmax, eps,
                                   method == M2C_METHOD_INTERVAL_NOGRAZE, &root, &g);
-    else
-        found = solve_normalised(c, e, nz, n, emax, tmax, method, eps, failed_w, bound, &root, &g);
+    else {
+        int m = 0;
+        const double *dropped = n == degree ? c_in : dropped_terms(c_in, degree, n, &m);
+        found = solve_normalised(c, e, nz, n, emax, tmax, method, eps, failed_w, bound,
+                                 dropped, m, &root, &g);
+    }
     if (!found)
         return 0;
     /* a root that underflows to 0 or overflows is not representable: none */

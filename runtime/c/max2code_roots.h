@@ -184,6 +184,27 @@
  *     1/u -- also roots near 1e-12, and moderately ill-conditioned ones
  *     (plain or FMA Horner would leave n u kappa).  Beyond 2^100 FMA Horner
  *     with power-of-two scaling.
+ *     Never later than the first root (issue 33, item 11): without a skin,
+ *     a root r of steps 1-2 stands where p is certainly positive just
+ *     before it, at r (1 - 2^-50), and a touch unless p is certainly
+ *     negative at it (p falls monotonely to a touch: only then can a
+ *     crossing lie before it; an exact multiple root stays where it is).
+ *     "Certainly": compensated Horner beyond twice its error bound
+ *     (u |v| + gamma_{2n}^2 sum |c_i| x^i), with the leading terms step 3
+ *     dropped added back by plain Horner (beyond twice their bound): for
+ *     the coefficients as given.  So is almost every root (kappa below
+ *     about 1 / (n^2 u)): one evaluation.  Else r lies in the rounding band
+ *     of a cluster (the polish may settle on a later root of it, or a touch
+ *     be found after a crossing inside the band), and the answer is the
+ *     earliest point that cannot be excluded: steps left from r, doubling,
+ *     until p is certainly positive, then bisection between that point and
+ *     the last that was not, until they are r 2^-50 apart; reported as a
+ *     crossing where p is certainly negative there, else as a touch
+ *     (*graze = 1).  Checked against the exact first root of the
+ *     coefficients as given (tests/runtime/test_hostile_fuzz.py: never
+ *     later by more than 8 ulps).  Not applied beyond 2^60 (compensated
+ *     Horner is unscaled), at the extreme spreads of step 4, nor to
+ *     degrees 1 and 2.
  *     Degree 1 and 2 use closed forms; the quadratic uses an FMA-corrected
  *     discriminant (Kahan) and the cancellation-free formula; its graze
  *     check is the same bound at the vertex.  An exactly zero discriminant

@@ -68,7 +68,9 @@ def test_c_takes_the_touch_path(counts_driver: Path) -> None:  # noqa: F811 (the
         certified += derivative == 0
     assert not bad, "\n".join(bad)
     assert certified == len(TOUCHES), certified
-    assert grazes >= len(TOUCHES) // 3, grazes  # (the rest split into two roots when rounded)
+    # (the rest split into two roots when rounded: answered at the first of them, which
+    # never_late finds where the touch between them would be late -- issue 33, item 11)
+    assert grazes >= len(TOUCHES) // 4, grazes
 
 
 def test_ports_take_the_same_steps(counts_driver: Path,  # noqa: F811 (the imported fixture)

@@ -86,13 +86,15 @@ def _valid(cc: list[float], tmax: float, eps: float) -> bool:
 
 
 def _solve_normalised(c: list[float], n: int, emax: int, tu: float, method: str, eps: float,
-                      failed_w: float) -> tuple[float, bool] | None:
+                      failed_w: float, dropped: Sequence[float]) -> tuple[float, bool] | None:
     """The C runtime's solve_normalised (spread within 2^MAX_SPREAD); failed_w: the window
-    step 0b's test failed on (0 if none), not tested again."""
+    step 0b's test failed on (0 if none), not tested again; dropped: the leading terms reduce
+    dropped (never_late weighs them)."""
     closed = method == "closed" and n <= 4
     interval = n > 2 and not closed
     # the interval method wants p(0) > 0: p = -c, same roots, the sign in the exact scaling
-    E = solver.normalise(c, n, emax, -1.0 if interval and c[0] < 0 else 1.0)
+    sign = -1.0 if interval and c[0] < 0 else 1.0
+    E = solver.normalise(c, n, emax, sign)
     if method == "interval-nograze":
         skin = -1.0
     else:
@@ -108,7 +110,11 @@ def _solve_normalised(c: list[float], n: int, emax: int, tu: float, method: str,
     # contact need not be near a positive root)
     B = solver.root_bound(c, n, positive=not skin > 0)
     T = tu if tu < B else B
-    return solver.first_root_interval(c, n, T, skin, failed_w) if T > 0 else None
+    hit = solver.first_root_interval(c, n, T, skin, failed_w) if T > 0 else None
+    if hit is None or skin != 0:
+        return hit
+    tail = [solver._ldexp(sign * v, -E) for v in dropped]  # scaled as c
+    return solver.never_late(c, n, tail, hit)
 
 
 def _solve_python(cc: list[float], tmax: float, method: str, eps: float) -> tuple[int, float, bool]:
@@ -146,7 +152,8 @@ def _solve_python(cc: list[float], tmax: float, method: str, eps: float) -> tupl
     if spread > solver.MAX_SPREAD:
         found = solver.first_root_sliced(c, n, tmax, eps, method == "interval-nograze")
     else:
-        found = _solve_normalised(c, n, emax, tmax, method, eps, failed_w)
+        dropped = [] if n == degree else solver.dropped_terms(cc, n)
+        found = _solve_normalised(c, n, emax, tmax, method, eps, failed_w, dropped)
     if found is None:
         return 0, math.nan, False
     t, graze = found

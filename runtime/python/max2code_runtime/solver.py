@@ -276,6 +276,78 @@ def _sign_at(c: Sequence[float], n: int, x: float, precise: bool) -> int:
     return (v > 0) - (v < 0)
 
 
+def _band_side(c: Sequence[float], n: int, tail: Sequence[float], x: float) -> int:
+    """C band_side: 1 where p(x) > 0 certainly, -1 where p(x) < 0 certainly, 0 within the
+    rounding band, for p = c_0..c_n plus the terms reduce dropped, tail[j] x^(n+1+j): p's own
+    by compensated Horner, the tail's by plain Horner, each within its error bound, taken
+    twice."""
+    g = 0.5 * noise_factor(n)  # gamma_{2n}
+    v = _horner_compensated(c, n, x)
+    a = _horner_abs(c, n, x, 0)
+    et = 0.0
+    m = len(tail)
+    if m > 0:
+        xp = x
+        for _ in range(n):
+            xp *= x  # x^(n+1)
+        tv, ta = tail[m - 1], abs(tail[m - 1])
+        for j in range(m - 2, -1, -1):
+            tv = tv * x + tail[j]
+            ta = ta * x + abs(tail[j])
+        v += tv * xp
+        et = noise_factor(n + m) * (ta * xp)
+    eb = 2 * (U * abs(v) + g * g * a) + et
+    return 1 if v > eb else -1 if v < -eb else 0
+
+
+def never_late(c: Sequence[float], n: int, tail: Sequence[float], hit: tuple[float, bool]
+               ) -> tuple[float, bool]:
+    """C never_late (issue 33, item 11): never later than the first root of the polynomial as
+    given (c and the dropped terms, tail).  A root stands where p is certainly positive just
+    before it, at r (1 - 2^-50), a touch unless p is certainly negative at it; else the
+    earliest point that cannot be excluded (steps to the left, doubling, then bisection): a
+    crossing where p is certainly negative there, else a touch."""
+    r, g = hit
+    if not 0 < r <= 2.0**60:
+        return hit
+    d = r * 2.0**-50  # (exact, as ldexp)
+    if not d > 0:
+        return hit  # (r below 2^-1024: the steps would not move)
+    before = r - d
+    hs = _band_side(c, n, tail, r if g else before)
+    if (hs != -1) if g else (hs == 1):
+        return hit
+    hi, lo, step = (r if g else before), 0.0, 2 * d
+    while True:
+        x = r - step
+        if not x > 0:
+            break  # lo = 0: p(0) > 0
+        s = _band_side(c, n, tail, x)
+        if s == 1:
+            lo = x
+            break
+        hi, hs = x, s
+        step *= 2
+    while hi - lo > d:  # (to d: what a root that stands may be late by)
+        mid = lo + 0.5 * (hi - lo)
+        if not lo < mid < hi:
+            break
+        s = _band_side(c, n, tail, mid)
+        if s == 1:
+            lo = mid
+        else:
+            hi, hs = mid, s
+    return hi, hs != -1
+
+
+def dropped_terms(cc: Sequence[float], n: int) -> list[float]:
+    """C dropped_terms: the leading terms reduce dropped from cc (n kept after the factors of t
+    it divided out), up to the last nonzero; empty where it dropped none."""
+    low = next(i for i, v in enumerate(cc) if v != 0)
+    top = max(max(i for i, v in enumerate(cc) if v != 0), low + n)
+    return list(cc[low + n + 1:top + 1])
+
+
 def quad_roots(a: float, b: float, c: float) -> tuple[tuple[float, float] | None, float]:
     """Ascending real roots of a x^2 + b x + c (a != 0) and the discriminant's sign info."""
     m = max(abs(a), max(abs(b), abs(c)))

@@ -247,7 +247,8 @@ fn solve_core(coef: &[f64], tmax: f64, method: Method, eps: f64) -> Status {
     let hit = if spread > solver::max_spread() {
         solver::first_root_sliced(&c, n, tmax, eps, method == Method::IntervalNoGraze)
     } else {
-        solve_normalised(&mut c, &e, &nz, n, emax, tmax, method, eps, failed_w)
+        let dropped = if n == degree { &coef[..0] } else { solver::dropped_terms(coef, n) };
+        solve_normalised(&mut c, &e, &nz, n, emax, tmax, method, eps, failed_w, dropped)
     };
     let Some((t, graze)) = hit else {
         return Status::NoRoot;
@@ -264,12 +265,19 @@ fn solve_core(coef: &[f64], tmax: f64, method: Method, eps: f64) -> Status {
 /// differences, which scaling by a power of two keeps).  failed_w: the window step 0b tested
 /// in vain (0: none).
 #[allow(clippy::too_many_arguments)]
-fn solve_normalised(c: &mut Coeffs, e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n: usize, emax: i32, tu: f64, method: Method, eps: f64, failed_w: f64) -> Option<(f64, bool)> {
+fn solve_normalised(c: &mut Coeffs, e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n: usize, emax: i32, tu: f64, method: Method, eps: f64, failed_w: f64, dropped: &[f64]) -> Option<(f64, bool)> {
     let closed_form = method == Method::Closed && n <= 4;
     let by_interval = n > 2 && !closed_form;
     // the interval method wants p(0) > 0: p = -c has the same roots (the sign goes into the
     // exact scaling: no pass of its own)
-    let big_e = solver::normalise(c, n, emax, if by_interval && c[0] < 0.0 { -1.0 } else { 1.0 });
+    let sign = if by_interval && c[0] < 0.0 { -1.0 } else { 1.0 };
+    let big_e = solver::normalise(c, n, emax, sign);
+    // the dropped terms, scaled as c (never_late)
+    let mut tail = [0.0; MAXN];
+    for (t, &v) in tail.iter_mut().zip(dropped) {
+        *t = fp::ldexp(sign * v, -i64::from(big_e));
+    }
+    let tail = &tail[..dropped.len()];
     let skin = if method == Method::IntervalNoGraze {
         -1.0
     } else if eps == 0.0 {
@@ -291,26 +299,32 @@ fn solve_normalised(c: &mut Coeffs, e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], 
                 Ok(hit) => hit,
                 Err(()) => {
                     // (Rust's own fallback, not C's: the sign normalise left to the closed form)
+                    let mut flipped = [0.0; MAXN];
+                    flipped[..tail.len()].copy_from_slice(tail);
                     if c[0] < 0.0 {
                         c.iter_mut().take(n + 1).for_each(|v| *v = -*v);
+                        flipped.iter_mut().for_each(|v| *v = -*v);
                     }
-                    interval(c, e, nz, n, tu, skin, 0.0)
+                    interval(c, e, nz, n, tu, skin, 0.0, &flipped[..tail.len()])
                 }
             }
         }
-        _ => interval(c, e, nz, n, tu, skin, failed_w),
+        _ => interval(c, e, nz, n, tu, skin, failed_w, tail),
     }
 }
 
 /// The interval method on c (normalised, c[0] > 0) over (0, min(tu, the bound on the positive
-/// roots)].
-fn interval(c: &Coeffs, e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n: usize, tu: f64, skin: f64, failed_w: f64) -> Option<(f64, bool)> {
+/// roots)], never later than the first root (without a skin: `solver::never_late`; tail, the
+/// terms reduce dropped, scaled as c).
+#[allow(clippy::too_many_arguments)]
+fn interval(c: &Coeffs, e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n: usize, tu: f64, skin: f64, failed_w: f64, tail: &[f64]) -> Option<(f64, bool)> {
     // every positive root below it (with a skin, Fujiwara's on every root, as the skin's
     // contact need not be near a positive root)
     let b = solver::root_bound(e, nz, if skin > 0.0 { None } else { Some(c) }, n);
     let t_end = if tu < b { tu } else { b };
     if t_end > 0.0 {
-        solver::first_root_interval(c, n, t_end, skin, failed_w)
+        let hit = solver::first_root_interval(c, n, t_end, skin, failed_w)?;
+        Some(if skin == 0.0 { solver::never_late(c, n, tail, hit) } else { hit })
     } else {
         None
     }

@@ -682,6 +682,103 @@ fn horner_compensated(p: &[f64], m: usize, x: f64) -> f64 {
     compensated_core(p, m, x, FMA_BUILT_IN)
 }
 
+/// 2^-50 and 2^60 (never_late).
+const TWO_M50: f64 = 1.0 / 1_125_899_906_842_624.0;
+const TWO_60: f64 = 1_152_921_504_606_846_976.0;
+
+/// C `band_side`: which side of the rounding band x is on, for p = c_0..c_n plus the terms
+/// reduce dropped, tail[j] x^(n+1+j) (scaled as c): p's own by compensated Horner (its error
+/// within u |v| + gamma_{2n}^2 sum |c_i| x^i), the tail's by plain Horner (within 2 gamma_{2(n+m)}
+/// of its sum of |terms|), taken twice: 1 where p(x) > 0 certainly, -1 where p(x) < 0
+/// certainly, 0 within.
+fn band_side(c: &[f64], n: usize, tail: &[f64], x: f64) -> i32 {
+    let g = 0.5 * noise_factor(n); // gamma_{2n}
+    let mut v = horner_compensated(c, n, x);
+    let a = horner_abs(c, n, x, 0);
+    let mut et = 0.0;
+    let m = tail.len();
+    if m > 0 {
+        let mut xp = x;
+        for _ in 0..n {
+            xp *= x; // x^(n+1)
+        }
+        let (mut tv, mut ta) = (tail[m - 1], tail[m - 1].abs());
+        for j in (0..m - 1).rev() {
+            tv = tv * x + tail[j];
+            ta = ta * x + tail[j].abs();
+        }
+        v += tv * xp;
+        et = noise_factor(n + m) * (ta * xp);
+    }
+    let eb = 2.0 * (U * v.abs() + g * g * a) + et;
+    if v > eb {
+        1
+    } else if v < -eb {
+        -1
+    } else {
+        0
+    }
+}
+
+/// C `never_late` (issue 33, item 11): never later than the first root of the polynomial as
+/// given (c and the dropped terms, tail).  A root stands where p is certainly positive just
+/// before it, at r (1 - 2^-50), a touch unless p is certainly negative at it; else the earliest
+/// point that cannot be excluded (steps to the left, doubling, then bisection), a crossing
+/// where p is certainly negative there, else a touch.
+pub(crate) fn never_late(c: &[f64], n: usize, tail: &[f64], hit: (f64, bool)) -> (f64, bool) {
+    let (r, g) = hit;
+    if !(r > 0.0 && r <= TWO_60) {
+        return hit;
+    }
+    let d = r * TWO_M50; // (exact, as ldexp)
+    if !(d > 0.0) {
+        return hit; // (r below 2^-1024: the steps would not move)
+    }
+    let before = r - d;
+    let mut hs = band_side(c, n, tail, if g { r } else { before });
+    if if g { hs != -1 } else { hs == 1 } {
+        return hit;
+    }
+    let (mut hi, mut lo, mut step) = (if g { r } else { before }, 0.0, 2.0 * d);
+    loop {
+        let x = r - step;
+        if !(x > 0.0) {
+            break; // lo = 0: p(0) > 0
+        }
+        let s = band_side(c, n, tail, x);
+        if s == 1 {
+            lo = x;
+            break;
+        }
+        hi = x;
+        hs = s;
+        step *= 2.0;
+    }
+    while hi - lo > d {
+        // (to d: what a root that stands may be late by)
+        let mid = lo + 0.5 * (hi - lo);
+        if !(mid > lo && mid < hi) {
+            break;
+        }
+        let s = band_side(c, n, tail, mid);
+        if s == 1 {
+            lo = mid;
+        } else {
+            hi = mid;
+            hs = s;
+        }
+    }
+    (hi, hs != -1)
+}
+
+/// C `dropped_terms`: the leading terms reduce dropped from coef (n kept after the factors of t
+/// it divided out), up to the last nonzero; empty where it dropped none.
+pub(crate) fn dropped_terms(coef: &[f64], n: usize) -> &[f64] {
+    let low = coef.iter().position(|&v| v != 0.0).unwrap_or(0);
+    let top = coef.iter().rposition(|&v| v != 0.0).unwrap_or(0).max(low + n);
+    &coef[low + n + 1..=top]
+}
+
 /// C `compensated_with_slope`: (`horner_compensated(p, m, x)`, d(x) by plain Horner in the same
 /// loop; d of degree m - 1, m >= 1).
 fn compensated_with_slope(p: &[f64], d: &[f64], m: usize, x: f64) -> (f64, f64) {
