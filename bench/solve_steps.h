@@ -26,12 +26,13 @@ static int prepare_window(const double src[], int degree, double tmax, double c[
             return 0;
     }
     double failed_w = cleared == 0 ? tmax : 0;
-    int n = cleared == 0 ? degree : reduce(c, e, nz, degree, tmax, sc.emax);
+    double bound = -1; /* (reduce's positive-root bound, when it computed one) */
+    int n = cleared == 0 ? degree : reduce(c, e, nz, degree, &tmax, 0, sc.emax, &bound);
     int emax = sc.emax;
     if (n < 3 || (n == degree ? sc.emax - sc.emin : spread(e, nz, n, &emax)) > MAX_SPREAD)
         return 0;
     normalise(c, n, emax, c[0] < 0 ? -1 : 1);
-    double B = root_bound(e, nz, c, n);
+    double B = bound >= 0 ? bound : root_bound(e, nz, c, n);
     *T = tmax < B ? tmax : B;
     if (!(*T > 0 && *T <= (n <= 8 ? FAST_LIMIT_LOW : FAST_LIMIT_HIGH)))
         return 0;
