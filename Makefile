@@ -4,7 +4,7 @@
 # command below, and every test's subprocess, runs this checkout's code and nobody else's.
 PYTHON := $(CURDIR)/.venv/bin/python
 
-.PHONY: all build test setup clean distclean bench
+.PHONY: all build test setup clean distclean bench fuzz
 
 all: build
 
@@ -31,6 +31,11 @@ test: setup
 bench: setup
 	$(PYTHON) bench/roots.py
 	$(PYTHON) bench/engine.py
+
+# The long runs of the property fuzzes (minutes): 2000 random engine worlds checked for
+# tunnelling in exact geometry (tests/engine/tunnelling_long.py).
+fuzz: setup
+	PYTHONPATH=.:tests $(PYTHON) -m tests.engine.tunnelling_long --count 2000
 
 clean:
 	rm -rf build runtime/rust/target  # .venv stays: make distclean removes it too

@@ -1,8 +1,9 @@
 """No tunnelling in worlds nobody designed (README: "nothing tunnels"): hypothesis builds closed
 boxes of circles, capsules and convex polygons at speeds up to 1000 box-widths a second, with
-or without gravity, any restitution; at random checkpoints every body is still inside the box
-and no two bodies overlap, checked with exact rational geometry on the poses the engine
-reports (the engine's own geometry code is not used).
+or without gravity, any restitution; at every impact (its two bodies) and at random checkpoints
+(every pair) every body is still inside the box and no two bodies overlap, checked with exact
+rational geometry on the poses the engine reports (the engine's own geometry code is not used),
+and the energy stays within its documented bound. bench/tunnelling_fuzz.py is the long run.
 
 The tolerance is the engine's contact tolerance scaled to the box (a few 1e-9 of its size);
 a body that tunnelled through a wall or through another body is metres off, not 1e-9.
@@ -13,6 +14,7 @@ from __future__ import annotations
 import math
 from fractions import Fraction as Q
 
+import pytest
 from hypothesis import HealthCheck, Phase, given, settings
 from hypothesis import strategies as st
 
@@ -134,33 +136,74 @@ def worlds(draw):
 
 WALLS = [((-HALF, -HALF), (HALF, -HALF)), ((HALF, -HALF), (HALF, HALF)),
          ((HALF, HALF), (-HALF, HALF)), ((-HALF, HALF), (-HALF, -HALF))]
+T_C = 1e-3   # the rest rule's contact time (docs/engine.md, defaults)
+IMPACT = 1.0      # collisions checked exactly: impacts at least this fast (not rest chatter) ...
+MAX_CHECKS = 400  # ... up to this many a world (a settling pile has tens of thousands)
+
+
+def run_world(World, world) -> dict:
+    """Build and run one drawn world; raise AssertionError at the first wrong state. Checked:
+    at every impact (up to MAX_CHECKS), its two bodies against each other and the box; at each
+    checkpoint, every pair; and the energy against its documented bound (it never rises,
+    but for the rest rule's minimum parting speeds: at most m (a_n t_c / 2)^2 / 2 for each
+    pressing contact, a_n the gap's curvature from gravity and spin). Returns counts."""
+    gravity, specs, checkpoints = world
+    w = World(gravity=gravity)
+    for a, b in WALLS:
+        w.add_segment(a, b)
+    ids = [w.add_body(**spec) for spec in specs]
+    reach = {i: max(math.hypot(*v) for v in w.bodies[i].vertices) + w.bodies[i].radius for i in ids}
+    lo, hi = Q(-HALF) - TOL, Q(HALF) + TOL
+    e0 = w.energy()
+    allowance = [0.0]
+    counts = {"events": 0, "checks": 0}
+
+    def shape_of(i: int):
+        return world_points(w.bodies[i].vertices, w.pose(i)), w.bodies[i].radius
+
+    def check(k: int, others, when: str) -> None:
+        pts, r = shape_of(ids[k])
+        for x, y in pts:   # inside the box, the radius included
+            assert lo + Q(r) <= x <= hi - Q(r) and lo + Q(r) <= y <= hi - Q(r), \
+                f"body {k} left the box {when}: ({float(x)}, {float(y)}) r = {r}"
+        for j in others:
+            if j != k:
+                assert not too_close(pts, r, *shape_of(ids[j])), \
+                    f"bodies {k} and {j} overlap {when}: {w.pose(ids[k])} {w.pose(ids[j])}"
+        counts["checks"] += 1
+
+    def on_event(world, ev) -> None:
+        counts["events"] += 1
+        g = math.hypot(*gravity)
+        pair = [ids.index(body) for body in (ev.a, ev.b) if body in reach]
+        for body in (ev.a, ev.b):
+            if body in reach:
+                if abs(ev.speed) >= IMPACT and counts["checks"] < MAX_CHECKS:
+                    check(ids.index(body), pair, f"at the collision at t = {ev.time}")
+                m = w.bodies[body].mass
+                a_n = g + w.velocity(body)[2] ** 2 * reach[body]
+                allowance[0] += m * (a_n * T_C / 2) ** 2 / 2
+
+    w.on_collision(on_event)
+    for t in checkpoints:
+        try:
+            w.step_to(t)
+        except EngineError as exc:   # a named condition is allowed; a wrong place is not
+            assert "stuck" in str(exc) or "events" in str(exc), exc
+            return counts
+        for k in range(len(ids)):
+            check(k, range(k + 1, len(ids)), f"at t = {t}")
+        e = w.energy()
+        assert e <= e0 + 1e-9 * abs(e0) + allowance[0] + 1e-12, \
+            f"energy rose from {e0} to {e} by t = {t} (allowed {allowance[0]})"
+    return counts
 
 
 @settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow],
           phases=(Phase.explicit, Phase.reuse, Phase.generate))   # (a failure prints its world)
 @given(world=worlds())
 def test_nothing_tunnels_in_random_worlds(engine, world):
-    gravity, specs, checkpoints = world
-    w = engine.World(gravity=gravity)
-    for a, b in WALLS:
-        w.add_segment(a, b)
-    ids = [w.add_body(**spec) for spec in specs]
-    lo, hi = Q(-HALF) - TOL, Q(HALF) + TOL
-    for t in checkpoints:
-        try:
-            w.step_to(t, events=False)
-        except EngineError as exc:   # a named condition is allowed; a wrong place is not
-            assert "stuck" in str(exc) or "events" in str(exc), exc
-            return
-        shapes = [(world_points(w.bodies[i].vertices, w.pose(i)), w.bodies[i].radius) for i in ids]
-        for k, (pts, r) in enumerate(shapes):
-            for x, y in pts:   # inside the box, the radius included
-                assert lo + Q(r) <= x <= hi - Q(r) and lo + Q(r) <= y <= hi - Q(r), \
-                    f"body {k} left the box at t = {t}: ({float(x)}, {float(y)}) r = {r}"
-        for k in range(len(shapes)):
-            for j in range(k + 1, len(shapes)):
-                assert not too_close(*shapes[k], *shapes[j]), \
-                    f"bodies {k} and {j} overlap at t = {t}: {w.pose(ids[k])} {w.pose(ids[j])}"
+    run_world(engine.World, world)
 
 
 def test_the_exact_checks_see_an_overlap_and_an_escape():
@@ -178,3 +221,35 @@ def test_the_exact_checks_see_an_overlap_and_an_escape():
     assert too_close(square, 0.0, world_points([(-1, -1), (1, -1), (1, 1), (-1, 1)], (1.999, 0.5, 0.0)), 0.0)
     assert not too_close(square, 0.0, world_points([(-1, -1), (1, -1), (1, 1), (-1, 1)], (2.0, 0.5, 0.0)), 0.0)
     assert not too_close(square, 0.0, world_points([(-1, -1), (1, -1), (1, 1), (-1, 1)], (1.9999999, 0.5, 0.0)), 0.0)
+
+
+# Found by the long run (tests/engine/tunnelling_long.py, seed 0, its first world): a capsule
+# driven to 5067 rad/s by hits from a 1000 m/s ball meets a circle 3.8 mm deep (closing at
+# 634 m/s: some 6 microseconds late). Two bodies alone reproduce it. Not fixed yet.
+SPINNING_CAPSULE = {'vertices': ((-0.0452693786105278, 0.0), (0.0452693786105278, 0.0)),
+                    'radius': 0.03741078899513627, 'position': (2.859363187034921, -3.3939069093669936),
+                    'angle': 15.633394090624263, 'velocity': (-767.2989822877518, -161.84632896265157),
+                    'omega': 5067.279136350295, 'mass': 0.011171122508545704,
+                    'inertia': 2.619598673306495e-05}
+DISC = {'vertices': ((0.0, 0.0),), 'radius': 0.17293368362153017,
+        'position': (0.9899791244293512, -3.3599439822504875), 'angle': -1.7344440784610233,
+        'velocity': (-86.93119312535697, -105.42592670094143), 'omega': -39.99999999999912,
+        'mass': 0.09395265503517496, 'inertia': 0.0014048768190987701}
+
+
+@pytest.mark.xfail(strict=True, reason="a capsule spinning at 5067 rad/s is met 3.8 mm late "
+                   "(the rotating predictor's window; not fixed yet)")
+def test_a_fast_spinning_capsule_is_met_at_the_touch(engine):
+    w = engine.World()
+    a, b = w.add_body(**SPINNING_CAPSULE), w.add_body(**DISC)
+    depth: list[float] = []
+
+    def at_contact(world, ev) -> None:
+        p = world_points(w.bodies[a].vertices, w.pose(a))
+        c = world_points(w.bodies[b].vertices, w.pose(b))[0]
+        gap = math.sqrt(float(dist2_point_segment(c, p[0], p[1]))) - SPINNING_CAPSULE["radius"] - DISC["radius"]
+        depth.append(gap)
+
+    w.on_collision(at_contact)
+    w.step_to(0.01)
+    assert depth and depth[0] >= -1e-6, depth
