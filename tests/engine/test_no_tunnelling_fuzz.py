@@ -224,8 +224,10 @@ def test_the_exact_checks_see_an_overlap_and_an_escape():
 
 
 # Found by the long run (tests/engine/tunnelling_long.py, seed 0, its first world): a capsule
-# driven to 5067 rad/s by hits from a 1000 m/s ball meets a circle 3.8 mm deep (closing at
-# 634 m/s: some 6 microseconds late). Two bodies alone reproduce it. Not fixed yet.
+# driven to 5067 rad/s by hits from a 1000 m/s ball met a circle 3.8 mm deep (16 microseconds
+# late). Two bodies alone reproduce it. The rotating predictor's inside walk called a point 2.5e-7
+# inside the capsule's edge line a root, and the contact after it was lost (engine/src/predict.c,
+# solve_rotating; tests/engine/test_spinning_contact.py is the property).
 SPINNING_CAPSULE = {'vertices': ((-0.0452693786105278, 0.0), (0.0452693786105278, 0.0)),
                     'radius': 0.03741078899513627, 'position': (2.859363187034921, -3.3939069093669936),
                     'angle': 15.633394090624263, 'velocity': (-767.2989822877518, -161.84632896265157),
@@ -237,8 +239,6 @@ DISC = {'vertices': ((0.0, 0.0),), 'radius': 0.17293368362153017,
         'mass': 0.09395265503517496, 'inertia': 0.0014048768190987701}
 
 
-@pytest.mark.xfail(strict=True, reason="a capsule spinning at 5067 rad/s is met 3.8 mm late "
-                   "(the rotating predictor's window; not fixed yet)")
 def test_a_fast_spinning_capsule_is_met_at_the_touch(engine):
     w = engine.World()
     a, b = w.add_body(**SPINNING_CAPSULE), w.add_body(**DISC)
