@@ -568,7 +568,14 @@ static int solve_rotating(feat *f, double tmax, double tolp, double vthr, double
         double dv = hypot(f->a.vx - f->b.vx, f->a.vy - f->b.vy);
         double da = hypot(f->a.ax - f->b.ax, f->a.ay - f->b.ay);
         double ra = hypot(f->pa[0], f->pa[1]), span = hypot(dx, dy) + f->R;
-        double spin = fabs(f->a.w) * ra + fabs(f->b.w) * (f->kind == F_PP ? hypot(f->pb[0], f->pb[1]) : span + ra);
+        /* how fast rotation can change the gap: the point's own turn, and the second body's
+         * turn of its offset (point-point) or of the edge's line, whose distance from the point
+         * changes at |w_b| times the point's distance from B's reference point, at most
+         * |P - L| + |L - ref| <= span + |pb| (span + ra here, the first body's offset, let a
+         * disc meet a fast-turning polygon's far edge unseen: the reach test skipped the
+         * window) */
+        double rb = hypot(f->pb[0], f->pb[1]);
+        double spin = fabs(f->a.w) * ra + fabs(f->b.w) * (f->kind == F_PP ? rb : span + rb);
         double eps = fmax(tol, 0.25 * fabs(dist));
         /* the lowest order whose remainder over the rest of the horizon meets eps; else the
          * highest over the longest window that does */
