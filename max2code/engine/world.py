@@ -454,6 +454,13 @@ class World:
                                                         float(acceleration[1])))
         self._gravity[body] = (float(acceleration[0]), float(acceleration[1]))
 
+    def acceleration(self, body: int) -> Vec:
+        """The body's own constant acceleration: what it moves with while dynamic (add_body's
+        `gravity`, else the world's; set_acceleration's). A static body, and a kinematic one
+        given no gravity, keep it for set_kind and move without it meanwhile; a server reads
+        it to tell a platformer's walker (it falls) from a top-down one."""
+        return self._gravity[body]
+
     def set_mass(self, body: int, mass: float, inertia: float | None = None) -> None:
         """A new mass (and moment of inertia about the centre of mass: default the shape's, or
         the old one scaled with the mass). A static or kinematic body keeps them for when it

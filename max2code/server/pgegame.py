@@ -105,7 +105,7 @@ class GameWorld:
         self.objects: list = []          # by wire id
         self._wire: dict[int, int] = {}  # id(object) -> wire id
         self.bodies: list[BodyInfo] = []
-        self._gravity: list[tuple[float, float]] = []
+        self._accel: list[tuple[float, float]] = []
         self._log = len(self.game.log)
         self._core = None                # the engine World last read (a rebuild replaces it)
         self._base: list[int] = []       # counters carried over rebuilds
@@ -126,7 +126,7 @@ class GameWorld:
                 self.objects.append(ob)
                 info = physics.world.bodies[ob.body]
                 self.bodies.append(replace(info, id=i, name=ob.name, color=_hex(ob.colour)))
-                self._gravity.append(physics.gravity)
+                self._accel.append(physics.gravity)
                 self._base.append(0)
                 self._last.append(-1)
                 self._held.append(self._motion(ob))
@@ -163,6 +163,10 @@ class GameWorld:
                 self._held[i] = (m[0] + physics.t0,) + tuple(m[1:])
             out.append(self._base[i] + max(self._last[i], 0))
         return list(self._held), out
+
+    def acceleration(self, i: int) -> tuple[float, float]:
+        """The object's gravity (PGE's is the game's, set before its objects move)."""
+        return self._accel[i]
 
     def pose(self, i: int, t: float | None = None):
         return self.game.physics.pose(self.objects[i])

@@ -135,7 +135,7 @@ class Room:
         """Per-body tables for bodies the world gained (a game adds them while it runs)."""
         for b in self.world.bodies[len(self.reach):]:
             self.reach.append(max(math.hypot(*v) for v in b.vertices) + b.radius)
-            self.gravity.append(self.world._gravity[b.id])   # (what it falls with when dynamic)
+            self.gravity.append(self.world.acceleration(b.id))   # (what it falls with when dynamic)
         motions, _ = self.world.motions()
         for i in range(len(self.held), len(motions)):
             self.held.append(wire.motion(wire.segment(i, motions[i], motions[i][0]), motions[i][0]))

@@ -128,6 +128,26 @@ def test_acceleration_is_exact_ballistics(engine) -> None:
     assert w.velocity(ball)[:2] == pytest.approx((1.0, -8.0), rel=1e-15)
 
 
+def test_acceleration_reads_the_own_gravity(engine) -> None:
+    """World.acceleration: add_body's gravity, else the world's, else set_acceleration's;
+    a static body keeps it (and falls with it once dynamic), a dynamic one moves with it."""
+    w = engine.World(gravity=(0.0, -10.0))
+    ball = w.add_circle((0.0, 0.0), 0.1)
+    floaty = w.add_circle((5.0, 0.0), 0.1, gravity=(1.0, 2.0))
+    wall = w.add_segment((-9.0, -9.0), (9.0, -9.0))
+    box = w.add_polygon(SQUARE, kind="static", position=(0.0, 5.0))
+    assert [w.acceleration(b) for b in (ball, floaty, wall, box)] == [
+        (0.0, -10.0), (1.0, 2.0), (0.0, -10.0), (0.0, -10.0)]
+    w.set_acceleration(ball, (3, -4))
+    assert w.acceleration(ball) == (3.0, -4.0)
+    w.step_to(1.0)
+    assert w.velocity(ball)[:2] == (3.0, -4.0)        # it moves with what it reads
+    assert w.velocity(box) == (0.0, 0.0, 0.0)         # static: kept, not applied
+    w.set_kind(box, "dynamic")
+    w.step_to(1.5)
+    assert w.velocity(box)[:2] == pytest.approx((0.0, -5.0), rel=1e-15)
+
+
 def test_unfix_falls_and_lands_then_fix_stops(engine) -> None:
     """PGE's unfix: a static box becomes dynamic, falls with the world's gravity and lands at
     sqrt(2 h / g); fix makes it static again."""
