@@ -1,20 +1,22 @@
-"""One frame as pixels, with edges anti-aliased from the exact geometry.
+"""One frame as pixels, drawn by Skia (skia-python): anti-aliased shapes, in RGB bytes.
 
-Each shape is drawn from its signed distance d (in pixels) at every pixel centre: a fill covers a
-pixel by clip(0.5 - d, 0, 1), a stroke of width w by clip(w/2 + 0.5 - |d|, 0, 1). That is the
-area of the pixel inside a straight edge through it (exact for an edge parallel to an axis,
-within a few percent otherwise), so an edge lands where the geometry puts it, to a fraction of a
-pixel, at any zoom: no rounding of coordinates to whole pixels (which Pillow's own drawing
-does) and no supersampling. Pixels more than half a pixel inside a shape are exactly its
-colour; more than half a pixel outside, untouched; the tests rely on that.
+Skia computes each pixel's coverage of a shape from the exact outline (analytic anti-aliasing,
+the quality of a browser's canvas): a pixel inside a shape by more than half its diagonal is
+exactly the shape's colour, one outside by as much is untouched, and the coverage of the band
+between adds up to the shape's area. Coordinates stay fractional: an edge lands where the
+geometry puts it, at any zoom. Colours are blended in their sRGB values, as a browser does.
+Pillow draws the text (labels, time stamp) on top. Both come with
+`pip install 'max2code[render]'`.
 
-numpy does the geometry over each shape's bounding box only; Pillow draws the text (labels,
-time stamp) on top. Both come with `pip install 'max2code[render]'`.
+Until issue 37 the shapes were drawn by numpy from signed distances at each pixel centre; that
+drew a pile of 43 bodies at 37 frames a second, mostly in Python and numpy calls per shape and
+contact. Skia draws a body in a few microseconds (bench/render.py measures it).
 
-An animation is drawn by a FrameDrawer, which gives the same pixels as frame_image (the tests
-compare them byte for byte) at a fraction of the cost: the bodies at the front of the list that
-stay put (static walls, resting bodies) are painted once into a cached layer, and only the
-pixels painted over that layer are converted to bytes again (bench/render.py measures it).
+A shape is drawn from its outline, one function per kind of shape (OUTLINES): a Skia path in
+pixel space, its bounding box, whether it has an inside, and a circle's spoke. An animation
+is drawn by a FrameDrawer, which gives the same pixels as frame_image (the tests compare them
+byte for byte): the bodies at the front of the list that stay put (walls, resting bodies)
+are drawn once into a layer, and each frame starts from a copy of that layer.
 """
 
 from __future__ import annotations
@@ -25,6 +27,7 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
+import skia
 from PIL import Image, ImageDraw, ImageFont
 
 from .model import Body, Capsule, Circle, Contact, Frame, Point, Polygon, RenderModelError, Segment, View
@@ -32,6 +35,8 @@ from .text import printable, time_stamp
 
 CONTACT_COLOUR = "#d62728"
 TEXT_COLOUR = "#000000"
+CONTACT_WIDTH = 1.5   # pixels, of the ring and of the normal's line
+CONTACT_REACH = 2.5   # the normal's line, in ring radii
 
 
 @lru_cache(maxsize=1024)
@@ -42,8 +47,20 @@ def rgba(colour: str) -> tuple[float, float, float, float]:
 
 
 @lru_cache(maxsize=1024)
-def _rgb32(colour: str) -> np.ndarray:
-    return np.array(rgba(colour)[:3], dtype=np.float32)
+def _skia_colour(colour: str) -> int:
+    v = [int(colour[i:i + 2], 16) for i in range(1, len(colour), 2)]
+    return skia.Color(v[0], v[1], v[2], v[3] if len(v) == 4 else 255)
+
+
+@lru_cache(maxsize=1024)
+def _paint(colour: str, width: float | None) -> skia.Paint:
+    """An anti-aliased paint: a fill (width None), or a stroke of `width` pixels with round
+    joins and caps (the pixels within width/2 of the outline, as the distance drawing was)."""
+    if width is None:
+        return skia.Paint(AntiAlias=True, Color=_skia_colour(colour))
+    return skia.Paint(AntiAlias=True, Color=_skia_colour(colour), Style=skia.Paint.kStroke_Style,
+                      StrokeWidth=width, StrokeJoin=skia.Paint.kRound_Join,
+                      StrokeCap=skia.Paint.kRound_Cap)
 
 
 def check_frame(bodies: Sequence[Body], frame: Frame) -> None:
@@ -52,111 +69,55 @@ def check_frame(bodies: Sequence[Body], frame: Frame) -> None:
                                f"for {len(bodies)} bodies")
 
 
-def _clip01(x: np.ndarray) -> np.ndarray:
-    """np.clip(x, 0, 1) (a new array): the same values, without np.clip's Python wrapper,
-    which cost more than the arithmetic on a small shape's box."""
-    y = np.maximum(x, 0)
-    return np.minimum(y, 1, out=y)
-
-
 Box = tuple[int, int, int, int]   # rows j0:j1, columns i0:i1 of a picture
 
 
-def _to_bytes(rgb: np.ndarray) -> np.ndarray:
-    """Planar floats (3, rows, columns) to RGB bytes (rows, columns, 3) (a view: assign or copy)."""
-    return np.rint(_clip01(rgb) * 255).astype(np.uint8).transpose(1, 2, 0)
-
-
 class Canvas:
-    """An RGB picture in floats, painted shape by shape with coverage as alpha; `painted` keeps
-    the pixel boxes (rows, columns) touched since it was made, so that only those need converting
-    to bytes when the rest is known (FrameDrawer).
+    """An RGBA picture (rows, columns, 4 bytes, opaque) that Skia draws into in place; `painted`
+    keeps the pixel boxes touched since it was made, so that a FrameDrawer converts and restores
+    those only."""
 
-    `rgb` is planar, (3, rows, columns): numpy's loops run along the last axis, and a blend over
-    (rows, columns, 3) ran them three values long, which made painting three times slower."""
-
-    def __init__(self, view: View, rgb: np.ndarray | None = None) -> None:
-        """A fresh picture of the background, or one painting into `rgb` itself."""
+    def __init__(self, view: View, pixels: np.ndarray | None = None) -> None:
+        """A fresh picture of the background, or one drawing into `pixels` itself."""
         self.view = view
         self.painted: set[Box] = set()
-        if rgb is not None:
-            self.rgb = rgb
-        else:
-            self.rgb = np.empty((3, view.height, view.width), dtype=np.float32)
-            self.rgb[:] = _rgb32(view.background)[:, None, None]
+        if pixels is None:
+            pixels = np.empty((view.height, view.width, 4), dtype=np.uint8)
+            pixels[:] = [int(view.background[i:i + 2], 16) for i in (1, 3, 5)] + [255]
+        self.pixels = pixels
+        self.surface = skia.Surface(pixels)
+        self.skia = self.surface.getCanvas()
 
-    def grid(self, box: tuple[float, float, float, float]) -> tuple[slice, slice, np.ndarray, np.ndarray] | None:
-        """Pixel centres of the pixels a pixel-space box (x0, y0, x1, y1) touches, or None."""
-        i0 = max(int(math.floor(box[0])), 0)
-        j0 = max(int(math.floor(box[1])), 0)
-        i1 = min(int(math.ceil(box[2])), self.view.width)
-        j1 = min(int(math.ceil(box[3])), self.view.height)
+    def box(self, x0: float, y0: float, x1: float, y1: float) -> Box | None:
+        """The pixels a pixel-space box touches (rows, columns), clipped to the picture, or None."""
+        i0 = max(int(math.floor(max(x0, -1.0))), 0)
+        j0 = max(int(math.floor(max(y0, -1.0))), 0)
+        i1 = min(int(math.ceil(min(x1, self.view.width + 1.0))), self.view.width)
+        j1 = min(int(math.ceil(min(y1, self.view.height + 1.0))), self.view.height)
         if i0 >= i1 or j0 >= j1:
             return None
-        xs = np.arange(i0, i1, dtype=np.float32) + np.float32(0.5)
-        ys = np.arange(j0, j1, dtype=np.float32) + np.float32(0.5)
-        return slice(j0, j1), slice(i0, i1), xs[None, :], ys[:, None]
+        return (j0, j1, i0, i1)
 
-    def paint(self, rows: slice, cols: slice, coverage: np.ndarray, colour: str) -> None:
-        """Blend `colour` over the region by coverage x the colour's alpha."""
-        a = rgba(colour)[3]
-        alpha = coverage if a == 1.0 else coverage * np.float32(a)
-        region = self.rgb[:, rows, cols]
-        region += alpha * (_rgb32(colour)[:, None, None] - region)
-        self.painted.add((rows.start, rows.stop, cols.start, cols.stop))
+    def rgb(self) -> np.ndarray:
+        """The picture's RGB bytes (rows, columns, 3), a copy."""
+        return np.ascontiguousarray(self.pixels[..., :3])
 
     def image(self) -> Image.Image:
-        return Image.fromarray(np.ascontiguousarray(_to_bytes(self.rgb)), "RGB")
+        return Image.fromarray(self.rgb(), "RGB")
 
 
-# --- signed distances in pixel space (negative inside) -----------------------------------------
+# --- outlines in pixel space ------------------------------------------------------------------
 
-def _norm(dx: np.ndarray, dy: np.ndarray) -> np.ndarray:
-    """np.hypot(dx, dy), which took twice as long (no overflow guard is needed: pixels)."""
-    return np.sqrt(dx * dx + dy * dy)
-
-
-def _segment_distance(x: np.ndarray, y: np.ndarray, a: Point, b: Point) -> np.ndarray:
-    dx, dy = b[0] - a[0], b[1] - a[1]
-    length2 = dx * dx + dy * dy
-    t = _clip01(((x - a[0]) * dx + (y - a[1]) * dy) / length2) if length2 > 0 else 0.0
-    return _norm(x - (a[0] + t * dx), y - (a[1] + t * dy))
-
-
-def _polygon_distance(x: np.ndarray, y: np.ndarray, pts: Sequence[Point]) -> np.ndarray:
-    """Exact signed distance to a convex polygon: the distance to the nearest edge, negative where
-    the point is on the inner side of every edge."""
-    area2 = sum(pts[i - 1][0] * pts[i][1] - pts[i][0] * pts[i - 1][1] for i in range(len(pts)))
-    orient = 1.0 if area2 > 0 else -1.0
-    nearest = None
-    inside = None
-    for i in range(len(pts)):
-        a, b = pts[i], pts[(i + 1) % len(pts)]
-        d = _segment_distance(x, y, a, b)
-        nearest = d if nearest is None else np.minimum(nearest, d)
-        side = orient * ((b[0] - a[0]) * (y - a[1]) - (b[1] - a[1]) * (x - a[0])) >= 0
-        inside = side if inside is None else inside & side
-    return np.where(inside, -nearest, nearest)
-
-
-def _fill(d: np.ndarray) -> np.ndarray:
-    return _clip01(0.5 - d)
-
-
-def _stroke(d: np.ndarray, width: float) -> np.ndarray:
-    return _clip01(np.minimum(width / 2 + 0.5 - np.abs(d), width))
-
-
-Distance = Callable[[np.ndarray, np.ndarray], np.ndarray]
 ToPixel = Callable[[Point], Point]
 
 
 @dataclass(frozen=True)
 class Outline:
-    """One shape placed in pixel space: its bounding box (x0, y0, x1, y1), its signed distance,
-    whether it has an inside (a segment has none), and the spoke that shows a circle's turn."""
+    """One shape placed in pixel space: its outline as a Skia path, its bounding box (x0, y0,
+    x1, y1), whether it has an inside (a segment has none), and the spoke that shows a circle's
+    turn."""
+    path: skia.Path
     box: tuple[float, float, float, float]
-    distance: Distance
     area: bool = True
     spoke: tuple[Point, Point] | None = None
 
@@ -166,25 +127,55 @@ def _box_around(points: Sequence[Point], r: float) -> tuple[float, float, float,
             max(p[0] for p in points) + r, max(p[1] for p in points) + r)
 
 
+def _rounded(points: Sequence[Point], r: float) -> skia.Path:
+    """Every point within r of a convex polygon (2 points: a capsule): each edge moved out by r,
+    joined by arcs of radius r around the vertices."""
+    pts = [p for i, p in enumerate(points) if p != points[i - 1]] or [points[0]]
+    path = skia.Path()
+    if len(pts) == 1:
+        return path.addCircle(pts[0][0], pts[0][1], r)
+    n = len(pts)
+    area2 = sum(pts[i - 1][0] * pts[i][1] - pts[i][0] * pts[i - 1][1] for i in range(n))
+    orient = 1.0 if area2 >= 0 else -1.0
+    normals = []
+    for i in range(n):
+        (ax, ay), (bx, by) = pts[i], pts[(i + 1) % n]
+        length = math.hypot(bx - ax, by - ay)
+        normals.append((orient * (by - ay) / length, -orient * (bx - ax) / length))
+    for i in range(n):   # (the arc at vertex i turns from edge i-1's normal to edge i's)
+        (ux, uy), (vx, vy) = normals[i - 1], normals[i]
+        turn = math.degrees(math.atan2(abs(ux * vy - uy * vx), ux * vx + uy * vy))
+        x, y = pts[i]
+        path.arcTo(skia.Rect(x - r, y - r, x + r, y + r), math.degrees(math.atan2(uy, ux)),
+                   orient * turn, i == 0)
+    return path.close()
+
+
+def _polygon_path(points: Sequence[Point], r: float) -> skia.Path:
+    if r > 0:
+        return _rounded(points, r)
+    return skia.Path().addPoly([skia.Point(x, y) for x, y in points], True)
+
+
 def _circle(shape: Circle, px: ToPixel, scale: float) -> Outline:
     c, r = px(shape.centre), shape.radius * scale
     rim = px((shape.centre[0] + shape.radius, shape.centre[1]))
-    return Outline(_box_around([c], r), lambda x, y: _norm(x - c[0], y - c[1]) - r, spoke=(c, rim))
+    return Outline(skia.Path().addCircle(c[0], c[1], r), _box_around([c], r), spoke=(c, rim))
 
 
 def _polygon(shape: Polygon, px: ToPixel, scale: float) -> Outline:
     pts, r = [px(v) for v in shape.vertices], shape.radius * scale
-    return Outline(_box_around(pts, r), lambda x, y: _polygon_distance(x, y, pts) - r)
+    return Outline(_polygon_path(pts, r), _box_around(pts, r))
 
 
 def _capsule(shape: Capsule, px: ToPixel, scale: float) -> Outline:
     a, b, r = px(shape.a), px(shape.b), shape.radius * scale
-    return Outline(_box_around([a, b], r), lambda x, y: _segment_distance(x, y, a, b) - r)
+    return Outline(_rounded([a, b], r), _box_around([a, b], r))
 
 
 def _segment(shape: Segment, px: ToPixel, scale: float) -> Outline:
     a, b = px(shape.a), px(shape.b)
-    return Outline(_box_around([a, b], 0.0), lambda x, y: _segment_distance(x, y, a, b), area=False)
+    return Outline(skia.Path().moveTo(*a).lineTo(*b), _box_around([a, b], 0.0), area=False)
 
 
 OUTLINES: dict[type, Callable[[object, ToPixel, float], Outline]] = {
@@ -208,102 +199,79 @@ def contrast(colour: str | None) -> str:
 
 
 def draw_body(canvas: Canvas, body: Body, pose) -> None:
+    """Fill, then stroke, then a circle's spoke; nothing of a body wholly outside the picture."""
     style = body.style
     shape = outline(body.shape, pose.apply, canvas.view)
     width = style.stroke_width
     if not shape.area:  # a segment has no inside: its stroke is the whole picture of it
         width = max(width, 1.0)
     pad = width / 2 + 1
-    g = canvas.grid((shape.box[0] - pad, shape.box[1] - pad, shape.box[2] + pad, shape.box[3] + pad))
-    if g is None:
+    box = canvas.box(shape.box[0] - pad, shape.box[1] - pad, shape.box[2] + pad, shape.box[3] + pad)
+    if box is None:
         return
-    rows, cols, x, y = g
-    d = shape.distance(x, y)
+    sk = canvas.skia
     if shape.area and style.fill is not None:
-        canvas.paint(rows, cols, _fill(d), style.fill)
+        sk.drawPath(shape.path, _paint(style.fill, None))
     line_colour = style.stroke if style.stroke is not None else (None if shape.area else style.fill)
     if line_colour is not None and width > 0:
-        canvas.paint(rows, cols, _stroke(d, width), line_colour)
+        sk.drawPath(shape.path, _paint(line_colour, width))
     if shape.spoke is not None and style.spoke:   # (it lies inside the circle's box)
-        canvas.paint(rows, cols, _stroke(_segment_distance(x, y, *shape.spoke), max(width, 1.0)),
-                     style.stroke or contrast(style.fill))
+        (x0, y0), (x1, y1) = shape.spoke
+        sk.drawLine(x0, y0, x1, y1, _paint(style.stroke or contrast(style.fill), max(width, 1.0)))
+    canvas.painted.add(box)
+
+
+CONTACT_STEP = 8       # contacts are placed to 1/8 pixel and their normals to a degree ...
+
+
+def _distinct_contacts(contacts: Sequence[Contact], view: View) -> list[tuple[float, float, float | None]]:
+    """... and drawn once per place and normal: (x, y, normal's angle in radians, None for
+    none) in pixels, in numpy (a frame can have thousands). A pile settling has 9,000 contacts
+    in a frame at a dozen places, the same resting contacts found again and again; drawn one
+    over the other they were a blot (each ring's soft edge darkened by every copy) and took
+    40 ms. (An eighth of a pixel and a degree are below what the eye sees: the normal's line is
+    12 pixels long.)"""
+    if not contacts:
+        return []
+    world = np.array([(c.point[0], c.point[1], c.normal[0], c.normal[1]) for c in contacts])
+    s = view.scale
+    x = view.width / 2 + (world[:, 0] - (view.xmin + view.xmax) / 2) * s
+    y = view.height / 2 - (world[:, 1] - (view.ymin + view.ymax) / 2) * s
+    turn = np.rint(np.degrees(np.arctan2(-world[:, 3], world[:, 2]))) % 360
+    turn[(world[:, 2] == 0) & (world[:, 3] == 0)] = -1          # no normal: no line
+    keys = np.unique(np.stack([np.rint(x * CONTACT_STEP), np.rint(y * CONTACT_STEP), turn], axis=1),
+                     axis=0)
+    return [(i / CONTACT_STEP, j / CONTACT_STEP, None if t < 0 else math.radians(t))
+            for i, j, t in keys.tolist()]
+
+
+def draw_contacts(canvas: Canvas, contacts: Sequence[Contact], size: float) -> None:
+    """Each contact as a ring of radius `size` at its point and its normal as a line from it,
+    CONTACT_REACH rings long: all rings as one path, and all lines as another (where rings
+    overlap, their union is covered, with one anti-aliased edge)."""
+    reach = math.ceil(CONTACT_REACH * size + CONTACT_WIDTH / 2 + 1.5)
+    rings, lines = skia.Path(), skia.Path()
+    outer, inner = size + CONTACT_WIDTH / 2, max(size - CONTACT_WIDTH / 2, 0.0)
+    length = CONTACT_REACH * size
+    for x, y, turn in _distinct_contacts(contacts, canvas.view):
+        box = canvas.box(x - reach, y - reach, x + reach + 1, y + reach + 1)
+        if box is None:
+            continue
+        rings.addCircle(x, y, outer)
+        if inner > 0:
+            rings.addCircle(x, y, inner, skia.PathDirection.kCCW)
+        if turn is not None:
+            lines.moveTo(x, y).lineTo(x + length * math.cos(turn), y + length * math.sin(turn))
+        canvas.painted.add(box)
+    if not rings.isEmpty():
+        canvas.skia.drawPath(rings, _paint(CONTACT_COLOUR, None))
+    if not lines.isEmpty():
+        canvas.skia.drawPath(lines, _paint(CONTACT_COLOUR, CONTACT_WIDTH))
 
 
 def draw_contact(canvas: Canvas, contact: Contact, size: float) -> None:
     """A ring at the contact point and the normal as a short line from it."""
     draw_contacts(canvas, [contact], size)
-
-
-CONTACT_WIDTH = 1.5   # pixels, of the ring and of the normal's line
-CONTACT_REACH = 2.5   # the normal's line, in ring radii
-
-
-def draw_contacts(canvas: Canvas, contacts: Sequence[Contact], size: float) -> None:
-    """Each contact as a ring of radius `size` at its point and its normal as a line from it,
-    all contacts at once: every one is a patch of the same size around its point, so numpy
-    computes their distances in one (contacts x rows x columns) array. One opaque colour
-    blended over and over in any order leaves 1 - prod(1 - coverage) of it, so the patches are
-    merged by multiplying what each leaves uncovered (np.multiply.at), then painted once, in
-    tiles of a patch's size (only those that a patch touches: contacts far apart do not paint
-    the picture between them). (A pile of 40 bodies has 120 contacts a frame: one at a time,
-    they cost 80% of it.)"""
-    view = canvas.view
-    reach = math.ceil(CONTACT_REACH * size + CONTACT_WIDTH / 2 + 1.5)
-    side = 2 * reach + 1
-    points = np.array([view.to_pixel(c.point) for c in contacts], dtype=np.float64).reshape(-1, 2)
-    normals = np.array([c.normal for c in contacts], dtype=np.float64).reshape(-1, 2)
-    near = ((points[:, 0] > -reach) & (points[:, 0] < view.width + reach)
-            & (points[:, 1] > -reach) & (points[:, 1] < view.height + reach))
-    if not near.any():
-        return
-    points, normals = points[near], normals[near]
-    length = np.sqrt((normals * normals).sum(axis=1))
-    unit = np.divide(normals, length[:, None], out=np.zeros_like(normals), where=length[:, None] > 0)
-    corner = np.floor(points).astype(np.int64) - reach                      # patches' (i0, j0)
-    steps = np.arange(side)
-    # (float32 from here, relative to each patch's corner: small numbers, exact enough)
-    p = (points - corner).astype(np.float32)[:, :, None, None]
-    d = (CONTACT_REACH * size * unit * np.array([1.0, -1.0])).astype(np.float32)[:, :, None, None]
-    x = (steps.astype(np.float32) + np.float32(0.5))[None, None, :]
-    y = x.reshape(1, side, 1)
-    rx, ry = x - p[:, 0], y - p[:, 1]
-    ring = _stroke(_norm(rx, ry) - np.float32(size), CONTACT_WIDTH)
-    dx, dy = d[:, 0], d[:, 1]
-    length2 = np.maximum(dx * dx + dy * dy, np.float32(1e-30))
-    t = _clip01((rx * dx + ry * dy) / length2)
-    line = _stroke(_norm(rx - t * dx, ry - t * dy), CONTACT_WIDTH)
-    line *= (length > 0).astype(np.float32)[:, None, None]
-    left = (1 - ring) * (1 - line)
-    j0, i0 = corner[:, 1].min(), corner[:, 0].min()
-    h, w = corner[:, 1].max() - j0 + side, corner[:, 0].max() - i0 + side
-    flat = ((corner[:, 1, None, None] - j0 + steps[None, :, None]) * w
-            + (corner[:, 0, None, None] - i0 + steps[None, None, :]))
-    uncovered = np.ones(h * w, dtype=np.float32)
-    np.multiply.at(uncovered, flat.ravel(), left.ravel())
-    uncovered = uncovered.reshape(h, w)
-    # (a patch meets at most 2 x 2 tiles: its first and last rows' and columns')
-    rows = np.stack([corner[:, 1] // side, (corner[:, 1] + side - 1) // side], axis=1)
-    cols = np.stack([corner[:, 0] // side, (corner[:, 0] + side - 1) // side], axis=1)
-    pairs = np.stack([np.repeat(rows, 2, axis=1), np.tile(cols, 2)], axis=2).reshape(-1, 2)
-    tiles = [(int(a), int(b)) for a, b in np.unique(pairs, axis=0)]
-    j0, i0, h, w = int(j0), int(i0), int(h), int(w)
-    for tj, first, last in _runs(tiles):   # (each run of tiles side by side is one paint)
-        r0, r1 = max(tj * side, 0, j0), min((tj + 1) * side, view.height, j0 + h)
-        c0, c1 = max(first * side, 0, i0), min((last + 1) * side, view.width, i0 + w)
-        if r0 < r1 and c0 < c1:
-            canvas.paint(slice(r0, r1), slice(c0, c1),
-                         1 - uncovered[r0 - j0:r1 - j0, c0 - i0:c1 - i0], CONTACT_COLOUR)
-
-
-def _runs(tiles: list[tuple[int, int]]) -> list[tuple[int, int, int]]:
-    """Sorted (row, column) tiles as (row, first column, last column) runs of neighbours."""
-    runs: list[list[int]] = []
-    for row, col in tiles:
-        if runs and runs[-1][0] == row and runs[-1][2] == col - 1:
-            runs[-1][2] = col
-        else:
-            runs.append([row, col, col])
-    return [(r, a, b) for r, a, b in runs]
 
 
 @lru_cache(maxsize=16)
@@ -391,9 +359,9 @@ def frame_image(bodies: Sequence[Body], frame: Frame, view: View) -> Image.Image
     for body, pose in zip(bodies, frame.poses):
         draw_body(canvas, body, pose)
     _draw_contacts(canvas, frame)
-    image = canvas.image()
-    draw_text(image, bodies, frame, view)
-    return image
+    pixels = canvas.rgb()
+    _draw_text_boxed(pixels, bodies, frame, view)
+    return Image.fromarray(pixels, "RGB")
 
 
 def scene_colours(bodies: Sequence[Body], view: View) -> list[str]:
@@ -419,16 +387,16 @@ def _common_prefix(a: Sequence, b: Sequence) -> int:
 class FrameDrawer:
     """The frames of one animation, each the same pixels as frame_image's, faster.
 
-    Painting is in order (later bodies over earlier ones), so what can be kept from frame to
+    Drawing is in order (later bodies over earlier ones), so what can be kept from frame to
     frame is a prefix: the leading bodies whose poses did not change since the previous frame
-    are painted once into a layer (floats, and their bytes). A frame paints the other bodies
-    into a working copy of the layer, after putting back the layer's pixels where the previous
-    frame painted: the cost follows the area painted, not the picture's. A body of that prefix
-    that moves later makes the layer be painted again, shorter: never a wrong picture, at worst
-    the cost of frame_image.
+    are drawn once into a layer. A frame draws the other bodies into a working copy of the
+    layer, after putting back the layer's pixels where the previous frame drew, and converts
+    to RGB bytes only the boxes it drew: the cost follows the area drawn, not the picture's. A
+    body of that prefix that moves later makes the layer be drawn again, shorter: never a wrong
+    picture, at worst the cost of frame_image.
 
     `changed` says where the last image may differ from the one before (None: anywhere), so a
-    GIF palette maps only those pixels again (palette.Mapper)."""
+    GIF palette (palette.Mapper) and an MP4's colour conversion redo only those pixels."""
 
     def __init__(self, bodies: Sequence[Body], view: View) -> None:
         self.bodies = list(bodies)
@@ -437,16 +405,16 @@ class FrameDrawer:
         self.layers_painted = 0
         self._paint_layer(())
         self.changed: list[Box] | None = None
-        self._painted: set[Box] = set()      # the working copy's pixels that are not the layer's
 
     def _paint_layer(self, poses: tuple) -> None:
         canvas = Canvas(self.view)
         for body, pose in zip(self.bodies, poses):
             draw_body(canvas, body, pose)
-        self.layer_poses, self.layer = poses, canvas.rgb
-        self.layer_bytes = np.ascontiguousarray(_to_bytes(canvas.rgb))
-        self.work, self.work_bytes = self.layer.copy(), self.layer_bytes.copy()
-        self._painted = set()
+        self.layer_poses, self.layer = poses, canvas.pixels
+        self.layer_bytes = canvas.rgb()
+        self.work = Canvas(self.view, self.layer.copy())
+        self.work_bytes = self.layer_bytes.copy()
+        self._painted: set[Box] = set()     # the working copy's pixels that are not the layer's
         self.layers_painted += 1
 
     def pixels(self, frame: Frame) -> np.ndarray:
@@ -463,18 +431,19 @@ class FrameDrawer:
             self._paint_layer(poses[:still])
             kept = still
         restored = self._painted
+        work = self.work
         for j0, j1, i0, i1 in restored:
-            self.work[:, j0:j1, i0:i1] = self.layer[:, j0:j1, i0:i1]
+            work.pixels[j0:j1, i0:i1] = self.layer[j0:j1, i0:i1]
             self.work_bytes[j0:j1, i0:i1] = self.layer_bytes[j0:j1, i0:i1]
-        canvas = Canvas(self.view, self.work)
+        work.painted = set()
         for body, pose in zip(self.bodies[kept:], poses[kept:]):
-            draw_body(canvas, body, pose)
-        _draw_contacts(canvas, frame)
-        for j0, j1, i0, i1 in canvas.painted:
-            self.work_bytes[j0:j1, i0:i1] = _to_bytes(self.work[:, j0:j1, i0:i1])
+            draw_body(work, body, pose)
+        _draw_contacts(work, frame)
+        for j0, j1, i0, i1 in work.painted:
+            self.work_bytes[j0:j1, i0:i1] = work.pixels[j0:j1, i0:i1, :3]
         text = _draw_text_boxed(self.work_bytes, self.bodies, frame, self.view)
-        # (text is in the bytes only: put back like paint, where the floats are the layer's)
-        self._painted = canvas.painted | set(text)
+        # (text is in the bytes only: put back like a drawing, where the RGBA is the layer's)
+        self._painted = work.painted | set(text)
         self.changed = None if rebuilt or first else list(restored | self._painted)
         return self.work_bytes
 

@@ -4,7 +4,7 @@ Every file is written to a temporary name beside it and renamed (output.replaced
 an interrupted or failed run leaves the previous file as it was. Frames may come from a generator:
 MP4 and PNG folders are written as they come; a GIF is held in memory (Pillow writes it whole),
 as palette images, about width x height bytes per frame. A simulation's animations are drawn by
-one raster.FrameDrawer (the same pixels as frame_image, several times faster), and a GIF's
+one raster.FrameDrawer (the same pixels as frame_image, faster), and a GIF's
 frames share one palette (render.palette).
 
 Timing. An MP4 has `fps` frames per second, exactly. A GIF stores delays in hundredths of a
@@ -39,12 +39,12 @@ class RenderUnavailable(RuntimeError):
 
 
 def drawing_modules() -> tuple[object, object]:
-    """raster (numpy + Pillow), imported on first use so the model works without them."""
+    """raster (numpy, Skia and Pillow), imported on first use so the model works without them."""
     try:
         from . import raster
         from PIL import Image
     except ImportError as exc:
-        raise RenderUnavailable(f"pictures need numpy and Pillow ({exc.name} is missing): "
+        raise RenderUnavailable(f"pictures need numpy, skia-python and Pillow ({exc.name} is missing): "
                                 "pip install 'max2code[render]'") from None
     return raster, Image
 

@@ -17,6 +17,7 @@ from max2code.render.write import gif_timing
 
 np = need("numpy")
 Image = need("PIL.Image")
+need("skia")
 from max2code.render import palette, raster  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
