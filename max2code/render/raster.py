@@ -72,6 +72,36 @@ def check_frame(bodies: Sequence[Body], frame: Frame) -> None:
 Box = tuple[int, int, int, int]   # rows j0:j1, columns i0:i1 of a picture
 
 
+TILE = 8   # pixels: boxes are merged on a grid of tiles this size
+
+
+def merged(boxes: Sequence[Box] | set[Box], height: int, width: int) -> list[Box]:
+    """The pixels of `boxes` as few boxes that do not overlap: runs of TILE x TILE tiles along
+    a row, and runs of the same columns in the rows below as one box. (A frame's boxes overlap: a contact found at one place in ten frames, a ring over a
+    body. Converted, restored and looked up box by box, the same pixels were done many times.)"""
+    boxes = list(boxes)
+    if len(boxes) <= 1:
+        return boxes
+    mask = np.zeros((-(-height // TILE), -(-width // TILE) + 1), dtype=np.int8)
+    for j0, j1, i0, i1 in boxes:
+        mask[j0 // TILE:(j1 - 1) // TILE + 1, i0 // TILE:(i1 - 1) // TILE + 1] = 1
+    edges = np.diff(mask, axis=1, prepend=0)    # (the spare last column ends every run)
+    starts, ends = np.argwhere(edges == 1).tolist(), np.argwhere(edges == -1).tolist()
+    runs: dict[tuple[int, int], list[int]] = {}  # columns -> [first row, last row] of the open box
+    out = []
+    for (r, c0), (_, c1) in zip(starts, ends):
+        box = runs.get((c0, c1))
+        if box is not None and box[1] == r - 1:   # the same columns as the row above: one box
+            box[1] = r
+            continue
+        if box is not None:
+            out.append((box[0], c0, c1, box[1]))
+        runs[(c0, c1)] = [r, r]
+    out += [(r0, c0, c1, r1) for (c0, c1), (r0, r1) in runs.items()]
+    return [(r0 * TILE, min((r1 + 1) * TILE, height), c0 * TILE, min(c1 * TILE, width))
+            for r0, c0, c1, r1 in out]
+
+
 class Canvas:
     """An RGBA picture (rows, columns, 4 bytes, opaque) that Skia draws into in place; `painted`
     keeps the pixel boxes touched since it was made, so that a FrameDrawer converts and restores
@@ -237,12 +267,18 @@ def _distinct_contacts(contacts: Sequence[Contact], view: View) -> list[tuple[fl
     s = view.scale
     x = view.width / 2 + (world[:, 0] - (view.xmin + view.xmax) / 2) * s
     y = view.height / 2 - (world[:, 1] - (view.ymin + view.ymax) / 2) * s
+    far = view.width + view.height          # pixels from the centre: no ring reaches in from there
+    near = (np.abs(x - view.width / 2) < far) & (np.abs(y - view.height / 2) < far)
     turn = np.rint(np.degrees(np.arctan2(-world[:, 3], world[:, 2]))) % 360
-    turn[(world[:, 2] == 0) & (world[:, 3] == 0)] = -1          # no normal: no line
-    keys = np.unique(np.stack([np.rint(x * CONTACT_STEP), np.rint(y * CONTACT_STEP), turn], axis=1),
-                     axis=0)
-    return [(i / CONTACT_STEP, j / CONTACT_STEP, None if t < 0 else math.radians(t))
-            for i, j, t in keys.tolist()]
+    turn[(world[:, 2] == 0) & (world[:, 3] == 0)] = 360         # no normal: no line
+    # (one whole number per contact: np.unique of rows sorted ten times slower)
+    span = 2 * far * CONTACT_STEP + 1
+    i = np.rint(x[near] * CONTACT_STEP).astype(np.int64) + far * CONTACT_STEP
+    j = np.rint(y[near] * CONTACT_STEP).astype(np.int64) + far * CONTACT_STEP
+    keys = np.unique((i * span + j) * 361 + turn[near].astype(np.int64))
+    t, ij = keys % 361, keys // 361
+    return [(a / CONTACT_STEP - far, b / CONTACT_STEP - far, None if c == 360 else math.radians(c))
+            for a, b, c in zip((ij // span).tolist(), (ij % span).tolist(), t.tolist())]
 
 
 def draw_contacts(canvas: Canvas, contacts: Sequence[Contact], size: float) -> None:
@@ -414,7 +450,7 @@ class FrameDrawer:
         self.layer_bytes = canvas.rgb()
         self.work = Canvas(self.view, self.layer.copy())
         self.work_bytes = self.layer_bytes.copy()
-        self._painted: set[Box] = set()     # the working copy's pixels that are not the layer's
+        self._painted: list[Box] = []       # the working copy's pixels that are not the layer's
         self.layers_painted += 1
 
     def pixels(self, frame: Frame) -> np.ndarray:
@@ -431,7 +467,7 @@ class FrameDrawer:
             self._paint_layer(poses[:still])
             kept = still
         restored = self._painted
-        work = self.work
+        work, h, w = self.work, self.view.height, self.view.width
         for j0, j1, i0, i1 in restored:
             work.pixels[j0:j1, i0:i1] = self.layer[j0:j1, i0:i1]
             self.work_bytes[j0:j1, i0:i1] = self.layer_bytes[j0:j1, i0:i1]
@@ -439,12 +475,12 @@ class FrameDrawer:
         for body, pose in zip(self.bodies[kept:], poses[kept:]):
             draw_body(work, body, pose)
         _draw_contacts(work, frame)
-        for j0, j1, i0, i1 in work.painted:
+        for j0, j1, i0, i1 in merged(work.painted, h, w):
             self.work_bytes[j0:j1, i0:i1] = work.pixels[j0:j1, i0:i1, :3]
         text = _draw_text_boxed(self.work_bytes, self.bodies, frame, self.view)
         # (text is in the bytes only: put back like a drawing, where the RGBA is the layer's)
-        self._painted = work.painted | set(text)
-        self.changed = None if rebuilt or first else list(restored | self._painted)
+        self._painted = merged(work.painted | set(text), h, w)
+        self.changed = None if rebuilt or first else merged(restored + self._painted, h, w)
         return self.work_bytes
 
     def image(self, frame: Frame) -> Image.Image:

@@ -110,3 +110,27 @@ def test_mapper_maps_palette_colours_to_themselves() -> None:
     got = np.asarray(palette.Mapper(entries).mapped(pixels).convert("RGB"))
     assert got[0, :3].tolist() == pixels[0, :3].tolist()
     assert got[0, 3].tolist() == [255, 255, 255]        # nearest
+
+
+boxes = st.lists(st.tuples(st.integers(0, 71), st.integers(1, 72), st.integers(0, 95), st.integers(1, 96))
+                 .filter(lambda b: b[0] < b[1] and b[2] < b[3]), max_size=12)
+
+
+@settings(max_examples=100, deadline=None)
+@given(boxes)
+def test_merged_boxes_cover_the_boxes_once(given_boxes) -> None:
+    def mask(bs):
+        m = np.zeros((72, 96), dtype=int)
+        for j0, j1, i0, i1 in bs:
+            m[j0:j1, i0:i1] += 1
+        return m
+    got = raster.merged(given_boxes, 72, 96)
+    covered = mask(got)
+    assert covered.max(initial=0) <= 1                        # no pixel twice
+    assert (covered[mask(given_boxes) > 0] == 1).all()         # every pixel of the boxes
+    assert len(got) <= max(len(given_boxes), 1) * 72 // raster.TILE   # few: runs of tiles
+    # and no more than the tiles the boxes touch
+    t = raster.TILE
+    tiles = mask([(j0 // t * t, min(-(-j1 // t) * t, 72), i0 // t * t, min(-(-i1 // t) * t, 96))
+                  for j0, j1, i0, i1 in given_boxes])
+    assert not (covered.astype(bool) & ~tiles.astype(bool)).any()
