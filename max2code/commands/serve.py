@@ -1,7 +1,7 @@
 """`max2code serve SCENE_OR_GAME`: a scene's world (or a PGE game's), authoritative on this machine, played from browsers.
 
     max2code serve examples/scenes/arena.toml            # then open http://127.0.0.1:8036/
-    max2code serve SCENE_OR_GAME [--host 127.0.0.1] [--port 8036] [--player NAME ...] [--rooms N] [--speed V] [--tolerance EPS]
+    max2code serve SCENE_OR_GAME [--host 127.0.0.1] [--port 8036] [--player NAME ...] [--rooms N] [--speed V] [--tolerance EPS] [--rate HZ]
 
 Each browser that joins a room (the page's ?room=NAME, default "main") gets the world and then
 only events (docs/server.md). A joining client controls the first player body nobody else
@@ -62,11 +62,16 @@ def main(argv: list[str]) -> int:
                     help="a change whose drift stays below EPS scene units is sent when it would "
                          "exceed it (dead reckoning; docs/server.md); default 0: every change at "
                          "once, exact; -1: a quarter of a pixel of the page's canvas")
+    ap.add_argument("--rate", type=float, default=60.0, metavar="HZ",
+                    help="most event messages a second per room (default 60: changes within 1/60 s "
+                         "of the last message wait for the next, each body's latest segment only); "
+                         "0: every step's changes at once")
     args = ap.parse_args(argv)
     if not 0 <= args.port <= 65535 or args.rooms < 1 or (args.speed is not None and not 0 < args.speed < 1e300) \
-            or (args.tolerance is not None and args.tolerance != -1 and not 0 <= args.tolerance < 1e300):
+            or (args.tolerance is not None and args.tolerance != -1 and not 0 <= args.tolerance < 1e300) \
+            or not 0 <= args.rate < 1e300:
         print("max2code serve: error: --port must be 0..65535, --rooms at least 1, --speed positive, "
-              "--tolerance finite and >= 0 (or -1)",
+              "--tolerance finite and >= 0 (or -1), --rate finite and >= 0",
               file=sys.stderr)
         return 2
 
@@ -79,7 +84,8 @@ def main(argv: list[str]) -> int:
         if isinstance(made, int):
             return made
         scene, players, make, wanted = made
-        options = Options(scene, players, max_rooms=args.rooms, tolerance=tolerance, world=make)
+        options = Options(scene, players, max_rooms=args.rooms, tolerance=tolerance, world=make,
+                          rate=args.rate)
     else:
         try:
             scene = load(args.scene)
@@ -95,7 +101,7 @@ def main(argv: list[str]) -> int:
             print(f"{args.scene}: error: --player {bad[0]!r}: no dynamic body of that name", file=sys.stderr)
             return 1
         options = Options(scene, tuple(names[n] for n in wanted), max_rooms=args.rooms, speed=args.speed,
-                          tolerance=tolerance)
+                          tolerance=tolerance, rate=args.rate)
 
     def ready(server, port: int) -> None:
         print(f"max2code serve: {scene.name} on http://{args.host}:{port}/ "

@@ -24,7 +24,7 @@ from ..engine.scenefile import Scene
 from ..engine.world import World
 from . import protocol
 from .protocol import Hello, Key, Ping, Point, ProtocolError, RateLimit
-from .room import Room
+from .room import RATE as ROOM_RATE, Room
 
 STATIC = {"/": ("index.html", "text/html; charset=utf-8"),
           "/client.js": ("client.js", "text/javascript; charset=utf-8"),
@@ -43,6 +43,7 @@ class Options:
     speed: float | None = None
     tolerance: float | None = 0.0    # 0: exact; None: a quarter pixel (room.AUTO_PIXELS)
     world: Callable[[], World] | None = None   # each room's world (a game's), else the scene's
+    rate: float = ROOM_RATE     # most event messages a second per room (0: every step at once)
 
 
 class Server:
@@ -61,7 +62,8 @@ class Server:
                 raise ProtocolError(f"no room {name!r}, and no more rooms (at most {self.options.max_rooms})")
             make = self.options.world
             room = Room(name, self.options.scene, self.options.players, speed=self.options.speed,
-                        tolerance=self.options.tolerance, world=make() if make else None)
+                        tolerance=self.options.tolerance, world=make() if make else None,
+                        rate=self.options.rate)
             room.start()
             self.rooms[name] = room
         return room
@@ -106,7 +108,7 @@ class Server:
             room = self.room(msg.room)
             if len(room.clients) >= self.options.max_clients:
                 raise ProtocolError(f"room {msg.room!r} is full")
-            client, world = room.join(_sender(ws), msg.name, msg.play)
+            client, world = room.join(_sender(ws), msg.name, msg.play, msg.events)
             await ws.send(world)
             async for frame in ws:
                 if not limit.allow(loop.time()):

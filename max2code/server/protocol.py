@@ -1,4 +1,4 @@
-"""The wire protocol of `max2code serve` (docs/server.md): JSON text frames, version 2.
+"""The wire protocol of `max2code serve` (docs/server.md): JSON text frames, version 3.
 
 Why JSON: the client is a static page with no build step and no library, and a browser parses
 JSON natively (and shows it in its developer tools); messages are small because only events
@@ -19,7 +19,7 @@ import math
 import re
 from dataclasses import dataclass
 
-VERSION = 2   # 2: bodies removed (rm) and added (add) while the world runs
+VERSION = 3   # 2: bodies removed (rm) and added (add); 3: events once per (kind, a, b) with a count
 NUMBER_DIGITS = 10
 MAX_MESSAGE = 1024          # bytes of one client frame (our own limit: an error frame, then close)
 HARD_MAX_MESSAGE = 65536    # the WebSocket library's limit (close 1009 without reading it)
@@ -51,6 +51,7 @@ class Hello:
     room: str
     name: str
     play: bool = True     # false: watch only (never given a body)
+    events: bool = True   # false: ev messages without their events (the page draws none)
 
 
 @dataclass(frozen=True)
@@ -99,7 +100,7 @@ def _str(v: object, what: str, pattern: re.Pattern) -> str:
 
 NAME = re.compile(r"[\w .-]{0,32}")
 _FIELDS = {
-    "hello": {"type", "seq", "v", "room", "name", "play"},
+    "hello": {"type", "seq", "v", "room", "name", "play", "events"},
     "ping": {"type", "seq", "id", "c"},
     "key": {"type", "seq", "body", "key", "down"},
     "point": {"type", "seq", "body", "x", "y"},
@@ -147,11 +148,11 @@ def parse(frame: str | bytes, expected_seq: int) -> Message:
     if kind == "hello":
         if data["v"] != VERSION or isinstance(data["v"], bool):
             raise ProtocolError(f"protocol version {VERSION} only")
-        play = data.get("play", True)
-        if not isinstance(play, bool):
-            raise ProtocolError("play must be true or false")
+        play, events = data.get("play", True), data.get("events", True)
+        if not isinstance(play, bool) or not isinstance(events, bool):
+            raise ProtocolError("play and events must be true or false")
         return Hello(seq, _str(data.get("room", "main"), "room", ROOM),
-                     _str(data.get("name", ""), "name", NAME), play)
+                     _str(data.get("name", ""), "name", NAME), play, events)
     if kind == "ping":
         return Ping(seq, _int(data["id"], "id", 0, _BIG), _num(data["c"], "c"))
     body = _int(data["body"], "body", 0, 2 ** 31 - 1)

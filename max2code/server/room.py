@@ -4,8 +4,16 @@ The world runs at the server's clock (seconds since the room opened). The loop s
 the engine's next queued event (World.next_time) or until input arrives, steps the world to
 the clock, and sends one message for everything that happened in that step: the reported
 events and the segments of the bodies whose motion changed (found by the core's per-body
-change counters). A step that changed nothing drawn (an internal cell crossing) sends
-nothing, and with nothing queued the loop sleeps until input comes.
+change counters, and compared with what clients hold: a contact that changed nothing drawn
+sends nothing). A step that changed nothing drawn (an internal cell crossing, a zero-impulse
+contact) sends nothing, and with nothing queued the loop sleeps until input comes.
+
+At most `rate` messages a second (60: a display's frame rate): a step within 1/rate of the
+last message holds its changes back, and the next message, at the end of that interval,
+carries them all, each body's latest segment only (what was superseded within the interval
+is never drawn after the message arrives). An isolated event goes out at once; a burst (a
+collapsing pile, a bullet bouncing 900 times a second) costs at most `rate` messages a
+second. Input is never held back.
 """
 
 from __future__ import annotations
@@ -22,6 +30,7 @@ from . import protocol, reckon, wire
 
 
 AUTO_PIXELS = 3200
+RATE = 60.0          # most event messages per second (a display's frame rate); 0: no limit
 
 
 @dataclass(eq=False)
@@ -32,6 +41,7 @@ class Client:
     controls: tuple[int, ...] = ()
     keys: set[str] = field(default_factory=set)
     sent_bytes: int = 0
+    events: bool = True      # false: ev messages reach it without "ev" (hello's events)
 
 
 @dataclass
@@ -56,9 +66,11 @@ class Room:
 
     def __init__(self, name: str, scene: Scene, players: tuple[int, ...],
                  clock: Callable[[], float] | None = None, speed: float | None = None,
-                 tolerance: float | None = 0.0, world: World | None = None) -> None:
+                 tolerance: float | None = 0.0, world: World | None = None,
+                 rate: float = RATE) -> None:
         """`world`: a World made by the caller (a game with its callbacks) instead of the
-        scene's; the scene then gives only the view (and the input speed)."""
+        scene's; the scene then gives only the view (and the input speed). `rate`: most event
+        messages a second (0: every step's changes at once)."""
         self.name = name
         self.scene = scene
         self.world = world if world is not None else build_world(scene)
@@ -72,7 +84,8 @@ class Room:
         # by which a held segment must be replaced, and how far each body reaches from its
         # reference point (rotation moves points that far out by angle x reach)
         self.tolerance = 0.0
-        self.held: list[tuple[float, ...]] = [wire.motion(wire.segment(i, m, 0.0), 0.0)
+        self.zero = wire.Zero.of(self._view())
+        self.held: list[tuple[float, ...]] = [wire.motion(wire.segment(i, m, 0.0, self.zero), 0.0)
                                               for i, m in enumerate(motions)]
         self.due: dict[int, float] = {}
         self.reach: list[float] = []
@@ -86,6 +99,12 @@ class Room:
             tolerance = (view[2] - view[0]) / AUTO_PIXELS
         self.tolerance = float(tolerance)
         self.seq = 0
+        # the rate limit: when the last message went, and what waits for the next one
+        self.gap = 1.0 / rate if rate > 0 else 0.0
+        self.last_sent = -math.inf
+        self.waiting_events: list[Event] = []
+        self.waiting_removed: list[int] = []
+        self.waiting_added: list[int] = []
         self.stats = Stats()
         self.failed: str | None = None
         self._wake = asyncio.Event()
@@ -119,7 +138,7 @@ class Room:
 
     def advance(self, t: float) -> None:
         """Step the world to t and send what changed (nothing when nothing drawn changed)."""
-        if self.failed is not None or t < self.world.time or (t == self.world.time and not self.due):
+        if self.failed is not None or t < self.world.time or (t == self.world.time and not self._waiting()):
             return
         try:
             events = self.world.step_to(t)
@@ -138,7 +157,8 @@ class Room:
             self.gravity.append(self.world.acceleration(b.id))   # (what it falls with when dynamic)
         motions, _ = self.world.motions()
         for i in range(len(self.held), len(motions)):
-            self.held.append(wire.motion(wire.segment(i, motions[i], motions[i][0]), motions[i][0]))
+            self.held.append(wire.motion(wire.segment(i, motions[i], motions[i][0], self.zero),
+                                         motions[i][0]))
 
     def _membership(self) -> tuple[list[int], list[int]]:
         """Bodies removed since the last message (were alive, are not) and bodies added (ids
@@ -153,6 +173,10 @@ class Room:
             self._grow()
         return removed, added
 
+    def _waiting(self) -> bool:
+        """Anything owed to clients: a change whose wait or the rate's interval is not over."""
+        return bool(self.due or self.waiting_removed or self.waiting_added)
+
     def _send_changes(self, events: list[Event], extra: tuple[int, int, int] | None) -> None:
         motions, counters = self.world.motions()
         removed, added = self._membership()
@@ -163,7 +187,6 @@ class Room:
         now = self.world.time
         for i in removed:   # (its wait, if any, is over: clients drop it)
             self.due.pop(i, None)
-        drawn = [e for e in events if e.kind != "timer"]
         # with a tolerance, a change clients would not see yet waits (reckon.py); an input's
         # body is always sent, as is every body whose wait is over
         for i in changed:
@@ -171,29 +194,50 @@ class Room:
                            if extra is None or extra[1] != i else now)
         for i in added:     # a new body's segment goes with it, whatever the tolerance
             self.due[i] = now
-        send = sorted(i for i, d in self.due.items() if d <= now)
-        if not send and not removed and extra is None and (self.tolerance > 0 or not drawn):
+        self.waiting_events += [e for e in events if e.kind != "timer"]
+        self.waiting_removed += removed
+        self.waiting_added += added
+        ready = any(d <= now for d in self.due.values())
+        if not ready and not self.waiting_removed and not self.waiting_added and extra is None:
+            self.waiting_events.clear()   # nothing drawn changed (or not yet: a tolerance's wait)
             return
+        if extra is None and now < self.last_sent + self.gap:
+            return          # the rate's interval is not over: next_wake() comes back then
+        self._flush(motions, extra)
+
+    def _flush(self, motions: list[tuple[float, ...]], extra: tuple[int, int, int] | None) -> None:
+        """One message: every body whose change is due, the removals and additions since the
+        last message, and the events of the bodies whose segments it carries."""
+        now = self.world.time
+        both = set(self.waiting_removed) & set(self.waiting_added)   # came and went: never sent
+        removed = [i for i in self.waiting_removed if i not in both]
+        added = [i for i in self.waiting_added if i not in both]
+        drawn = self.waiting_events
+        self.waiting_events, self.waiting_removed, self.waiting_added = [], [], []
+        send = sorted(i for i, d in self.due.items() if d <= now)
         for i in send:
             del self.due[i]
-        # the message's time: its latest event (or the input's, or now for a wait that ended),
-        # so that a step holding one instant sends no time per event; every segment is
-        # re-expressed from it
-        times = [e.time for e in drawn] + [motions[i][0] for i in send]
-        t = max(times) if times and extra is None else now
-        sent = set(send) | set(removed)
-        ev = []
-        for e in drawn:   # [kind, a, b], and the time before t when the step held several
-            if self.tolerance > 0 and e.a not in sent and e.b not in sent:
-                continue  # (an event nobody sees)
-            item = [protocol.EVENT_CODES[e.kind], e.a, e.b]
-            ev.append(item if e.time == t else item + [protocol.number(e.time - t)])
+        # the message's time: its latest change (or the input's time, now), so that a step
+        # holding one instant sends no time per event; every segment is re-expressed from it
+        # (t exact: rounded, it could fall before a removal the message carries)
+        t = (max([motions[i][0] for i in send] + [e.time for e in drawn], default=now)
+             if extra is None else now)
+        segs = [wire.segment(i, motions[i], t, self.zero) for i in send]
+        # a segment equal to what clients hold (re-expressed from t: a contact with no impulse,
+        # a rest or wake that moved nothing) is not sent again, unless the body is new
+        fresh = set(added)
+        segs = [g for g in segs
+                if g[0] in fresh or g != wire.segment(g[0], self.held[g[0]], t, self.zero)]
+        sent = {g[0] for g in segs} | set(removed)
+        if not segs and not removed and not added and extra is None:
+            return
+        ev = _events(drawn, sent, t)
         if extra is not None:
             ev.append(list(extra))
-        segs = [wire.segment(i, motions[i], t) for i in send]
         for seg in segs:   # what clients now hold (the numbers as sent)
             self.held[seg[0]] = wire.motion(seg, t)
         self.seq += 1
+        self.last_sent = now
         message = {"type": "ev", "n": self.seq, "t": t, "ev": ev, "seg": segs}
         if removed:
             message["rm"] = removed
@@ -202,26 +246,39 @@ class Room:
         self._broadcast(message)
 
     def next_wake(self) -> float:
-        """The next queued event, or the end of a change's wait, whichever is first."""
-        return min([self.world.next_time()] + list(self.due.values()))
+        """The next queued event, or the end of a change's wait (and of the rate's interval
+        when a change waits for it), whichever is first."""
+        owed = min(self.due.values(), default=-math.inf if self._waiting() else math.inf)
+        return min(self.world.next_time(), max(owed, self.last_sent + self.gap))
 
     def _broadcast(self, message: dict) -> None:
-        text = protocol.encode(message)
+        """One message to every client; an ev message without its events to those that asked
+        for none (encoded once for each kind of client there is)."""
+        texts: dict[bool, str] = {}
         self.stats.messages += 1
         for c in list(self.clients):
+            events = c.events or "ev" not in message
+            text = texts.get(events)
+            if text is None:
+                text = texts[events] = protocol.encode(
+                    message if events else {k: v for k, v in message.items() if k != "ev"})
             c.sent_bytes += len(text)
             self.stats.bytes_sent += len(text)
             c.send(text)
 
     # -- clients ----------------------------------------------------------------------------
 
-    def join(self, send: Callable[[str], None], name: str, play: bool = True) -> tuple[Client, str]:
+    def join(self, send: Callable[[str], None], name: str, play: bool = True,
+             events: bool = True) -> tuple[Client, str]:
         """A new client: the bodies it controls (the first free player body, if any) and the
-        world message it starts from (every body's shape, style and segment now)."""
+        world message it starts from (every body's shape, style and segment now). `events`
+        false: its ev messages come without their list of events."""
         taken = {b for c in self.clients for b in c.controls}
         free = [b for b in self.players if b not in taken]
-        client = Client(send, name, tuple(free[:1]) if play else ())
+        client = Client(send, name, tuple(free[:1]) if play else (), events=events)
         self.advance(self.clock())
+        if self._waiting():   # what the others are owed goes out first: a joiner starts level
+            self._flush(self.world.motions()[0], None)
         t = self.world.time
         # a late joiner gets what the others hold (within the tolerance of the truth), so
         # that every client draws the same
@@ -231,7 +288,7 @@ class Room:
         message = {"type": "world", "v": protocol.VERSION, "room": self.name, "n": self.seq,
                    "t": t, "you": list(client.controls), "view": self._view(),
                    "bodies": [wire.body(self.world, i) for i in live],
-                   "seg": [wire.segment(i, motions[i], t) for i in live]}
+                   "seg": [wire.segment(i, motions[i], t, self.zero) for i in live]}
         if self.failed:
             message["failed"] = self.failed
         self.clients.append(client)
@@ -315,3 +372,26 @@ class Room:
         self._send_changes([], (protocol.EVENT_CODES["input"], body, -1))
         self._wake.set()
         return None
+
+
+def _events(drawn: list[Event], sent: set[int], t: float) -> list[list]:
+    """The events of one message: each (kind, a, b) once, at its latest time, in time order:
+    [kind, a, b], then its time before t when that is not t, then how many times it happened
+    since the last message when more than once (a ball rolling on a ramp touches it hundreds
+    of times a second; a client draws none of them, and lists of them would cost more than the
+    segments). An event of no body whose segment the message carries is left out (nobody sees
+    it: a contact that changed nothing drawn)."""
+    latest: dict[tuple[int, int, int], tuple[float, int]] = {}
+    for e in drawn:
+        if e.a in sent or e.b in sent:
+            key = (protocol.EVENT_CODES[e.kind], e.a, e.b)
+            latest[key] = (e.time, latest.get(key, (0.0, 0))[1] + 1)
+    out = []
+    for key, (time, count) in sorted(latest.items(), key=lambda kv: kv[1][0]):
+        item = list(key)
+        if time != t or count > 1:
+            item.append(protocol.number(time - t))
+        if count > 1:
+            item.append(count)
+        out.append(item)
+    return out

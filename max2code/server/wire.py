@@ -7,10 +7,14 @@ Shapes and styles are max2code.render's (engine.frames.render_body), so the page
 
 with s = t' - t, and trailing zeros left off (a body at rest is [id, x, y, angle], a body
 that neither turns nor accelerates [id, x, y, angle, vx, vy]). Every segment of one message is
-given at the message's time, so no segment carries a time of its own.
+given at the message's time, so no segment carries a time of its own. Numbers have
+protocol.NUMBER_DIGITS significant digits, and magnitudes below Zero's (1e-12 of the view's
+width, or 1e-12 radians) are sent as 0.
 """
 
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 from ..engine.frames import render_body
 from ..engine.world import World
@@ -18,6 +22,29 @@ from ..render.model import Capsule, Circle, Polygon, Segment
 from .protocol import number
 
 Motion = tuple[float, ...]   # the core's (t0, x, y, angle, vx, vy, omega, ax, ay)
+ZERO_RELATIVE = 1e-12
+
+
+@dataclass(frozen=True)
+class Zero:
+    """Magnitudes sent as 0: lengths (x, y, and their rates) below `length`, angles (and
+    omega) below `angle`. Why: the engine's rounding leaves noise such as an angle of -1.2e-15
+    or an omega of 5e-17 in bodies at rest or sliding; each costs some 15 characters and is
+    worth nothing drawn (1e-12 of the view is 1e-9 of a pixel), and once 0 a trailing one is
+    left off. Over a segment's life the error stays that small times the seconds it lasts."""
+    length: float = 0.0
+    angle: float = 0.0
+
+    @classmethod
+    def of(cls, view) -> "Zero":
+        """For a view (xmin, ymin, xmax, ymax): ZERO_RELATIVE of its larger side, and radians."""
+        side = max(abs(view[2] - view[0]), abs(view[3] - view[1]))
+        return cls(ZERO_RELATIVE * side if side < float("inf") else 0.0, ZERO_RELATIVE)
+
+    def limits(self) -> tuple[float, ...]:
+        """Per value of a segment (x, y, angle, vx, vy, omega, ax, ay)."""
+        a, l_ = self.angle, self.length
+        return (l_, l_, a, l_, l_, a, l_, l_)
 
 
 def shape(shape_) -> dict:
@@ -53,9 +80,9 @@ def at(m: Motion, t: float) -> tuple[float, ...]:
             vx + ax * s, vy + ay * s, w, ax, ay)
 
 
-def segment(i: int, m: Motion, t: float) -> list:
-    """Body i's segment from time t, trailing zeros left off."""
-    values = [number(v) for v in at(m, t)]
+def segment(i: int, m: Motion, t: float, zero: Zero = Zero()) -> list:
+    """Body i's segment from time t, trailing zeros left off (and values below `zero` 0)."""
+    values = [0 if abs(v) < z else number(v) for v, z in zip(at(m, t), zero.limits())]
     while len(values) > 3 and values[-1] == 0:
         values.pop()
     return [i] + values

@@ -22,10 +22,14 @@ class Client:
         self.n = 0
 
     @classmethod
-    async def join(cls, url: str, room: str = "main", play: bool = True, **kw) -> "Client":
+    async def join(cls, url: str, room: str = "main", play: bool = True, events: bool = True,
+                   **kw) -> "Client":
         ws = await connect(url, **kw)
         c = cls(ws)
-        await c.send({"type": "hello", "v": protocol.VERSION, "room": room, "play": play})
+        hello = {"type": "hello", "v": protocol.VERSION, "room": room, "play": play}
+        if not events:
+            hello["events"] = False
+        await c.send(hello)
         c.world = json.loads(await ws.recv())
         assert c.world["type"] == "world", c.world
         c.n = c.world["n"]

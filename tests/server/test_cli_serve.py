@@ -38,3 +38,6 @@ def test_bad_scene_and_options(tmp_path):
     r = subprocess.run([sys.executable, "-m", "max2code", "serve", str(ARENA), "--port", "70000"],
                        capture_output=True, text=True)
     assert r.returncode == 2 and "--port" in r.stderr
+    r = subprocess.run([sys.executable, "-m", "max2code", "serve", str(ARENA), "--rate", "-1"],
+                       capture_output=True, text=True)
+    assert r.returncode == 2 and "--rate" in r.stderr

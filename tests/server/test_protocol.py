@@ -12,7 +12,7 @@ from websockets.asyncio.client import connect
 from websockets.exceptions import InvalidStatus
 
 from max2code.engine.scenefile import build_world, load
-from max2code.server import wire
+from max2code.server import protocol, wire
 
 from .client import Client
 from .conftest import ARENA, ROOT, start
@@ -26,7 +26,7 @@ def test_join_gets_the_world_and_segments_give_the_engines_poses(arena):
     async def go():
         c = await Client.join(arena.url)
         w = c.world
-        assert w["v"] == 2 and w["you"] == [4] and len(w["bodies"]) == 12
+        assert w["v"] == protocol.VERSION == 3 and w["you"] == [4] and len(w["bodies"]) == 12
         assert w["bodies"][4]["name"] == "player1" and w["bodies"][4]["fill"] == "#c44e52"
         assert w["bodies"][4]["shape"] == {"c": [0, 0], "r": 0.12}
         assert w["bodies"][8]["shape"]["p"][0] == [-0.08, -0.08]      # puck3, a box
@@ -68,6 +68,20 @@ def test_every_event_message_matches_the_engine_at_its_time(arena):
         # each message names the bodies its events changed, and no others
         named = {e[1] for e in m["ev"]} | {e[2] for e in m["ev"] if e[2] >= 0}
         assert {s[0] for s in m["seg"]} <= named
+
+
+def test_a_client_may_ask_for_no_event_lists(arena):
+    """hello's events: false (the page's): the same messages, the same segments, no "ev"."""
+    async def go():
+        full = await Client.join(arena.url, play=False)
+        bare = await Client.join(arena.url, play=False, events=False)
+        await asyncio.gather(full.receive(2.5), bare.receive(2.5))
+        return full, bare
+    full, bare = run(go())
+    got = [m for m in full.messages if m["type"] == "ev" and m["n"] > bare.world["n"]]
+    assert len(got) >= 2 and any(m["ev"] for m in got)
+    assert [{k: v for k, v in m.items() if k != "ev"} for m in got] == \
+        [m for m in bare.messages if m["type"] == "ev"]
 
 
 def test_nothing_is_sent_while_nothing_happens(tmp_path):
@@ -141,7 +155,7 @@ def test_rooms_are_independent_worlds_and_bounded():
             await a.until(lambda m: m["type"] == "ev" and [5, 4, -1] in m["ev"])
             got_b = await b.receive(0.3)
             third = await connect(running.url)
-            await third.send(json.dumps({"type": "hello", "v": 2, "seq": 0, "room": "three"}))
+            await third.send(json.dumps({"type": "hello", "v": protocol.VERSION, "seq": 0, "room": "three"}))
             refusal = json.loads(await third.recv())
             return got_b, refusal
         got_b, refusal = run(go())

@@ -1,10 +1,10 @@
-// max2code serve: the thin client (protocol version 2, docs/server.md). No build step, no library.
+// max2code serve: the thin client (protocol version 3, docs/server.md). No build step, no library.
 // It holds every body's motion segment and draws any frame from it at the display's own rate;
 // the server sends a segment again only when an event changes it. Drawing follows
 // max2code.render (render/raster.py, render/svg.py): same shapes, colours, time stamp.
 "use strict";
 
-const PROTOCOL = 2;
+const PROTOCOL = 3;
 const KEYS = {ArrowLeft: "left", ArrowRight: "right", ArrowUp: "up", ArrowDown: "down",
               a: "left", d: "right", w: "up", s: "down"};
 const canvas = document.getElementById("view");
@@ -89,7 +89,8 @@ function ping() {
 function connect() {
   ws = new WebSocket((location.protocol === "https:" ? "wss://" : "ws://") + location.host + "/ws");
   ws.onopen = () => {
-    send({type: "hello", v: PROTOCOL, room: state.room, name: params.get("name") || ""});
+    // events: false: the page draws from segments only, so the server leaves the event lists out
+    send({type: "hello", v: PROTOCOL, room: state.room, name: params.get("name") || "", events: false});
     for (let k = 0; k < 5; k++) setTimeout(ping, 100 * k);
     setInterval(ping, 2000);
   };
