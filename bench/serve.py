@@ -9,7 +9,8 @@
    World.next_time), against a 60 Hz snapshot stream of the same run (every body's x, y, angle
    each frame) in the same encoding (protocol.encode, protocol.number); also after a
    permessage-deflate-like compression (one zlib stream per connection, a sync flush per
-   message, as websockets does with context takeover).
+   message, as websockets does with context takeover). And PGE's breakout, served as
+   `max2code serve GAME.py` serves it (read from the shared corpus, when it is there).
 2. capacity: CPU seconds the Room spends per engine event, message and client (1 and 100
    listeners), so events per second one core serves.
 3. load: `max2code serve` in a process of its own on 127.0.0.1; 1, 10 and 100 protocol
@@ -22,6 +23,8 @@ from __future__ import annotations
 
 import argparse
 import asyncio
+import contextlib
+import io
 import json
 import os
 import re
@@ -35,9 +38,18 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-from max2code.engine.scenefile import load  # noqa: E402
+from max2code.engine.scenefile import Scene, build_world, load  # noqa: E402
 from max2code.server import protocol  # noqa: E402
 from max2code.server.room import Room  # noqa: E402
+
+BREAKOUT = Path("/work/shared/corpus/pge-python/examples/breakout-breakout.py")
+
+
+def ratio(r: float, sent: int) -> str:
+    """A ratio as text: 0.07x below 1 (not 0x), 2.5x, 13x, 153x; "all" when nothing was sent."""
+    if sent == 0:
+        return "nothing sent"
+    return f"{r:.2g}x" if r < 10 else f"{r:.0f}x"
 
 
 def deflate_sizes(texts: list[str]) -> int:
@@ -45,13 +57,18 @@ def deflate_sizes(texts: list[str]) -> int:
     return sum(len(z.compress(t.encode()) + z.flush(zlib.Z_SYNC_FLUSH)) - 4 for t in texts)
 
 
-def replay(scene, until: float, listeners: int = 1, tolerance: float | None = None):
+def replay(scene, until: float, listeners: int = 1, tolerance: float | None = None, world=None,
+           rate: float | None = None, page: bool = True):
     """The messages a room sends over `until` seconds when it wakes exactly at each queued
-    event; and the CPU seconds that took."""
+    event; and the CPU seconds that took. `world`: a game's (else the scene's)."""
     clock = [0.0]
-    room = Room("bench", scene, (), clock=lambda: clock[0], tolerance=tolerance)
+    kw = {} if rate is None else {"rate": rate}
+    room = Room("bench", scene, (), clock=lambda: clock[0], tolerance=tolerance, world=world, **kw)
     sent: list[str] = []
     world_msg = room.join(sent.append, "bench")[1]
+    room.page: list[str] = []    # what the page gets (hello's events: false)
+    if page:
+        room.join(room.page.append, "page", events=False)
     for _ in range(listeners - 1):
         room.join(lambda text: None, "bench")
     cpu = time.process_time()
@@ -67,46 +84,101 @@ def replay(scene, until: float, listeners: int = 1, tolerance: float | None = No
     return world_msg, sent, cpu, room
 
 
-def snapshots(scene, until: float, hz: float = 60.0) -> list[str]:
-    from max2code.engine.scenefile import build_world
-    w = build_world(scene)
+def snapshots(w, until: float, hz: float = 60.0) -> list[str]:
+    """Every live body's pose 60 times a second, from a world of its own (a scene's, a game's),
+    until `until` or the game's end."""
+    from max2code.engine.world import EngineError
+
     out = []
     k = 0
     while k / hz <= until:
         t = k / hz
-        w.step_to(t, events=False)
+        try:
+            w.step_to(t, events=False)
+        except EngineError:     # a game that ended (its program's sys.exit): nothing to draw
+            break
+        poses = [w.pose(i, t) for i, b in enumerate(w.bodies) if b.alive]
         out.append(protocol.encode({"type": "snap", "t": t,
-                                    "p": [[protocol.number(v) for v in p] for p in w.poses(t)]}))
+                                    "p": [[protocol.number(v) for v in p] for p in poses]}))
         k += 1
     return out
 
 
-def bytes_table(quick: bool, tolerance: float | None) -> tuple[list[str], list[dict]]:
-    rows = []
+def runs(quick: bool):
+    """(name, scene, seconds, make_world) for each example scene, then PGE's breakout."""
     for path in sorted((ROOT / "examples" / "scenes").glob("*.toml")):
         scene = load(path)
-        until = min(scene.until or 10.0, 3.0 if quick else 10.0)
-        world_msg, sent, cpu, room = replay(scene, until, tolerance=tolerance)
-        snaps = snapshots(scene, until)
+        yield scene.name, scene, min(scene.until or 10.0, 3.0 if quick else 10.0), lambda s=scene: build_world(s)
+    if BREAKOUT.is_file():   # (its program ends at 10 s: run(10.0), then out_of_time)
+        from max2code.server.pgegame import UNIT_VIEW, GameWorld, load as load_game
+
+        scene = Scene(name="breakout (PGE game)", bodies=(), view=UNIT_VIEW)
+        def game():
+            with contextlib.redirect_stdout(io.StringIO()):   # (its prints: "before run")
+                return GameWorld(load_game(str(BREAKOUT)))
+        yield scene.name, scene, 3.0 if quick else 9.5, game
+
+
+def bytes_table(quick: bool, tolerance: float | None, rate: float | None = None) -> tuple[list[str], list[dict]]:
+    rows = []
+    for name, scene, until, make in runs(quick):
+        world = make()
+        world_msg, sent, cpu, room = replay(scene, until, tolerance=tolerance, world=world, rate=rate)
+        if room.failed:         # a game that ended: both streams end with it
+            until = room.world.time
+        snaps = snapshots(make(), until)
         ev_bytes, snap_bytes = sum(map(len, sent)), sum(map(len, snaps))
+        page_bytes = sum(map(len, room.page))
         ev_z, snap_z = deflate_sizes(sent), deflate_sizes(snaps)
-        events = sum(len(json.loads(m)["ev"]) for m in sent)
-        rows.append({"scene": scene.name, "bodies": len(scene.bodies), "seconds": until,
-                     "messages": len(sent), "events": events, "join_bytes": len(world_msg),
+        decoded = [m for m in map(json.loads, sent) if m["type"] == "ev"]
+        events = sum(len(m["ev"]) for m in decoded)
+        segs = sum(len(m["seg"]) for m in decoded)
+        rows.append({"scene": name, "bodies": len(world.bodies), "seconds": until,
+                     "engine_events": room.stats.events,
+                     "messages": len(sent), "events": events, "segments": segs,
+                     "join_bytes": len(world_msg),
                      "event_Bps": ev_bytes / until, "snapshot_Bps": snap_bytes / until,
-                     "ratio": snap_bytes / max(ev_bytes, 1),
+                     "ratio": snap_bytes / max(ev_bytes, 1), "sent": ev_bytes,
                      "event_Bps_deflate": ev_z / until, "snapshot_Bps_deflate": snap_z / until,
                      "ratio_deflate": snap_z / max(ev_z, 1),
+                     "page_Bps": page_bytes / until, "page_ratio": snap_bytes / max(page_bytes, 1),
+                     "page_Bps_deflate": deflate_sizes(room.page) / until,
+                     "page_ratio_deflate": snap_z / max(deflate_sizes(room.page), 1),
                      "bytes_per_message": ev_bytes / max(len(sent), 1)})
-    lines = ["| scene | bodies | s | messages | events | join B | events B/s | 60 Hz snapshots B/s | ratio "
-             "| deflated: events B/s | snapshots B/s | ratio | B per message |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    lines = ["| scene | bodies | s | engine events | messages | segments | events sent | join B "
+             "| events B/s | 60 Hz snapshots B/s | ratio "
+             "| deflated: events B/s | snapshots B/s | ratio | B per message "
+             "| page (no event lists) B/s | ratio | deflated B/s | ratio |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
-        lines.append(f"| {r['scene']} | {r['bodies']} | {r['seconds']:g} | {r['messages']} | {r['events']} | "
+        lines.append(f"| {r['scene']} | {r['bodies']} | {r['seconds']:.3g} | {r['engine_events']} | "
+                     f"{r['messages']} | {r['segments']} | {r['events']} | "
                      f"{r['join_bytes']} | {r['event_Bps']:.0f} | {r['snapshot_Bps']:.0f} | "
-                     f"**{r['ratio']:.3g}x** | {r['event_Bps_deflate']:.0f} | {r['snapshot_Bps_deflate']:.0f} | "
-                     f"{r['ratio_deflate']:.3g}x | {r['bytes_per_message']:.0f} |")
+                     f"**{ratio(r['ratio'], r['sent'])}** | {r['event_Bps_deflate']:.0f} | "
+                     f"{r['snapshot_Bps_deflate']:.0f} | {ratio(r['ratio_deflate'], r['sent'])} | "
+                     f"{r['bytes_per_message']:.0f} | {r['page_Bps']:.0f} | "
+                     f"{ratio(r['page_ratio'], r['sent'])} | {r['page_Bps_deflate']:.0f} | "
+                     f"{ratio(r['page_ratio_deflate'], r['sent'])} |")
     return lines, rows
+
+
+def dense_text(rows: list[dict]) -> list[str]:
+    """Which scenes are event-dense (fewer than 10x), from the measured rows, and why."""
+    dense = [r for r in rows if r["sent"] and r["ratio"] < 10]
+    if not dense:
+        return ["Every scene sends at least 10x fewer bytes than 60 Hz snapshots."]
+    items = ", ".join(f"{r['scene']} ({r['engine_events'] / r['seconds']:.0f} engine events/s for "
+                      f"{r['bodies']} bodies, {r['messages'] / r['seconds']:.0f} messages/s, "
+                      f"{r['segments'] / max(r['messages'], 1):.1f} segments a message: "
+                      f"{ratio(r['ratio'], r['sent'])})" for r in dense)
+    return [f"Event-dense here: {items}. In these the drawn motion of some body changes more often "
+            "than 60 times a second (a bullet bouncing between walls, a pile's bodies touching "
+            "each other, a ball that the game speeds up at every hit), so a message goes out every "
+            "1/60 s as a snapshot would, and it costs more than a snapshot's share for the bodies it "
+            "carries: a segment is up to 8 numbers (position, angle, velocity, spin, acceleration) "
+            "where a pose is 3, and the message names the events (each kind and pair once, with a "
+            "count). Snapshots win when most bodies change at every frame; events win by the "
+            "fraction of bodies and frames in which nothing changes."]
 
 
 def capacity_table(quick: bool) -> tuple[list[str], list[dict]]:
@@ -115,7 +187,7 @@ def capacity_table(quick: bool) -> tuple[list[str], list[dict]]:
         scene = load(ROOT / "examples" / "scenes" / f"{name}.toml")
         until = min(scene.until or 10.0, 3.0 if quick else 10.0)
         for listeners in (1, 100):
-            _, sent, cpu, room = replay(scene, until, listeners, tolerance=0.0)
+            _, sent, cpu, room = replay(scene, until, listeners, tolerance=0.0, page=False)
             rows.append({"scene": name, "listeners": listeners, "sim_seconds": until,
                          "engine_events": room.world.stats()["events"], "messages": len(sent),
                          "cpu": cpu, "events_per_cpu_s": room.world.stats()["events"] / cpu,
@@ -137,11 +209,19 @@ def _cpu_of(pid: int) -> float:
 
 async def _load(port: int, clients: int, seconds: float, server_pid: int) -> dict:
     room = f"load-{clients}"   # a fresh room per run: the scene from its start
-    from websockets.asyncio.client import connect
+    from websockets.asyncio.client import ClientConnection, connect
+
+    class Counted(ClientConnection):
+        """Counts the bytes TCP delivers: frames as sent, permessage-deflate included."""
+        wire = 0
+
+        def data_received(self, data: bytes) -> None:
+            self.wire += len(data)
+            super().data_received(data)
 
     async def one(k: int, lat: list, counts: list):
-        ws = await connect(f"ws://127.0.0.1:{port}/ws", max_queue=None)
-        await ws.send(json.dumps({"type": "hello", "v": 2, "seq": 0, "play": False, "room": room}))
+        ws = await connect(f"ws://127.0.0.1:{port}/ws", max_queue=None, create_connection=Counted)
+        await ws.send(json.dumps({"type": "hello", "v": protocol.VERSION, "seq": 0, "play": False, "room": room}))
         json.loads(await ws.recv())
         seq, best = 1, None
         for i in range(8):     # the page's clock estimate: the least round trip wins
@@ -158,6 +238,7 @@ async def _load(port: int, clients: int, seconds: float, server_pid: int) -> dic
         offset = best[1]
         end = time.monotonic() + seconds
         n = 0
+        wire0 = ws.wire
         while (left := end - time.monotonic()) > 0:
             try:
                 text = await asyncio.wait_for(ws.recv(), left)
@@ -167,7 +248,7 @@ async def _load(port: int, clients: int, seconds: float, server_pid: int) -> dic
             if m["type"] == "ev":
                 lat.append(time.monotonic() + offset - m["t"])
                 n += len(text)
-        counts.append(n)
+        counts.append((n, ws.wire - wire0))
         await ws.close()
 
     lat: list[float] = []
@@ -181,7 +262,8 @@ async def _load(port: int, clients: int, seconds: float, server_pid: int) -> dic
     return {"clients": clients, "messages": len(lat), "p50_ms": 1e3 * q(0.5), "p99_ms": 1e3 * q(0.99),
             "max_ms": 1e3 * lat[-1] if lat else float("nan"),
             "client_cpu_per_s_per_client": cpu / wall / clients, "server_cpu_per_s": scpu / wall,
-            "Bps_per_client": sum(counts) / len(counts) / seconds}
+            "Bps_per_client": sum(n for n, _ in counts) / len(counts) / seconds,
+            "wire_Bps_per_client": sum(w for _, w in counts) / len(counts) / seconds}
 
 
 def load_table(quick: bool, scene: str = "pinball") -> tuple[list[str], list[dict]]:
@@ -197,11 +279,13 @@ def load_table(quick: bool, scene: str = "pinball") -> tuple[list[str], list[dic
     lines = [f"Scene {scene}, a fresh room per run (the scene from its start), clients watching "
              "(no input), one asyncio process of clients:",
              "", "| clients | messages received | latency p50 | p99 | max | client CPU s per s (each) "
-             "| server CPU s per s | B/s per client |", "|---|---|---|---|---|---|---|---|"]
+             "| server CPU s per s | B/s per client (text) | on the wire (deflated, framed) |",
+             "|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         lines.append(f"| {r['clients']} | {r['messages']} | {r['p50_ms']:.2f} ms | {r['p99_ms']:.2f} ms | "
                      f"{r['max_ms']:.1f} ms | {r['client_cpu_per_s_per_client']:.4f} | "
-                     f"{r['server_cpu_per_s']:.3f} | {r['Bps_per_client']:.0f} |")
+                     f"{r['server_cpu_per_s']:.3f} | {r['Bps_per_client']:.0f} | "
+                     f"{r['wire_Bps_per_client']:.0f} |")
     return lines, rows
 
 
@@ -211,6 +295,7 @@ def main() -> int:
     ap.add_argument("-o", default=str(ROOT / "bench" / "results" / "serve.md"))
     args = ap.parse_args()
     b_lines, b_rows = bytes_table(args.quick, 0.0)
+    r_lines, r_rows = bytes_table(args.quick, 0.0, rate=0.0)
     t_lines, t_rows = bytes_table(args.quick, None)
     c_lines, c_rows = capacity_table(args.quick)
     l_lines, l_rows = load_table(args.quick)
@@ -220,10 +305,21 @@ def main() -> int:
         f"{time.strftime('%Y-%m-%d')}; {'--quick' if args.quick else 'full'} run.", "",
         "## Bytes per client: event messages against 60 Hz snapshots, same JSON encoding", "",
         "Events: what the server sends after the join (segments of changed bodies and the events). "
-        "Snapshots: every body's (x, y, angle) 60 times a second, the same number format. "
-        "Join B: the one world message a client gets first (not in either rate).", "",
-        "Exact (the default, --tolerance 0): every change at its event's time, with its event.", "",
-        *b_lines, "",
+        "Snapshots: every live body's (x, y, angle) 60 times a second, the same number format. "
+        "Join B: the one world message a client gets first (not in either rate). Deflated: after "
+        "a per-connection zlib stream with a sync flush per message, as permessage-deflate "
+        "(negotiated by websockets and browsers by default) sends them; the load table below "
+        "counts the real bytes on the wire. Page: what the browser page gets, which asks for "
+        "no event lists (hello's events: false; it draws from segments only). "
+        "Engine events: what the engine reported; events sent: entries in the messages' lists.", "",
+        "Exact (the default, --tolerance 0): every change exact from its event's time on; at most "
+        "60 messages a second (an isolated event at once, a burst's changes at the end of its "
+        "1/60 s, each body's latest segment); a contact that changes nothing drawn sends nothing; "
+        "each event kind and pair once a message, with a count (docs/server.md).", "",
+        *b_lines, "", *dense_text(b_rows), "",
+        "Without the rate limit (Room(rate=0): every step's changes at once, as protocol version 2 "
+        "sent them; version 2 also listed every event and re-sent unchanged segments, see "
+        "docs/server.md for its numbers):", "", *r_lines, "",
         "With --tolerance -1 (a quarter of a pixel of the page's 800-pixel canvas: a change is sent "
         "when the held segment would drift that far, at once when within 50 ms; docs/server.md):",
         "", *t_lines, "",
@@ -231,13 +327,14 @@ def main() -> int:
         "The room's own loop (engine step, change detection, encoding, sending to every listener) "
         "over the run, waking at each queued event as the server does.", "", *c_lines, "",
         "## Loopback load: latency and CPU", "", *l_lines, "",
-        "Latency is measured from the event's exact time (the engine's) to its arrival, on the "
-        "clients' estimate of the server clock; it includes the server's wake-up lateness "
+        "Latency is measured from the message's time (its latest change's exact time, the "
+        "engine's) to its arrival, on the clients' estimate of the server clock (a change earlier "
+        "in a burst waited up to 1/60 s more for its message); it includes the server's wake-up lateness "
         "(asyncio's timer), encoding, the send to every client and the clients' own queueing "
         "(100 clients share one Python process here).", ""])
     Path(args.o).write_text(text)
     (Path(args.o).with_suffix(".json")).write_text(json.dumps(
-        {"bytes": b_rows, "bytes_quarter_pixel": t_rows, "capacity": c_rows, "load": l_rows}, indent=1))
+        {"bytes": b_rows, "bytes_every_step": r_rows, "bytes_quarter_pixel": t_rows, "capacity": c_rows, "load": l_rows}, indent=1))
     print(text)
     return 0
 
