@@ -109,7 +109,7 @@ def runs(quick: bool):
     for path in sorted((ROOT / "examples" / "scenes").glob("*.toml")):
         scene = load(path)
         yield scene.name, scene, min(scene.until or 10.0, 3.0 if quick else 10.0), lambda s=scene: build_world(s)
-    if BREAKOUT.is_file():   # (its program ends at 10 s: run(10.0), then out_of_time)
+    if BREAKOUT.is_file():   # (until its program ends: run(10.0), out_of_time, or all bricks gone)
         from max2code.server.pgegame import UNIT_VIEW, GameWorld, load as load_game
 
         scene = Scene(name="breakout (PGE game)", bodies=(), view=UNIT_VIEW)
