@@ -57,12 +57,15 @@ class Mapper:
     """Frames onto one palette, each pixel to its nearest entry (in RGB), exactly: a palette
     colour maps to itself. (Pillow's own mapping looks colours up at reduced precision: white
     came out as 253, 253, 253.) Nearest entries are remembered per colour in a table of all
-    2^24 colours, allocated lazily by the OS, so each new colour is looked up once."""
+    2^24 colours, so each new colour is looked up once."""
 
     def __init__(self, entries: np.ndarray) -> None:
         self.entries = entries
-        self.flat = [int(v) for v in entries.ravel()]
-        self.table = np.zeros(1 << 24, dtype=np.uint16)   # entry + 1; 0: not looked up yet
+        self.flat = entries.astype(np.uint8).tobytes()   # (putpalette takes bytes as they are)
+        # entry + 1; 0: not looked up yet. (Written whole now, 32 MB in 6 ms: left to the OS's
+        # lazy zero pages, each new colour's first write faulted a page in, 12 us a colour,
+        # 97 ms of a 3 s billiards GIF.)
+        self.table = np.full(1 << 24, 0, dtype=np.uint16)
         self.index: np.ndarray | None = None               # the last image's entries
         # (the entries themselves, the background among them, known from the start: a first
         # frame is then mostly known colours, not 300,000 pixels for np.unique to sort)
@@ -104,5 +107,5 @@ class Mapper:
                     region[...] = entries[at:at + region.size].reshape(region.shape)
                     at += region.size
         out = Image.fromarray(self.index.copy(), "P")   # (a 'P' image would share the array)
-        out.putpalette(self.flat)
+        out.putpalette(self.flat, "RGB")
         return out

@@ -75,31 +75,43 @@ Box = tuple[int, int, int, int]   # rows j0:j1, columns i0:i1 of a picture
 TILE = 8   # pixels: boxes are merged on a grid of tiles this size
 
 
-def merged(boxes: Sequence[Box] | set[Box], height: int, width: int) -> list[Box]:
-    """The pixels of `boxes` as few boxes that do not overlap: runs of TILE x TILE tiles along
-    a row, and runs of the same columns in the rows below as one box. (A frame's boxes overlap: a contact found at one place in ten frames, a ring over a
-    body. Converted, restored and looked up box by box, the same pixels were done many times.)"""
-    boxes = list(boxes)
-    if len(boxes) <= 1:
-        return boxes
+def tiles(boxes: Sequence[Box] | set[Box], height: int, width: int) -> np.ndarray:
+    """The TILE x TILE tiles that `boxes` touch, as a mask (one spare column, always clear)."""
     mask = np.zeros((-(-height // TILE), -(-width // TILE) + 1), dtype=np.int8)
     for j0, j1, i0, i1 in boxes:
         mask[j0 // TILE:(j1 - 1) // TILE + 1, i0 // TILE:(i1 - 1) // TILE + 1] = 1
-    edges = np.diff(mask, axis=1, prepend=0)    # (the spare last column ends every run)
-    starts, ends = np.argwhere(edges == 1).tolist(), np.argwhere(edges == -1).tolist()
-    runs: dict[tuple[int, int], list[int]] = {}  # columns -> [first row, last row] of the open box
+    return mask
+
+
+def runs(mask: np.ndarray, height: int, width: int) -> list[Box]:
+    """A tile mask as boxes that do not overlap: runs of tiles along a row, and runs of the same
+    columns in the rows below as one box."""
+    flat = mask.ravel()
+    edges = np.diff(flat, prepend=0)    # (the spare last column ends every row's last run)
+    cols = mask.shape[1]
+    starts, ends = np.flatnonzero(edges == 1).tolist(), np.flatnonzero(edges == -1).tolist()
+    open_boxes: dict[tuple[int, int], list[int]] = {}   # columns -> [first row, last row]
     out = []
-    for (r, c0), (_, c1) in zip(starts, ends):
-        box = runs.get((c0, c1))
+    for start, end in zip(starts, ends):
+        r, key = start // cols, (start % cols, end % cols)
+        box = open_boxes.get(key)
         if box is not None and box[1] == r - 1:   # the same columns as the row above: one box
             box[1] = r
             continue
         if box is not None:
-            out.append((box[0], c0, c1, box[1]))
-        runs[(c0, c1)] = [r, r]
-    out += [(r0, c0, c1, r1) for (c0, c1), (r0, r1) in runs.items()]
+            out.append((box[0], box[1], *key))
+        open_boxes[key] = [r, r]
+    out += [(r0, r1, *key) for key, (r0, r1) in open_boxes.items()]
     return [(r0 * TILE, min((r1 + 1) * TILE, height), c0 * TILE, min(c1 * TILE, width))
-            for r0, c0, c1, r1 in out]
+            for r0, r1, c0, c1 in out]
+
+
+def merged(boxes: Sequence[Box] | set[Box], height: int, width: int) -> list[Box]:
+    """The pixels of `boxes` as few boxes that do not overlap, on a grid of tiles (tiles, runs).
+    (A frame's boxes overlap: a contact found at one place in ten frames, a ring over a body.
+    Converted, restored and looked up box by box, the same pixels were done many times.)"""
+    boxes = list(boxes)
+    return boxes if len(boxes) <= 1 else runs(tiles(boxes, height, width), height, width)
 
 
 class Canvas:
@@ -451,6 +463,7 @@ class FrameDrawer:
         self.work = Canvas(self.view, self.layer.copy())
         self.work_bytes = self.layer_bytes.copy()
         self._painted: list[Box] = []       # the working copy's pixels that are not the layer's
+        self._drawn = tiles((), self.view.height, self.view.width)   # (their tiles)
         self.layers_painted += 1
 
     def pixels(self, frame: Frame) -> np.ndarray:
@@ -475,12 +488,15 @@ class FrameDrawer:
         for body, pose in zip(self.bodies[kept:], poses[kept:]):
             draw_body(work, body, pose)
         _draw_contacts(work, frame)
-        for j0, j1, i0, i1 in merged(work.painted, h, w):
+        drawn = tiles(work.painted, h, w)
+        for j0, j1, i0, i1 in runs(drawn, h, w):
             self.work_bytes[j0:j1, i0:i1] = work.pixels[j0:j1, i0:i1, :3]
         text = _draw_text_boxed(self.work_bytes, self.bodies, frame, self.view)
         # (text is in the bytes only: put back like a drawing, where the RGBA is the layer's)
-        self._painted = merged(work.painted | set(text), h, w)
-        self.changed = None if rebuilt or first else merged(restored + self._painted, h, w)
+        drawn |= tiles(text, h, w)
+        self._painted = runs(drawn, h, w)
+        self.changed = None if rebuilt or first else runs(drawn | self._drawn, h, w)
+        self._drawn = drawn
         return self.work_bytes
 
     def image(self, frame: Frame) -> Image.Image:
