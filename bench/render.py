@@ -167,10 +167,10 @@ def measure(name: str, seconds: float, tmp: str) -> dict[str, tuple[float, float
     bodies, frames, view = scene_frames(name, seconds)
     drawer = raster.FrameDrawer(bodies, view)
     for f in frames:
-        if drawer.image(f).tobytes() != raster.frame_image(bodies, f, view).tobytes():
+        rgb = drawer.pixels(f)[..., :3]
+        if not (rgb == np.asarray(raster.frame_image(bodies, f, view))).all():
             sys.exit(f"render: {name}: FrameDrawer's frame at t={f.time} is not frame_image's")
-        why = unlike_baseline(drawer.pixels(f), np.asarray(old.frame_image(bodies, f, view)),
-                              view.background)
+        why = unlike_baseline(rgb, np.asarray(old.frame_image(bodies, f, view)), view.background)
         if why:
             sys.exit(f"render: {name}: the frame at t={f.time} is not the baseline's: {why}")
     n = len(frames)

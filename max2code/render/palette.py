@@ -27,9 +27,28 @@ def _rgb(colour: str) -> tuple[int, int, int]:
 
 
 def _packed(pixels: np.ndarray) -> np.ndarray:
-    """RGB bytes (..., 3) as one 24-bit number each."""
-    return ((pixels[..., 0].astype(np.uint32) << 16) | (pixels[..., 1].astype(np.uint32) << 8)
-            | pixels[..., 2])
+    """RGB or RGBA bytes (..., 3 or 4) as one 24-bit number each, R + G << 8 + B << 16: the
+    order of an RGBA pixel read as a little-endian 32-bit number, so that RGBA frames (which
+    FrameDrawer makes) are read as they lie in memory, with one mask for the alpha."""
+    words = _words(pixels)
+    if words is not None:
+        return words & np.uint32(0xFFFFFF)
+    return (pixels[..., 0].astype(np.uint32) | (pixels[..., 1].astype(np.uint32) << 8)
+            | (pixels[..., 2].astype(np.uint32) << 16))
+
+
+def _words(pixels: np.ndarray) -> np.ndarray | None:
+    """RGBA bytes (rows, columns, 4) read as one 32-bit number a pixel (a view), or None where
+    they are not laid out so."""
+    if pixels.ndim == 3 and pixels.shape[-1] == 4 and pixels.dtype == np.uint8 \
+            and pixels.strides[-2:] == (4, 1) and np.little_endian:
+        return pixels.view(np.uint32)[..., 0]
+    return None
+
+
+def _unpacked(packed: np.ndarray) -> np.ndarray:
+    """_packed's numbers back to RGB (n x 3)."""
+    return np.stack([packed & 255, (packed >> 8) & 255, packed >> 16], axis=1)
 
 
 def choose(keys: Iterable[str], samples: Sequence[Image.Image | np.ndarray]) -> np.ndarray:
@@ -41,8 +60,7 @@ def choose(keys: Iterable[str], samples: Sequence[Image.Image | np.ndarray]) -> 
         seen = np.zeros(1 << 24, dtype=bool)   # (a sort of a million pixels took 60 ms)
         for sample in samples:
             seen[_packed(np.asarray(sample))] = True
-        packed = np.flatnonzero(seen).astype(np.uint32)
-        distinct = np.stack([packed >> 16, (packed >> 8) & 255, packed & 255], axis=1)
+        distinct = _unpacked(np.flatnonzero(seen).astype(np.uint32))
         strip = Image.fromarray(distinct.astype(np.uint8)[None, :, :], "RGB")
         cut = strip.quantize(colors=COLOURS - len(fixed), method=Image.Quantize.MEDIANCUT,
                              dither=Image.Dither.NONE)
@@ -74,13 +92,13 @@ class Mapper:
     def _learn(self, colours: np.ndarray) -> None:
         """Nearest entries of new colours: |c - e|^2 = |c|^2 - 2 c.e + |e|^2, and |c|^2 is the
         same for every entry (a product of matrices, exact in float64)."""
-        rgb = np.stack([colours >> 16, (colours >> 8) & 255, colours & 255], axis=1).astype(np.float64)
+        rgb = _unpacked(colours).astype(np.float64)
         entries = self.entries.astype(np.float64)
         d = (entries * entries).sum(axis=1)[None, :] - 2.0 * rgb @ entries.T
         self.table[colours] = np.argmin(d, axis=1) + 1
 
-    def _entries(self, pixels: np.ndarray) -> np.ndarray:
-        keys = _packed(pixels)
+    def _entries(self, keys: np.ndarray) -> np.ndarray:
+        """The palette entries of colours given as _packed numbers."""
         index = self.table[keys]
         if not index.all():
             self._learn(np.unique(keys[index == 0]))
@@ -89,18 +107,22 @@ class Mapper:
 
     def mapped(self, image: Image.Image | np.ndarray,
                changed: list[tuple[int, int, int, int]] | None = None) -> Image.Image:
-        """`image` (RGB, or its bytes) as a 'P' image on the palette. `changed`: the boxes
-        (rows j0:j1, columns i0:i1) outside which `image` is the previous one mapped
-        (FrameDrawer.changed); None: map every pixel."""
+        """`image` (RGB, or its RGB or opaque RGBA bytes) as a 'P' image on the palette.
+        `changed`: the boxes (rows j0:j1, columns i0:i1) outside which `image` is the previous
+        one mapped (FrameDrawer.changed); None: map every pixel."""
         pixels = np.asarray(image)
         if changed is None or self.index is None or self.index.shape != pixels.shape[:2]:
-            self.index = self._entries(pixels)
+            self.index = self._entries(_packed(pixels))
         else:
             # (all boxes in one lookup: per box, the lookup's dozen numpy calls cost more
             # than its pixels when a frame has a hundred small boxes)
             boxes = [(slice(j0, j1), slice(i0, i1)) for j0, j1, i0, i1 in changed if j0 < j1 and i0 < i1]
             if boxes:
-                entries = self._entries(np.concatenate([pixels[b].reshape(-1, 3) for b in boxes]))
+                words = _words(pixels)
+                keys = (np.concatenate([words[b].ravel() for b in boxes]) & np.uint32(0xFFFFFF)
+                        if words is not None else
+                        np.concatenate([_packed(pixels[b]).ravel() for b in boxes]))
+                entries = self._entries(keys)
                 at = 0
                 for rows, cols in boxes:
                     region = self.index[rows, cols]

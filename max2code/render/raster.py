@@ -145,7 +145,12 @@ class Canvas:
         return np.ascontiguousarray(self.pixels[..., :3])
 
     def image(self) -> Image.Image:
-        return Image.fromarray(self.rgb(), "RGB")
+        return rgb_image(self.pixels)
+
+
+def rgb_image(pixels: np.ndarray) -> Image.Image:
+    """Opaque RGBA bytes as an RGB Pillow image."""
+    return Image.fromarray(np.ascontiguousarray(pixels[..., :3]), "RGB")
 
 
 # --- outlines in pixel space ------------------------------------------------------------------
@@ -295,26 +300,32 @@ def _distinct_contacts(contacts: Sequence[Contact], view: View) -> list[tuple[fl
 
 def draw_contacts(canvas: Canvas, contacts: Sequence[Contact], size: float) -> None:
     """Each contact as a ring of radius `size` at its point and its normal as a line from it,
-    CONTACT_REACH rings long: all rings as one path, and all lines as another (where rings
-    overlap, their union is covered, with one anti-aliased edge)."""
+    CONTACT_REACH rings long. The contacts near one another (in one square cell, 2 x reach a
+    side) are drawn as one path of rings and one of lines, so where their rings overlap the
+    union is covered, with one anti-aliased edge; cells are drawn one by one, as Skia walks
+    every row of a path's bounds (one path across the whole picture took twice as long)."""
     reach = math.ceil(CONTACT_REACH * size + CONTACT_WIDTH / 2 + 1.5)
-    rings, lines = skia.Path(), skia.Path()
+    cells: dict[tuple[int, int], tuple[skia.Path, skia.Path]] = {}
     outer, inner = size + CONTACT_WIDTH / 2, max(size - CONTACT_WIDTH / 2, 0.0)
     length = CONTACT_REACH * size
     for x, y, turn in _distinct_contacts(contacts, canvas.view):
         box = canvas.box(x - reach, y - reach, x + reach + 1, y + reach + 1)
         if box is None:
             continue
+        cell = (int(x // (2 * reach)), int(y // (2 * reach)))
+        if cell not in cells:
+            cells[cell] = (skia.Path(), skia.Path())
+        rings, lines = cells[cell]
         rings.addCircle(x, y, outer)
         if inner > 0:
             rings.addCircle(x, y, inner, skia.PathDirection.kCCW)
         if turn is not None:
             lines.moveTo(x, y).lineTo(x + length * math.cos(turn), y + length * math.sin(turn))
         canvas.painted.add(box)
-    if not rings.isEmpty():
+    for rings, lines in cells.values():
         canvas.skia.drawPath(rings, _paint(CONTACT_COLOUR, None))
-    if not lines.isEmpty():
-        canvas.skia.drawPath(lines, _paint(CONTACT_COLOUR, CONTACT_WIDTH))
+        if not lines.isEmpty():
+            canvas.skia.drawPath(lines, _paint(CONTACT_COLOUR, CONTACT_WIDTH))
 
 
 def draw_contact(canvas: Canvas, contact: Contact, size: float) -> None:
@@ -373,8 +384,8 @@ def draw_text(image: Image.Image, bodies: Sequence[Body], frame: Frame, view: Vi
 
 
 def _draw_text_boxed(pixels: np.ndarray, bodies: Sequence[Body], frame: Frame, view: View) -> list[Box]:
-    """draw_text into RGB bytes, each text on a crop of its own box only (the same pixels:
-    whole-pixel offsets keep Pillow's fractional placement); returns the boxes."""
+    """draw_text into opaque RGBA bytes, each text on a crop of its own box only (the same
+    pixels: whole-pixel offsets keep Pillow's fractional placement); returns the boxes."""
     size = text_size(view)
     label_font = font(size)
     boxes = []
@@ -387,7 +398,7 @@ def _draw_text_boxed(pixels: np.ndarray, bodies: Sequence[Body], frame: Frame, v
         j0, j1, i0, i1 = box = _box(view, x + left, y + top, x + right, y + bottom)
         if j0 >= j1 or i0 >= i1:
             continue
-        crop = Image.fromarray(pixels[j0:j1, i0:i1], "RGB")
+        crop = Image.fromarray(pixels[j0:j1, i0:i1], "RGBA")
         _draw_items(ImageDraw.Draw(crop), [item], size, (i0, j0))
         pixels[j0:j1, i0:i1] = np.asarray(crop)
         boxes.append(box)
@@ -407,9 +418,8 @@ def frame_image(bodies: Sequence[Body], frame: Frame, view: View) -> Image.Image
     for body, pose in zip(bodies, frame.poses):
         draw_body(canvas, body, pose)
     _draw_contacts(canvas, frame)
-    pixels = canvas.rgb()
-    _draw_text_boxed(pixels, bodies, frame, view)
-    return Image.fromarray(pixels, "RGB")
+    _draw_text_boxed(canvas.pixels, bodies, frame, view)
+    return canvas.image()
 
 
 def scene_colours(bodies: Sequence[Body], view: View) -> list[str]:
@@ -438,13 +448,14 @@ class FrameDrawer:
     Drawing is in order (later bodies over earlier ones), so what can be kept from frame to
     frame is a prefix: the leading bodies whose poses did not change since the previous frame
     are drawn once into a layer. A frame draws the other bodies into a working copy of the
-    layer, after putting back the layer's pixels where the previous frame drew, and converts
-    to RGB bytes only the boxes it drew: the cost follows the area drawn, not the picture's. A
-    body of that prefix that moves later makes the layer be drawn again, shorter: never a wrong
-    picture, at worst the cost of frame_image.
+    layer, after putting back the layer's pixels where the previous frame drew: the cost
+    follows the area drawn, not the picture's. A body of that prefix that moves later makes
+    the layer be drawn again, shorter: never a wrong picture, at worst the cost of frame_image.
 
-    `changed` says where the last image may differ from the one before (None: anywhere), so a
-    GIF palette (palette.Mapper) and an MP4's colour conversion redo only those pixels."""
+    Frames stay RGBA (opaque) from Skia to the writers: ffmpeg takes them as they are, a GIF
+    palette looks them up as one 32-bit number a pixel, and no RGB copy is made (it was a
+    fifth of a frame's drawing). `changed` says where the last frame may differ from the one
+    before (None: anywhere), so a GIF palette (palette.Mapper) maps only those pixels again."""
 
     def __init__(self, bodies: Sequence[Body], view: View) -> None:
         self.bodies = list(bodies)
@@ -459,16 +470,14 @@ class FrameDrawer:
         for body, pose in zip(self.bodies, poses):
             draw_body(canvas, body, pose)
         self.layer_poses, self.layer = poses, canvas.pixels
-        self.layer_bytes = canvas.rgb()
         self.work = Canvas(self.view, self.layer.copy())
-        self.work_bytes = self.layer_bytes.copy()
         self._painted: list[Box] = []       # the working copy's pixels that are not the layer's
         self._drawn = tiles((), self.view.height, self.view.width)   # (their tiles)
         self.layers_painted += 1
 
     def pixels(self, frame: Frame) -> np.ndarray:
-        """The frame's RGB bytes (height x width x 3): a buffer of the drawer's own, valid
-        until the next call (copy it to keep it)."""
+        """The frame's opaque RGBA bytes (height x width x 4): a buffer of the drawer's own,
+        valid until the next call (copy it to keep it)."""
         check_frame(self.bodies, frame)
         poses = tuple(frame.poses)
         still = _common_prefix(poses, self.previous) if self.previous is not None else 0
@@ -479,25 +488,19 @@ class FrameDrawer:
         if rebuilt:
             self._paint_layer(poses[:still])
             kept = still
-        restored = self._painted
         work, h, w = self.work, self.view.height, self.view.width
-        for j0, j1, i0, i1 in restored:
+        for j0, j1, i0, i1 in self._painted:
             work.pixels[j0:j1, i0:i1] = self.layer[j0:j1, i0:i1]
-            self.work_bytes[j0:j1, i0:i1] = self.layer_bytes[j0:j1, i0:i1]
         work.painted = set()
         for body, pose in zip(self.bodies[kept:], poses[kept:]):
             draw_body(work, body, pose)
         _draw_contacts(work, frame)
+        work.painted.update(_draw_text_boxed(work.pixels, self.bodies, frame, self.view))
         drawn = tiles(work.painted, h, w)
-        for j0, j1, i0, i1 in runs(drawn, h, w):
-            self.work_bytes[j0:j1, i0:i1] = work.pixels[j0:j1, i0:i1, :3]
-        text = _draw_text_boxed(self.work_bytes, self.bodies, frame, self.view)
-        # (text is in the bytes only: put back like a drawing, where the RGBA is the layer's)
-        drawn |= tiles(text, h, w)
         self._painted = runs(drawn, h, w)
         self.changed = None if rebuilt or first else runs(drawn | self._drawn, h, w)
         self._drawn = drawn
-        return self.work_bytes
+        return work.pixels
 
     def image(self, frame: Frame) -> Image.Image:
-        return Image.fromarray(self.pixels(frame), "RGB")
+        return rgb_image(self.pixels(frame))

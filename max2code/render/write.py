@@ -139,8 +139,8 @@ def write_gif(path: str | os.PathLike, bodies: Sequence[Body], frames: Iterable[
 
 def gif_of(path: str | os.PathLike, frames: Iterable[F], draw: Callable[[F], object], fps: float,
            keys: Sequence[str] = (), changed: Callable[[], list | None] = lambda: None) -> int:
-    """An animated GIF of draw(frame) (an RGB Pillow image, or its bytes) for each frame: frames
-    that the timing drops are never drawn. One palette for all (render.palette): the colours
+    """An animated GIF of draw(frame) (an RGB Pillow image, or its RGB or opaque RGBA bytes) for
+    each frame: frames that the timing drops are never drawn. One palette for all (render.palette): the colours
     `keys` exactly, and the blends in GIF_PALETTE_SAMPLES kept frames drawn ahead (draw must
     depend on its frame only). changed(): the boxes where the last drawing may differ from
     the one before (None: anywhere), so only those are mapped to the palette again."""
@@ -188,7 +188,7 @@ def mp4_of(path: str | os.PathLike, frames: Iterable[F], draw: Callable[[F], obj
     except ImportError as exc:
         raise RenderUnavailable(f"MP4 needs imageio and imageio-ffmpeg ({exc.name} is missing): "
                                 "pip install 'max2code[render]'") from None
-    fill = np.array([int(background[i:i + 2], 16) for i in (1, 3, 5)], dtype=np.uint8)
+    fill = [int(background[i:i + 2], 16) for i in (1, 3, 5)]
     count = 0
     writer = None
     with replaced_atomically(os.fspath(path)) as tmp:
@@ -196,9 +196,9 @@ def mp4_of(path: str | os.PathLike, frames: Iterable[F], draw: Callable[[F], obj
             for frame in frames:
                 pixels = np.asarray(draw(frame))
                 h, w = pixels.shape[:2]
-                if w % 2 or h % 2:
-                    full = np.empty((h + h % 2, w + w % 2, 3), dtype=np.uint8)
-                    full[:] = fill
+                if w % 2 or h % 2:   # (RGB, or opaque RGBA: ffmpeg takes either)
+                    full = np.empty((h + h % 2, w + w % 2, pixels.shape[2]), dtype=np.uint8)
+                    full[:] = (fill + [255])[:pixels.shape[2]]
                     full[:h, :w] = pixels
                     pixels = full
                 if writer is None:

@@ -54,7 +54,9 @@ def test_drawer_frames_are_frame_image_and_changed_covers_the_change(case) -> No
     drawer = raster.FrameDrawer(bodies, VIEW)
     before = None
     for frame in frames:
-        got = drawer.pixels(frame).copy()
+        rgba = drawer.pixels(frame)
+        assert (rgba[..., 3] == 255).all()                  # opaque
+        got = np.ascontiguousarray(rgba[..., :3])
         assert got.tobytes() == raster.frame_image(bodies, frame, VIEW).tobytes()
         if before is not None and drawer.changed is not None:
             outside = np.ones(got.shape[:2], dtype=bool)
