@@ -182,6 +182,24 @@ def test_against_the_exact_oracle(kind: str, runtime: str, tmp_path_factory: pyt
           f"{TALLY[kind, runtime, 'tried']} held")
 
 
+# Drawn by the cluster class in a full run (CI, 2026-12-06): complex roots 0.9995 +- 3.5e-4 i and
+# 1.0002 +- 5.7e-4 i, the first real root at 1.0006.  At tmax = 1.0001 p is 2.4e-18 of its size,
+# the fma sign at the window's end was noise, and every runtime reported a crossing at tmax where
+# p is certainly of one sign (compensated Horner: error ~1e-30 of the size).
+NOISE_AT_THE_END = (-11724.81643759225, -800985643.1160833, 4005106393.3789363, -8010334640.401654,
+                    8010397858.715328, -4005218799.6389837, 801046550.255481, 5.623413251903491)
+
+
+@pytest.mark.parametrize("runtime", er.RUNTIMES)
+def test_no_crossing_from_the_noise_at_the_window_end(runtime: str, tmp_path: Path,
+                                                      request: pytest.FixtureRequest) -> None:
+    vecs = [(NOISE_AT_THE_END, t) for t in (1.0001, 1.0005, 1.0002, 1.00001, 1.00059, math.inf)]
+    got = _run(runtime, vecs, tmp_path, request)
+    bad = [f"{ex.judge(c, t, *a)}: {a} for tmax={t!r}" for (c, t), a in zip(vecs, got)
+           if not ex.judge(c, t, *a).startswith("ok")]
+    assert not bad, "\n".join(bad)
+
+
 def test_never_later_than_the_exact_first_root(c_exe: Path, tmp_path: Path) -> None:
     """Item 11 on the C runtime (the others give its bits: test_fuzz_runtimes): two vectors of
     a probe's family (a cluster of the kind cluster() draws: the first answered 3.4e-4

@@ -1223,13 +1223,14 @@ def _scan_pieces(c: Sequence[float], d: list[list[float]], n: int, lo: float, T:
         if sb == 0:
             return b, j < nc
         # at a critical point the fma sign may be noise (a touch): the precise value decides
-        # whether p crosses in (a, b] (where b needs no scaling)
-        precise = sb != sa and j < nc and _scale_exponent(b, n) == 0
+        # whether p crosses in (a, b] (where b needs no scaling); so at the window's end when
+        # p is within its noise there (C says why)
+        precise = sb != sa and _scale_exponent(b, n) == 0 and (j < nc or _within_noise(c, n, b, 0.0))
         pb = _horner_compensated(c, n, b) if precise else 0.0
         if precise and pb != 0 and (pb > 0) == (sa > 0):
             sb = sa  # no crossing in (a, b]: maybe a touch at b (below)
         if sb != sa:
-            if precise:
+            if precise and j < nc:
                 return _crossing_before_critical(c, d, n, a, b, sa, pb), False
             return _refine_root(c, d[n - 1], n, a, b, sa, 0.0, _split_point(a, b)), False
         # (a maximum is no touch; on a touch's interval b is a minimum: _touch_critical)
@@ -1238,6 +1239,12 @@ def _scan_pieces(c: Sequence[float], d: list[list[float]], n: int, lo: float, T:
             b2 = crit[j + 1] if j + 1 < nc else T
             sb = _sign_at(c, n, b2, True)
             sb_known = True
+            # (its sign too is noise where p is within its noise there: the precise value
+            # decides, as above)
+            if sb != sa and _scale_exponent(b2, n) == 0 and _within_noise(c, n, b2, 0.0):
+                p2 = _horner_compensated(c, n, b2)
+                if p2 != 0 and (p2 > 0) == (sa > 0):
+                    return _touch_point(d, n, b), True
             if sb == sa:
                 return _touch_point(d, n, b), True
         a = b

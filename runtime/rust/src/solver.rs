@@ -2230,8 +2230,9 @@ fn scan_pieces(c: &[f64], d: &Chain, n: usize, lo: f64, t_end: f64, crit: &[f64]
             return Some((b, j < nc));
         }
         // at a critical point the fma sign may be noise (a touch): the precise value decides
-        // whether p crosses in (a, b] (where b needs no scaling)
-        let precise = sb != sa && j < nc && kb == 0;
+        // whether p crosses in (a, b] (where b needs no scaling); so at the window's end when
+        // p is within its noise there (C says why)
+        let precise = sb != sa && kb == 0 && (j < nc || noise_holds(c, n, b, kb, vb, 0.0));
         let pb = match (precise, at) {
             (false, _) => 0.0,
             (true, Some(at)) => {
@@ -2244,7 +2245,7 @@ fn scan_pieces(c: &[f64], d: &Chain, n: usize, lo: f64, t_end: f64, crit: &[f64]
             sb = sa; // no crossing in (a, b]: maybe a touch at b (below)
         }
         if sb != sa {
-            let t = if precise {
+            let t = if precise && j < nc {
                 crossing_before_critical(c, d, n, a, b, sa, pb)
             } else {
                 refine_root(c, d.row(n - 1), n, a, b, sa, 0.0, split_point(a, b))
@@ -2272,7 +2273,16 @@ fn scan_pieces(c: &[f64], d: &Chain, n: usize, lo: f64, t_end: f64, crit: &[f64]
                 _ => horner(c, n, b2, kb, true),
             };
             vb_known = true;
-            if i32::from(vb > 0.0) - i32::from(vb < 0.0) == sa {
+            let mut s2 = i32::from(vb > 0.0) - i32::from(vb < 0.0);
+            // (its sign too is noise where p is within its noise there: the precise value
+            // decides, as above)
+            if s2 != sa && kb == 0 && noise_holds(c, n, b2, kb, vb, 0.0) {
+                let p2 = horner_compensated(c, n, b2);
+                if p2 != 0.0 && (p2 > 0.0) == (sa > 0) {
+                    s2 = sa;
+                }
+            }
+            if s2 == sa {
                 return Some((touch_point(d, n, b, at), true));
             }
         }
