@@ -2802,7 +2802,13 @@ NOINLINE static int first_root_sliced(const double c[], int n, double tmax, doub
             found = s == 0 || derivative_method(q, m, lo, T, 0, skin, &root, &g);
         }
         if (found) {
+            /* a root at or above half the least subnormal rounds up to it
+             * (nearest, a tie up: never a miss); below that it underflows to
+             * 0, not representable (status 0).  ldexp's own rounding of the
+             * half way ties to 0: 5e-324 - 2 t + t^2 was "no root". */
             *t = ldexp(root, k);
+            if (*t == 0 && root >= ldexp(1.0, DBL_MIN_EXP - DBL_MANT_DIG - 1 - k))
+                *t = ldexp(1.0, DBL_MIN_EXP - DBL_MANT_DIG);
             *graze = g;
             return 1;
         }

@@ -126,3 +126,24 @@ def test_negligible_lead_is_weighed_over_the_root_bound(
             assert st == 1 and abs(t - want) <= 1e-7 * want, (c, st, t)
             assert truth.lo <= Fraction(t) * (1 + Fraction(1, 10**12)), (c, t, truth)
             assert Fraction(t) <= truth.hi * (1 + Fraction(1, 10**12)), (c, t, truth)
+
+
+# A root half the least subnormal from 0 (drawn by the ulp class at WINDOW_FUZZ_COUNT=20000):
+# 5e-324 - 2 t + t^2 has its first root at 2.47e-324, just above half of 5e-324, so it rounds
+# to 5e-324.  The extreme-spread slicing found it and scaled it back with one ldexp, whose
+# rounding of the halfway case ties to 0: every runtime said "no root", the root at 2 lost too.
+SUBNORMAL_ROOTS = [((5e-324, -2.0, 1.0), math.inf), ((5e-324, -2.0, 1.0), 3.0),
+                   ((5e-324, -3.0, 1.0, 0.5), math.inf), ((1e-323, -2.0, 1.0), math.inf),
+                   ((5e-324, -1.0, 0.0, 0.0, 1.0), math.inf)]
+
+
+@pytest.mark.parametrize("runtime", er.RUNTIMES)
+def test_a_root_rounding_to_the_least_subnormal_is_found(
+        runtime: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+        request: pytest.FixtureRequest) -> None:
+    m2_exe = request.getfixturevalue("drivers")[0] if runtime == "m2" else None
+    got = er.answers(runtime, SUBNORMAL_ROOTS, tmp_path, monkeypatch, m2_exe)
+    bad = [f"{ex.judge(c, t, *a)}: {a} for c={c!r}, tmax={t!r}"
+           for (c, t), a in zip(SUBNORMAL_ROOTS, got) if not ex.judge(c, t, *a).startswith("ok")]
+    assert not bad, "\n".join(bad)
+    assert [a[:2] for a in got[:2]] == [(1, 5e-324)] * 2

@@ -21,6 +21,7 @@ MAXN = 16
 U = 2.0**-53
 EPS = 2.0**-52
 DBL_MIN = 2.0**-1022
+TRUE_MIN = 2.0**-1074  # the least subnormal
 DBL_MAX = 1.7976931348623157e308
 SAFE_LOW = 2.0**120
 SAFE_HIGH = 2.0**60
@@ -1326,6 +1327,10 @@ def first_root_sliced(c: Sequence[float], n: int, tmax: float, eps: float,
                     q = [-x for x in q]
                 hit = (_LO, False) if s == 0 else _derivative_method(q, m, _LO, T, 0.0, skin)
             if hit is not None:
-                return _ldexp(hit[0], k), hit[1]
+                # a root at or above half the least subnormal rounds up to it (C says why)
+                t = _ldexp(hit[0], k)
+                if t == 0 and hit[0] >= _ldexp(1.0, -1075 - k):
+                    t = TRUE_MIN
+                return t, hit[1]
         d += SLICE
     return None

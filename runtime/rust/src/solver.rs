@@ -2429,7 +2429,12 @@ pub(crate) fn first_root_sliced(c: &[f64], n: usize, tmax: f64, eps: f64, nograz
                 }
             };
             if let Some((r, g)) = hit {
-                return Some((ldexp(r, i64::from(k)), g));
+                // a root at or above half the least subnormal rounds up to it (C says why)
+                let t = ldexp(r, i64::from(k));
+                if t == 0.0 && r >= ldexp(1.0, -1075 - i64::from(k)) {
+                    return Some((f64::from_bits(1), g));
+                }
+                return Some((t, g));
             }
         }
         d += SLICE;
