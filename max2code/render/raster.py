@@ -204,28 +204,58 @@ def _polygon_path(points: Sequence[Point], r: float) -> skia.Path:
     return skia.Path().addPoly([skia.Point(x, y) for x, y in points], True)
 
 
-def _circle(shape: Circle, px: ToPixel, scale: float) -> Outline:
-    c, r = px(shape.centre), shape.radius * scale
+BIG = 2.0 ** 14   # pixels: a circle this large is drawn as a polygon (_circle_path)
+SAGITTA = 0.01    # pixels: how far that polygon's edges may pass inside the circle
+
+
+def _circle_path(c: Point, r: float, view: View) -> skia.Path:
+    """A circle's outline. Skia computes in 32-bit floats: a circle of radius 1e9 pixels (a
+    planet under a zoomed-in view) came out as the whole picture. One larger than BIG is drawn
+    as the part of it within `reach` of the picture: its arc as a polygon computed in 64-bit
+    floats (edges within SAGITTA of the circle), closed through points 2 x reach inside it,
+    whose edges lie at least reach from the picture's centre, so their stroke is not seen."""
+    if r <= BIG:
+        return skia.Path().addCircle(c[0], c[1], r)
+    px, py = view.width / 2, view.height / 2
+    reach = math.hypot(view.width, view.height) + 16.0
+    dx, dy = px - c[0], py - c[1]
+    dist = math.hypot(dx, dy)
+    if dist + reach <= r:                       # the picture lies inside
+        return skia.Path().addRect(px - reach, py - reach, px + reach, py + reach)
+    if dist - reach >= r:                       # the picture lies outside
+        return skia.Path()
+    half = math.acos(max(-1.0, min(1.0, (r * r + dist * dist - reach * reach) / (2 * r * dist))))
+    n = max(2, math.ceil(2 * half / math.sqrt(8 * SAGITTA / r)))
+    toward = math.atan2(dy, dx)
+    angles = [toward - half + 2 * half * k / n for k in range(n + 1)]
+    arc = [(c[0] + r * math.cos(a), c[1] + r * math.sin(a)) for a in angles]
+    inside = [(c[0] + (r - 2 * reach) * math.cos(a), c[1] + (r - 2 * reach) * math.sin(a))
+              for a in (angles[-1], angles[0])]
+    return skia.Path().addPoly([skia.Point(x, y) for x, y in arc + inside], True)
+
+
+def _circle(shape: Circle, px: ToPixel, view: View) -> Outline:
+    c, r = px(shape.centre), shape.radius * view.scale
     rim = px((shape.centre[0] + shape.radius, shape.centre[1]))
-    return Outline(skia.Path().addCircle(c[0], c[1], r), _box_around([c], r), spoke=(c, rim))
+    return Outline(_circle_path(c, r, view), _box_around([c], r), spoke=(c, rim))
 
 
-def _polygon(shape: Polygon, px: ToPixel, scale: float) -> Outline:
-    pts, r = [px(v) for v in shape.vertices], shape.radius * scale
+def _polygon(shape: Polygon, px: ToPixel, view: View) -> Outline:
+    pts, r = [px(v) for v in shape.vertices], shape.radius * view.scale
     return Outline(_polygon_path(pts, r), _box_around(pts, r))
 
 
-def _capsule(shape: Capsule, px: ToPixel, scale: float) -> Outline:
-    a, b, r = px(shape.a), px(shape.b), shape.radius * scale
+def _capsule(shape: Capsule, px: ToPixel, view: View) -> Outline:
+    a, b, r = px(shape.a), px(shape.b), shape.radius * view.scale
     return Outline(_rounded([a, b], r), _box_around([a, b], r))
 
 
-def _segment(shape: Segment, px: ToPixel, scale: float) -> Outline:
+def _segment(shape: Segment, px: ToPixel, view: View) -> Outline:
     a, b = px(shape.a), px(shape.b)
     return Outline(skia.Path().moveTo(*a).lineTo(*b), _box_around([a, b], 0.0), area=False)
 
 
-OUTLINES: dict[type, Callable[[object, ToPixel, float], Outline]] = {
+OUTLINES: dict[type, Callable[[object, ToPixel, View], Outline]] = {
     Circle: _circle, Polygon: _polygon, Capsule: _capsule, Segment: _segment}
 
 
@@ -234,7 +264,7 @@ def outline(shape: object, pose_apply: ToPixel, view: View) -> Outline:
     make = OUTLINES.get(type(shape))
     if make is None:
         raise RenderModelError(f"unknown shape {type(shape).__name__}")
-    return make(shape, lambda p: view.to_pixel(pose_apply(p)), view.scale)
+    return make(shape, lambda p: view.to_pixel(pose_apply(p)), view)
 
 
 def contrast(colour: str | None) -> str:

@@ -177,3 +177,16 @@ def test_rounded_polygon_is_every_point_within_its_radius() -> None:
     d = np.where(inside, -edge, edge) * 20 - r * 20
     assert solid(img, d <= -EDGE, (0, 255, 255))
     assert (img[d >= EDGE] == WHITE).all()
+
+
+@pytest.mark.parametrize("r,turn", [(1000.0, 0.3), (1e6, -0.2), (1e9, 0.0), (1e9, 2.0)])
+def test_a_huge_circle_keeps_its_edge(r: float, turn: float) -> None:
+    """A planet under a zoomed-in view: Skia's 32-bit floats put a circle of radius 1e9 pixels
+    over the whole picture; its edge must cross the picture where the geometry puts it."""
+    x, y = 5 + (r - 0.2) * math.sin(turn), 5 - (r - 0.2) * math.cos(turn)   # edge 0.2 past the middle
+    img = pixels([Body(Circle(r), Style(fill="#ff0000", stroke=None, spoke=False))], [Pose(x, y)])
+    wx, wy = centres()
+    d = (np.hypot(wx - x, wy - y) - r) * 20
+    assert (d <= -EDGE).sum() > 1000 and (d >= EDGE).sum() > 1000      # the edge crosses it
+    assert solid(img, d <= -EDGE, (255, 0, 0))
+    assert (img[d >= EDGE] == WHITE).all()
