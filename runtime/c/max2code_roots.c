@@ -3411,6 +3411,80 @@ static int band_side(const double c[], int n, const double tail[], int m, double
  * there, else as a touch.  "Certainly" is for the polynomial as given: the
  * m leading terms reduce dropped (tail) are evaluated with it.  (Windows
  * beyond 2^60 are left as they are: compensated Horner is unscaled.) */
+/* The coefficients of p(x + w u) in u (w a power of two): Horner's Taylor
+ * shift in double-double (each product split by fma, each sum by two_sum),
+ * rounded once at the end, so that near a cluster they keep what plain
+ * arithmetic cancels away (inside_the_noise). */
+static void shift_dd(const double c[], int n, double x, double w, double q[])
+{
+    double hi[MAXN + 1], lo[MAXN + 1];
+    for (int i = 0; i <= n; i++) {
+        hi[i] = c[i];
+        lo[i] = 0;
+    }
+    for (int k = 0; k < n; k++) {
+        for (int i = n - 1; i >= k; i--) {
+            double ph = hi[i + 1] * x;
+            double pl = fma(hi[i + 1], x, -ph) + lo[i + 1] * x;
+            double sh = hi[i] + ph, bb = sh - hi[i];
+            double se = (hi[i] - (sh - bb)) + (ph - bb);
+            se += lo[i] + pl;
+            hi[i] = sh + se;
+            lo[i] = se - (hi[i] - sh);
+        }
+    }
+    double f = 1;
+    for (int k = 0; k <= n; k++) {
+        q[k] = (hi[k] + lo[k]) * f;
+        f *= w;
+    }
+}
+
+/* A touch r where p is certainly positive (compensated), found only because
+ * its fma value was within the noise there.  Inside that noise the scan
+ * cannot see a cluster's crossings: a quartic cluster (the hostile fuzz at
+ * WINDOW_FUZZ_COUNT=20000) had its exact first root 5.3e-8 before 1 and
+ * the touch at 1 + 7.6e-6.  So p is solved again from where the noise
+ * begins to its left, x_b (steps to the left, doubling, to the first point
+ * outside it, where p is certainly positive), after a shift of p to x_b in
+ * double-double (shift_dd), over (x_b, r): its first root if it has one,
+ * else the touch as it was.  A near miss of a double root keeps its touch:
+ * the shifted p's minimum is certainly positive, no touch in its far smaller
+ * noise. */
+NOINLINE static void inside_the_noise(const double c[], int n, double *root, int *g)
+{
+    double r = *root;
+    if (scale_exponent(r, n) != 0)
+        return;
+    double step = r * 0x1p-50, xb;
+    for (;;) {
+        step *= 2;
+        xb = r - step;
+        if (!(xb > 0) || step > r * 0x1p-4)
+            return;
+        if (!within_noise(c, n, xb, 0))
+            break;
+    }
+    if (!(sign_at(c, n, xb, 1) > 0))
+        return; /* (not a near miss: left to never_late's steps) */
+    double w = r - xb, q[MAXN + 1] = {0};
+    int e = ilogb(w) + 1;
+    shift_dd(c, n, xb, ldexp(1.0, e), q);
+    int eq[MAXN + 1], nz[MAXN + 1], emax;
+    if (!(q[0] > 0) || exponents(q, n, eq, nz, &emax) > MAX_SPREAD)
+        return;
+    normalise(q, n, emax, 1.0);
+    double u, t;
+    int gu;
+    if (!first_root_interval(q, n, ldexp(w, -e), 0, 0, &u, &gu))
+        return;
+    t = xb + ldexp(u, e);
+    if (t < r) {
+        *root = t;
+        *g = gu;
+    }
+}
+
 static void never_late(const double c[], int n, const double tail[], int m, double *root,
                        int *g)
 {
@@ -3422,6 +3496,10 @@ static void never_late(const double c[], int n, const double tail[], int m, doub
         return; /* (r below 2^-1024: the steps would not move) */
     double before = r - d;
     int hs = band_side(c, n, tail, m, *g ? r : before);
+    if (*g && hs == 1 && n >= 3 && m == 0) {
+        inside_the_noise(c, n, root, g);
+        return;
+    }
     if (*g ? hs != -1 : hs == 1)
         return;
     double hi = *g ? r : before, lo = 0, step = 2 * d;

@@ -301,6 +301,67 @@ def _band_side(c: Sequence[float], n: int, tail: Sequence[float], x: float) -> i
     return 1 if v > eb else -1 if v < -eb else 0
 
 
+def _two_sum(a: float, b: float) -> tuple[float, float]:
+    s = a + b
+    bb = s - a
+    return s, (a - (s - bb)) + (b - bb)
+
+
+def _shift_dd(c: Sequence[float], n: int, x: float, w: float) -> list[float]:
+    """C shift_dd: the coefficients of p(x + w u) in u (w a power of two), by Horner's Taylor
+    shift in double-double (each product split by fma, each sum by two_sum), rounded once at
+    the end: near a cluster they keep what plain arithmetic cancels away."""
+    hi, lo = list(c[:n + 1]), [0.0] * (n + 1)
+    for k in range(n):
+        for i in range(n - 1, k - 1, -1):
+            ph = hi[i + 1] * x
+            pl = fma(hi[i + 1], x, -ph) + lo[i + 1] * x
+            sh, se = _two_sum(hi[i], ph)
+            se += lo[i] + pl
+            hi[i] = sh + se
+            lo[i] = se - (hi[i] - sh)
+    out, f = [], 1.0
+    for k in range(n + 1):
+        out.append((hi[k] + lo[k]) * f)
+        f *= w
+    return out
+
+
+def _inside_the_noise(c: Sequence[float], n: int, hit: tuple[float, bool]) -> tuple[float, bool]:
+    """C inside_the_noise: a touch r where p is certainly positive (compensated), found only
+    because the fma value was within its noise there.  Inside that noise the scan cannot see a
+    cluster's crossings: p is solved again from where the noise begins to its left, x_b (steps
+    to the left, doubling, to the first point outside it, where p is certainly positive), after
+    an exact-as-can-be shift of p to x_b (_shift_dd), over (x_b, r).  Its first root if it has
+    one, else the touch as it was."""
+    r, _ = hit
+    if _scale_exponent(r, n) != 0:
+        return hit
+    step = r * 2.0**-50
+    while True:
+        step *= 2
+        xb = r - step
+        if not xb > 0 or step > r * 2.0**-4:
+            return hit
+        if not _within_noise(c, n, xb, 0.0):
+            break
+    if not _sign_at(c, n, xb, True) > 0:
+        return hit  # (left to the steps of never_late's caller: not a near miss)
+    w = r - xb
+    e = ilogb(w) + 1
+    q = _shift_dd(c, n, xb, _ldexp(1.0, e))
+    _, _, spread, emax = exponents(q, n)
+    if not q[0] > 0 or spread > MAX_SPREAD:
+        return hit
+    normalise(q, n, emax, 1.0)
+    T = _ldexp(w, -e)
+    found = first_root_interval(q, n, T, 0.0, 0.0)
+    if found is None:
+        return hit
+    t = xb + _ldexp(found[0], e)
+    return (t, found[1]) if t < r else hit
+
+
 def never_late(c: Sequence[float], n: int, tail: Sequence[float], hit: tuple[float, bool]
                ) -> tuple[float, bool]:
     """C never_late (issue 33, item 11): never later than the first root of the polynomial as
@@ -316,6 +377,8 @@ def never_late(c: Sequence[float], n: int, tail: Sequence[float], hit: tuple[flo
         return hit  # (r below 2^-1024: the steps would not move)
     before = r - d
     hs = _band_side(c, n, tail, r if g else before)
+    if g and hs == 1 and n >= 3 and not tail:
+        return _inside_the_noise(c, n, hit)
     if (hs != -1) if g else (hs == 1):
         return hit
     hi, lo, step = (r if g else before), 0.0, 2 * d

@@ -720,6 +720,77 @@ fn band_side(c: &[f64], n: usize, tail: &[f64], x: f64) -> i32 {
     }
 }
 
+/// C `shift_dd`: the coefficients of p(x + w u) in u (w a power of two), by Horner's Taylor
+/// shift in double-double (each product split by fma, each sum by two_sum), rounded once at
+/// the end.
+fn shift_dd(c: &[f64], n: usize, x: f64, w: f64) -> Coeffs {
+    let mut hi: Coeffs = [0.0; MAXN + 1];
+    let mut lo: Coeffs = [0.0; MAXN + 1];
+    hi[..=n].copy_from_slice(&c[..=n]);
+    for k in 0..n {
+        for i in (k..n).rev() {
+            let ph = hi[i + 1] * x;
+            let pl = hi[i + 1].mul_add(x, -ph) + lo[i + 1] * x;
+            let sh = hi[i] + ph;
+            let bb = sh - hi[i];
+            let mut se = (hi[i] - (sh - bb)) + (ph - bb);
+            se += lo[i] + pl;
+            hi[i] = sh + se;
+            lo[i] = se - (hi[i] - sh);
+        }
+    }
+    let mut q: Coeffs = [0.0; MAXN + 1];
+    let mut f = 1.0;
+    for k in 0..=n {
+        q[k] = (hi[k] + lo[k]) * f;
+        f *= w;
+    }
+    q
+}
+
+/// C `inside_the_noise`: a touch r where p is certainly positive (compensated), found only
+/// because its fma value was within the noise there: p solved again from where the noise
+/// begins to its left, x_b, after a shift to x_b in double-double, over (x_b, r); its first
+/// root if it has one, else the touch as it was (the C source says why).
+#[inline(never)]
+fn inside_the_noise(c: &[f64], n: usize, hit: (f64, bool)) -> (f64, bool) {
+    let r = hit.0;
+    if scale_exponent(r, n) != 0 {
+        return hit;
+    }
+    let mut step = r * TWO_M50;
+    let xb = loop {
+        step *= 2.0;
+        let xb = r - step;
+        if !(xb > 0.0) || step > r * 0.0625 {
+            return hit;
+        }
+        if !within_noise(c, n, xb, 0.0) {
+            break xb;
+        }
+    };
+    if sign_at(c, n, xb, true) <= 0 {
+        return hit; // (not a near miss: left to never_late's steps)
+    }
+    let w = r - xb;
+    let e = ilogb(w) + 1;
+    let mut q = shift_dd(c, n, xb, ldexp(1.0, i64::from(e)));
+    let mut eq = [0i32; MAXN + 1];
+    let mut nz = [false; MAXN + 1];
+    let (spread, emax) = exponents(&q, n, &mut eq, &mut nz);
+    if !(q[0] > 0.0) || spread > MAX_SPREAD {
+        return hit;
+    }
+    normalise(&mut q, n, emax, 1.0);
+    match first_root_interval(&q, n, ldexp(w, -i64::from(e)), 0.0, 0.0) {
+        Some((u, gu)) => {
+            let t = xb + ldexp(u, i64::from(e));
+            if t < r { (t, gu) } else { hit }
+        }
+        None => hit,
+    }
+}
+
 /// C `never_late` (issue 33, item 11): never later than the first root of the polynomial as
 /// given (c and the dropped terms, tail).  A root stands where p is certainly positive just
 /// before it, at r (1 - 2^-50), a touch unless p is certainly negative at it; else the earliest
@@ -736,6 +807,9 @@ pub(crate) fn never_late(c: &[f64], n: usize, tail: &[f64], hit: (f64, bool)) ->
     }
     let before = r - d;
     let mut hs = band_side(c, n, tail, if g { r } else { before });
+    if g && hs == 1 && n >= 3 && tail.is_empty() {
+        return inside_the_noise(c, n, hit);
+    }
     if if g { hs != -1 } else { hs == 1 } {
         return hit;
     }
