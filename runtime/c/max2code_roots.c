@@ -3440,6 +3440,44 @@ static void shift_dd(const double c[], int n, double x, double w, double q[])
     }
 }
 
+/* inside_the_noise's shortcut for the common near miss, a double root's:
+ * p certainly positive on [r - h, r] and above the fma noise at r - h, so
+ * no root hides in the noise to the left of the touch r.  From Horner's
+ * chains at r (p and its first three derivatives over k!, and the sums of
+ * |terms| that bound their rounding and, at |x| <= r, the derivatives: as
+ * touch_critical has them), p's compensated value less its error (m), and
+ * Taylor's bound p(r - s) >= m - S s + L s^2 over [0, h], with S >= |p'(r)|
+ * and L a lower bound of p''/2 there; h twice where the quadratic leaves
+ * the noise. */
+static int positive_through_the_noise(const double c[], int n, double r)
+{
+    double f0 = c[n], f1 = 0, f2 = 0, f3 = 0;
+    double g0 = fabs(c[n]), g1 = 0, g2 = 0, g3 = 0, g4 = 0;
+    for (int i = n - 1; i >= 0; i--) {
+        f3 = f3 * r + f2;
+        f2 = f2 * r + f1;
+        f1 = f1 * r + f0;
+        f0 = f0 * r + c[i];
+        g4 = g4 * r + g3;
+        g3 = g3 * r + g2;
+        g2 = g2 * r + g1;
+        g1 = g1 * r + g0;
+        g0 = g0 * r + fabs(c[i]);
+    }
+    (void)f0;
+    double e = noise_factor(n), rel = 4.0 * (n + 1) * UNIT_ROUNDOFF, g = 0.5 * e;
+    double v = horner_compensated(c, n, r);
+    double m = v - 2 * (UNIT_ROUNDOFF * fabs(v) + g * g * g0); /* p(r) >= m */
+    double S = (fabs(f1) + e * g1) * (1 + rel);                /* >= |p'(r)| */
+    double N = e * g0 * (1 + rel); /* >= the fma noise anywhere in [0, r] */
+    if (!(m > 0 && f2 > 0))
+        return 0;
+    double h = (S + sqrt(S * S + 4 * f2 * N)) / f2;
+    double L = f2 * (1 - rel) - (e * g2 + 3 * (fabs(f3) + e * g3) * h + 6 * g4 * h * h) * (1 + rel);
+    return h < r && L > 0 && S * S < 4 * L * m * (1 - rel)
+           && (m - S * h + L * h * h) * (1 - rel) > N;
+}
+
 /* A touch r where p is certainly positive (compensated), found only because
  * its fma value was within the noise there.  Inside that noise the scan
  * cannot see a cluster's crossings: a quartic cluster (the hostile fuzz at
@@ -3454,7 +3492,7 @@ static void shift_dd(const double c[], int n, double x, double w, double q[])
 NOINLINE static void inside_the_noise(const double c[], int n, double *root, int *g)
 {
     double r = *root;
-    if (scale_exponent(r, n) != 0)
+    if (scale_exponent(r, n) != 0 || positive_through_the_noise(c, n, r))
         return;
     double step = r * 0x1p-50, xb;
     for (;;) {

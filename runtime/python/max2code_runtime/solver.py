@@ -327,6 +327,35 @@ def _shift_dd(c: Sequence[float], n: int, x: float, w: float) -> list[float]:
     return out
 
 
+def _positive_through_the_noise(c: Sequence[float], n: int, r: float) -> bool:
+    """C positive_through_the_noise: p certainly positive on [r - h, r] and above the fma noise
+    at r - h (Taylor's bound from Horner's chains at r; the C source has it)."""
+    f0, f1, f2, f3 = c[n], 0.0, 0.0, 0.0
+    g0, g1, g2, g3, g4 = abs(c[n]), 0.0, 0.0, 0.0, 0.0
+    for i in range(n - 1, -1, -1):
+        f3 = f3 * r + f2
+        f2 = f2 * r + f1
+        f1 = f1 * r + f0
+        f0 = f0 * r + c[i]
+        g4 = g4 * r + g3
+        g3 = g3 * r + g2
+        g2 = g2 * r + g1
+        g1 = g1 * r + g0
+        g0 = g0 * r + abs(c[i])
+    e, rel = noise_factor(n), 4.0 * (n + 1) * U
+    g = 0.5 * e
+    v = _horner_compensated(c, n, r)
+    m = v - 2 * (U * abs(v) + g * g * g0)  # p(r) >= m
+    S = (abs(f1) + e * g1) * (1 + rel)  # >= |p'(r)|
+    N = e * g0 * (1 + rel)  # >= the fma noise anywhere in [0, r]
+    if not (m > 0 and f2 > 0):
+        return False
+    h = (S + math.sqrt(S * S + 4 * f2 * N)) / f2
+    L = f2 * (1 - rel) - (e * g2 + 3 * (abs(f3) + e * g3) * h + 6 * g4 * h * h) * (1 + rel)
+    return (h < r and L > 0 and S * S < 4 * L * m * (1 - rel)
+            and (m - S * h + L * h * h) * (1 - rel) > N)
+
+
 def _inside_the_noise(c: Sequence[float], n: int, hit: tuple[float, bool]) -> tuple[float, bool]:
     """C inside_the_noise: a touch r where p is certainly positive (compensated), found only
     because the fma value was within its noise there.  Inside that noise the scan cannot see a
@@ -335,7 +364,7 @@ def _inside_the_noise(c: Sequence[float], n: int, hit: tuple[float, bool]) -> tu
     an exact-as-can-be shift of p to x_b (_shift_dd), over (x_b, r).  Its first root if it has
     one, else the touch as it was."""
     r, _ = hit
-    if _scale_exponent(r, n) != 0:
+    if _scale_exponent(r, n) != 0 or _positive_through_the_noise(c, n, r):
         return hit
     step = r * 2.0**-50
     while True:

@@ -748,6 +748,38 @@ fn shift_dd(c: &[f64], n: usize, x: f64, w: f64) -> Coeffs {
     q
 }
 
+/// C `positive_through_the_noise`: p certainly positive on [r - h, r] and above the fma noise
+/// at r - h (Taylor's bound from Horner's chains at r; the C source has it).
+fn positive_through_the_noise(c: &[f64], n: usize, r: f64) -> bool {
+    let (mut f1, mut f2, mut f3) = (0.0, 0.0, 0.0);
+    let mut f0 = c[n];
+    let (mut g0, mut g1, mut g2, mut g3, mut g4) = (c[n].abs(), 0.0, 0.0, 0.0, 0.0);
+    for i in (0..n).rev() {
+        f3 = f3 * r + f2;
+        f2 = f2 * r + f1;
+        f1 = f1 * r + f0;
+        f0 = f0 * r + c[i];
+        g4 = g4 * r + g3;
+        g3 = g3 * r + g2;
+        g2 = g2 * r + g1;
+        g1 = g1 * r + g0;
+        g0 = g0 * r + c[i].abs();
+    }
+    let e = noise_factor(n);
+    let rel = 4.0 * (n + 1) as f64 * U;
+    let g = 0.5 * e;
+    let v = horner_compensated(c, n, r);
+    let m = v - 2.0 * (U * v.abs() + g * g * g0); // p(r) >= m
+    let s = (f1.abs() + e * g1) * (1.0 + rel); // >= |p'(r)|
+    let noise = e * g0 * (1.0 + rel); // >= the fma noise anywhere in [0, r]
+    if !(m > 0.0 && f2 > 0.0) {
+        return false;
+    }
+    let h = (s + (s * s + 4.0 * f2 * noise).sqrt()) / f2;
+    let l = f2 * (1.0 - rel) - (e * g2 + 3.0 * (f3.abs() + e * g3) * h + 6.0 * g4 * h * h) * (1.0 + rel);
+    h < r && l > 0.0 && s * s < 4.0 * l * m * (1.0 - rel) && (m - s * h + l * h * h) * (1.0 - rel) > noise
+}
+
 /// C `inside_the_noise`: a touch r where p is certainly positive (compensated), found only
 /// because its fma value was within the noise there: p solved again from where the noise
 /// begins to its left, x_b, after a shift to x_b in double-double, over (x_b, r); its first
@@ -755,7 +787,7 @@ fn shift_dd(c: &[f64], n: usize, x: f64, w: f64) -> Coeffs {
 #[inline(never)]
 fn inside_the_noise(c: &[f64], n: usize, hit: (f64, bool)) -> (f64, bool) {
     let r = hit.0;
-    if scale_exponent(r, n) != 0 {
+    if scale_exponent(r, n) != 0 || positive_through_the_noise(c, n, r) {
         return hit;
     }
     let mut step = r * TWO_M50;
