@@ -2,27 +2,29 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
+from typing import Any
 
 from .model import Body, Capsule, Circle, Frame, Polygon, Pose, RenderModelError, Segment, Shape, View
 
 
+# The points a shape's extent is taken over and the radius around them, per kind of shape
+# (one table, as the rasteriser's OUTLINES: a new shape kind is one line here).
+EXTENT_POINTS: dict[type, Callable[[Any], tuple[Sequence[tuple[float, float]], float]]] = {
+    Circle: lambda s: ((s.centre,), s.radius),
+    Polygon: lambda s: (s.vertices, s.radius),
+    Capsule: lambda s: ((s.a, s.b), s.radius),
+    Segment: lambda s: ((s.a, s.b), 0.0),
+}
+
+
 def world_extent(shape: Shape, pose: Pose) -> tuple[float, float, float, float]:
     """(xmin, ymin, xmax, ymax) of a shape at a pose, exact for every shape kind."""
-    if isinstance(shape, Circle):
-        x, y = pose.apply(shape.centre)
-        return (x - shape.radius, y - shape.radius, x + shape.radius, y + shape.radius)
-    if isinstance(shape, Polygon):
-        pts = [pose.apply(v) for v in shape.vertices]
-        pad = shape.radius
-    elif isinstance(shape, Capsule):
-        pts = [pose.apply(shape.a), pose.apply(shape.b)]
-        pad = shape.radius
-    elif isinstance(shape, Segment):
-        pts = [pose.apply(shape.a), pose.apply(shape.b)]
-        pad = 0.0
-    else:
+    points = EXTENT_POINTS.get(type(shape))
+    if points is None:
         raise RenderModelError(f"unknown shape {type(shape).__name__}")
+    local, pad = points(shape)
+    pts = [pose.apply(v) for v in local]
     xs, ys = [p[0] for p in pts], [p[1] for p in pts]
     return (min(xs) - pad, min(ys) - pad, max(xs) + pad, max(ys) + pad)
 

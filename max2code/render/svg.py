@@ -10,10 +10,10 @@ reaches the file unescaped.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from xml.sax.saxutils import escape
 
-from .model import Body, Capsule, Circle, Frame, Point, Polygon, Segment, View
+from .model import Body, Capsule, Circle, Frame, Point, Polygon, RenderModelError, Segment, View
 from .raster import CONTACT_COLOUR, TEXT_COLOUR, contrast, text_size, check_frame
 from .text import printable, time_stamp
 
@@ -71,37 +71,52 @@ def _rounded_path(pts: list[Point], r: float) -> str:
     return " ".join(parts)
 
 
+def _circle(shape: Circle, style, px, s: float, paint: str) -> list[str]:
+    c = px(shape.centre)
+    out = [f'<circle cx="{num(c[0])}" cy="{num(c[1])}" r="{num(shape.radius * s)}"{paint}/>']
+    if style.spoke:
+        rim = px((shape.centre[0] + shape.radius, shape.centre[1]))
+        colour = style.stroke or contrast(style.fill)
+        out.append(f'<line class="spoke" x1="{num(c[0])}" y1="{num(c[1])}" x2="{num(rim[0])}" '
+                   f'y2="{num(rim[1])}"{_paint("stroke", colour)} '
+                   f'stroke-width="{num(max(style.stroke_width, 1.0))}"/>')
+    return out
+
+
+def _polygon(shape: Polygon, style, px, s: float, paint: str) -> list[str]:
+    if shape.radius > 0:
+        return [f'<path d="{_rounded_path([px(v) for v in shape.vertices], shape.radius * s)}"{paint}/>']
+    points = " ".join(f"{num(x)},{num(y)}" for x, y in (px(v) for v in shape.vertices))
+    return [f'<polygon points="{points}"{paint} stroke-linejoin="round"/>']
+
+
+def _capsule(shape: Capsule, style, px, s: float, paint: str) -> list[str]:
+    return [f'<path d="{_capsule_path(px(shape.a), px(shape.b), shape.radius * s)}"{paint}/>']
+
+
+def _segment(shape: Segment, style, px, s: float, paint: str) -> list[str]:
+    """No inside: drawn as a line in the stroke colour (or the fill's)."""
+    a, b = px(shape.a), px(shape.b)
+    colour = style.stroke if style.stroke is not None else style.fill
+    return [f'<line x1="{num(a[0])}" y1="{num(a[1])}" x2="{num(b[0])}" y2="{num(b[1])}"'
+            f'{_paint("stroke", colour)} stroke-width="{num(max(style.stroke_width, 1.0))}" '
+            f'stroke-linecap="round"/>']
+
+
+# One SVG writer per kind of shape (as the rasteriser's OUTLINES).
+ELEMENTS: dict[type, Callable[..., list[str]]] = {
+    Circle: _circle, Polygon: _polygon, Capsule: _capsule, Segment: _segment}
+
+
 def _body(i: int, body: Body, pose, view: View) -> list[str]:
-    style, shape, s = body.style, body.shape, view.scale
+    style, shape = body.style, body.shape
     px = lambda p: view.to_pixel(pose.apply(p))  # noqa: E731
     width = num(style.stroke_width)
     paint = _paint("fill", style.fill) + _paint("stroke", style.stroke) + f' stroke-width="{width}"'
-    head = f'<g class="body" data-index="{i}">'
-    if isinstance(shape, Circle):
-        c = px(shape.centre)
-        out = [head, f'<circle cx="{num(c[0])}" cy="{num(c[1])}" r="{num(shape.radius * s)}"{paint}/>']
-        if style.spoke:
-            rim = px((shape.centre[0] + shape.radius, shape.centre[1]))
-            colour = style.stroke or contrast(style.fill)
-            out.append(f'<line class="spoke" x1="{num(c[0])}" y1="{num(c[1])}" x2="{num(rim[0])}" '
-                       f'y2="{num(rim[1])}"{_paint("stroke", colour)} '
-                       f'stroke-width="{num(max(style.stroke_width, 1.0))}"/>')
-    elif isinstance(shape, Polygon) and shape.radius > 0:
-        out = [head, f'<path d="{_rounded_path([px(v) for v in shape.vertices], shape.radius * s)}"{paint}/>']
-    elif isinstance(shape, Polygon):
-        points = " ".join(f"{num(x)},{num(y)}" for x, y in (px(v) for v in shape.vertices))
-        out = [head, f'<polygon points="{points}"{paint} stroke-linejoin="round"/>']
-    elif isinstance(shape, Capsule):
-        out = [head, f'<path d="{_capsule_path(px(shape.a), px(shape.b), shape.radius * s)}"{paint}/>']
-    else:  # Segment: no inside, drawn as a line in the stroke colour (or the fill's)
-        assert isinstance(shape, Segment)
-        a, b = px(shape.a), px(shape.b)
-        colour = style.stroke if style.stroke is not None else style.fill
-        out = [head, f'<line x1="{num(a[0])}" y1="{num(a[1])}" x2="{num(b[0])}" y2="{num(b[1])}"'
-                     f'{_paint("stroke", colour)} stroke-width="{num(max(style.stroke_width, 1.0))}" '
-                     f'stroke-linecap="round"/>']
-    out.append("</g>")
-    return out
+    write = ELEMENTS.get(type(shape))
+    if write is None:
+        raise RenderModelError(f"unknown shape {type(shape).__name__}")
+    return [f'<g class="body" data-index="{i}">', *write(shape, style, px, view.scale, paint), "</g>"]
 
 
 def svg_text(bodies: Sequence[Body], frame: Frame, view: View) -> str:
