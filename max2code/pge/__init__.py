@@ -10,6 +10,8 @@ which is which, for the documentation and its test.
 from __future__ import annotations
 
 import math
+from collections.abc import Iterator
+from contextlib import contextmanager
 from typing import Callable
 
 from .game import Game, GameOver, Options
@@ -28,6 +30,18 @@ def _start(options: Options) -> Game:
 
 def current() -> Game:
     return _game
+
+
+@contextmanager
+def playing(game: Game) -> Iterator[Game]:
+    """`pge` calls go to `game` inside the block, to the game before it after (the server runs
+    one game per room: max2code/server/pgegame.py)."""
+    global _game
+    saved, _game = _game, game
+    try:
+        yield game
+    finally:
+        _game = saved
 
 
 def _unsupported(call: str, why: str) -> PgeError:

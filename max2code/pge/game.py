@@ -151,7 +151,7 @@ class Game:
             if nxt == t_frame:
                 self._frame()
             elif nxt == t_queue:
-                self._pop()
+                self.fire_next()
             elif nxt == end:
                 return
             else:
@@ -159,7 +159,8 @@ class Game:
                     self._frame()
                 raise GameOver(0)
 
-    def _pop(self) -> None:
+    def fire_next(self) -> None:
+        """Fire the earliest queued timer or input event (the game's loop, and the server's)."""
         q = heapq.heappop(self.queue)
         if q.kind == "timer":
             if q.seq in self.cancelled:

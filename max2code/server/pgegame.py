@@ -190,21 +190,18 @@ class GameWorld:
 
         if self.over is not None:
             raise EngineError(f"the game ended (exit {self.over})")
-        saved = pge._game
-        pge._game = self.game
-        try:
-            action()
-        except GameOver as over:
-            self.over = over.code
-        except SystemExit as exc:
-            self.over = exc.code if isinstance(exc.code, int) else 1
-        except Exception as exc:   # the game's own error (a callback's, or its program's)
-            from ..pge.command import game_error
+        with pge.playing(self.game):
+            try:
+                action()
+            except GameOver as over:
+                self.over = over.code
+            except SystemExit as exc:
+                self.over = exc.code if isinstance(exc.code, int) else 1
+            except Exception as exc:   # the game's own error (a callback's, or its program's)
+                from ..pge.command import game_error
 
-            self.over = 1
-            raise EngineError(game_error(self.program.path, exc)) from None
-        finally:
-            pge._game = saved
+                self.over = 1
+                raise EngineError(game_error(self.program.path, exc)) from None
         self._sync()
         events = []
         for rec in self.game.log[self._log:]:
@@ -232,7 +229,7 @@ class GameWorld:
                 target = min(t, program.end)
                 while game.queue and game.queue[0].time <= target:
                     game.physics.advance(max(game.queue[0].time, game.now))
-                    game._pop()
+                    game.fire_next()
                 game.physics.advance(target)
                 if target < program.end:
                     return
