@@ -79,6 +79,8 @@ class Game:
         self.options = options or Options()
         self.physics = Physics()
         self.physics.on_contact = self._contact
+        self.physics.springs.on_event = self._spring_event
+        self.tint: dict[str, Colour] = {}
         self.shapes: list[Shape] = []
         self.decorations: list[Decoration] = []
         self.handlers: dict[int, Callable] = {}
@@ -201,6 +203,25 @@ class Game:
         for ob in between:
             ob.collided(between, e)
 
+    # -- springs ----------------------------------------------------------------------------
+
+    def add_spring(self, a, b, k, d, l):
+        from .springs import make
+
+        return make(self.physics, a, b, k, d, l, f"spring-{len(self.physics.springs.springs)}")
+
+    def _spring_event(self, s, what: str, t: float, length: float | None, p) -> None:
+        """A spring reached its rest length (mid), a turning point (end) or a `when` length,
+        at time t (the physics' time now)."""
+        self.log.append({"t": t, "kind": "spring", "spring": s.name, "what": what,
+                         "length": length})
+        colour = {"mid": s.mid_colour, "end": s.end_colour}.get(what)
+        if colour is not None:
+            for ob in (s.a, s.b):
+                self.tint[ob.name] = colour
+        if p is not None:
+            call_back(p, s, Event("spring", t))
+
     def add(self, shape: Shape) -> Shape:
         self.shapes.append(shape)
         self.physics.add(shape)
@@ -227,12 +248,18 @@ class Game:
         behind = sorted((d for d in self.decorations if d.level < 0), key=lambda d: d.level)
         front = sorted((d for d in self.decorations if d.level > 0), key=lambda d: d.level)
         items += [_decoration_item(d) for d in behind]
-        for ob, pose in zip(self.physics.objects, self.physics.poses()):
+        poses = self.physics.poses()
+        at = {id(ob): pose for ob, pose in zip(self.physics.objects, poses)}
+        for s in self.physics.springs.live():   # under the objects they join, as PGE draws them
+            if s.colour is not None and id(s.a) in at and id(s.b) in at:
+                items.append(spring_item(at[id(s.a)], at[id(s.b)], s.width, s.colour.rgb255()))
+        for ob, pose in zip(self.physics.objects, poses):
             if ob.visible:
-                colour = self.collision_colour if ob.name in self.flash else ob.colour
+                colour = self.collision_colour if ob.name in self.flash else self.tint.get(ob.name, ob.colour)
                 items.append(body_item(ob.state.local, ob.state.radius, pose, colour.rgb255(ob.alpha)))
         items += [_decoration_item(d) for d in front]
         self.flash.clear()
+        self.tint.clear()
         return Frame(self.now, tuple(items))
 
     def _show(self, frame: Frame) -> None:
@@ -258,6 +285,15 @@ class Game:
             name = pygame.event.event_name(e.type).upper()
             if e.type in self.handlers or e.type == pygame.QUIT:
                 self.input(_TYPE_NAMES.get(e.type, name), _attrs(e))
+
+
+def spring_item(a, b, width: float, colour) -> Item:
+    """A spring drawn as a straight band `width` wide between its ends' centres."""
+    dx, dy = b[0] - a[0], b[1] - a[1]
+    n = math.hypot(dx, dy) or 1.0
+    ox, oy = -dy / n * width / 2, dx / n * width / 2
+    return Item("polygon", colour, ((a[0] + ox, a[1] + oy), (b[0] + ox, b[1] + oy),
+                                    (b[0] - ox, b[1] - oy), (a[0] - ox, a[1] - oy)))
 
 
 def _decoration_item(d: Decoration) -> Item:

@@ -17,6 +17,7 @@ from typing import Callable, Protocol
 
 from ..engine.shapes import mass_properties, polygon_area
 from ..engine.world import Event, World
+from .springs import Springs, WindowEnd
 
 Vec = tuple[float, float]
 TOLERANCE = 1e-9  # lengths in PGE's unit square
@@ -84,6 +85,7 @@ class Physics:
         self.stale = True
         self.rebuilds = 0
         self.on_contact: Callable[[Physical, Physical, Event, float], None] | None = None
+        self.springs = Springs()
 
     # -- time -------------------------------------------------------------------------------
 
@@ -97,7 +99,10 @@ class Physics:
             if self.stale:
                 self._build()
             try:
-                self.world.step_to(t - self.t0, events=False)
+                if self.springs.active():
+                    self.springs.advance(self, t)   # windows: max2code.pge.springs
+                else:
+                    self.world.step_to(t - self.t0, events=False)
                 return
             except _Rebuild:
                 continue
@@ -165,13 +170,15 @@ class Physics:
         t = self.now
         w = World(gravity=self.gravity, tolerance=TOLERANCE)
         self.bodies = []
+        sprung = {id(o) for o in self.springs.sprung()}
         for ob in self.objects:
             if not ob.fixed and not ob.kg:
                 raise PgeError(f"{ob.name} (made at {ob.where}) is not fixed and has no mass: "
                                "every moving object needs .mass(m) (or .fix())")
             s = ob.state
             common = dict(radius=s.radius, position=(s.x, s.y), angle=s.angle,
-                          restitution=RESTITUTION, name=ob.name)
+                          restitution=RESTITUTION, name=ob.name,
+                          group=ob.name if id(ob) in sprung else None)  # (its twin sensor's)
             if ob.fixed:
                 ob.body = w.add_body(s.local, kind="static", **common)
             else:
@@ -188,11 +195,16 @@ class Physics:
         self.rebuilds += 1
 
     def _collided(self, world: World, ev: Event) -> None:
-        if ev.kind != "collision" or self.on_contact is None:
+        if ev.kind == "sensor" and (self.springs.is_sensor(ev.a) or self.springs.is_sensor(ev.b)):
+            raise WindowEnd()  # a sprung body may touch something: a tighter window from here
+        if ev.kind != "collision":
             return
-        self.on_contact(self.bodies[ev.a], self.bodies[ev.b], ev, self.t0 + ev.time)
+        if self.on_contact is not None:
+            self.on_contact(self.bodies[ev.a], self.bodies[ev.b], ev, self.t0 + ev.time)
         if self.stale:
             raise _Rebuild()
+        if self.springs.in_window(ev.a) or self.springs.in_window(ev.b):
+            raise WindowEnd()  # a sprung body's path changed: a new window from its new state
 
     def impulse(self, ob: Physical, ux: float, uy: float, magnitude: float) -> None:
         """An impulse of `magnitude` along (ux, uy) through the centre of mass."""

@@ -96,13 +96,31 @@ def test_rotation_the_box_lands_on_a_corner_and_tips_over(tmp_path: Path) -> Non
     assert r.stderr.split(": ")[2].startswith("2.5 s simulated")
 
 
-@pytest.mark.parametrize("name, line", [("springs-simple", 59), ("springs-swing", None)])
-def test_spring_scenes_stop_with_an_unsupported_error_naming_the_call(tmp_path: Path, name: str,
-                                                                     line: int | None) -> None:
-    r, log = pge_run(tmp_path, game(name))
-    assert r.returncode == 1
-    err = r.stderr.strip().splitlines()[-1]
-    assert ": error: unsupported: spring " in err and err.startswith(game(name) + ":")
-    if line:
-        assert err.split(":")[1] == str(line)
-    assert log is None  # no output written
+def test_springs_simple_oscillates_as_a_damped_spring_and_settles_at_its_rest_length(
+        tmp_path: Path) -> None:
+    # a 1 kg ball hangs 0.6 below a fixed one on a spring k = 100, d = 3, rest length 0.5 (no
+    # gravity): a linear damped oscillator of amplitude 0.1 about the midline y = 0.45
+    r, log = pge_run(tmp_path, game("springs-simple"), "--until", "3")
+    assert r.returncode == 0, r.stderr
+    events = [e for e in log if e["kind"] == "spring"]
+    omega_d = math.sqrt(100 - 1.5 ** 2)
+    ends = [e["t"] for e in events if e["what"] == "end"]
+    mids = [e["t"] for e in events if e["what"] == "mid"]
+    # turning points every half period of the damped oscillator, from rest at t = 0
+    assert ends == pytest.approx([k * math.pi / omega_d for k in range(1, len(ends) + 1)], abs=1e-9)
+    # the rest length first at the root of e^(-g t) (cos w t + g / w sin w t)
+    first = (math.pi - math.atan(omega_d / 1.5)) / omega_d
+    assert mids[0] == pytest.approx(first, abs=1e-9)
+    assert len(ends) == 9 and not [e for e in log if e["kind"] == "collision"]
+
+
+def test_springs_swing_the_ball_is_flung_up_hits_the_top_and_swings_to_rest(tmp_path: Path) -> None:
+    r, log = pge_run(tmp_path, game("springs-swing"), "--until", "5")
+    assert r.returncode == 0, r.stderr
+    hits = [e for e in log if e["kind"] == "collision"]
+    # the stiff short spring to the right anchor flings the ball up into the top border
+    # (box-3, its lower face at y = 0.99) once, at a contact point on that face
+    assert [(e["a"], e["b"]) for e in hits] == [("circle-6", "box-3")]
+    assert hits[0]["point"][1] == pytest.approx(0.99, abs=1e-9)
+    # then it swings below the anchors, damped: the springs' turning points keep coming
+    assert len([e for e in log if e["kind"] == "spring" and e["what"] == "end"]) > 10

@@ -31,7 +31,7 @@ def test_every_module_level_call_the_table_names_exists() -> None:
             assert callable(getattr(pge, name)), name
 
 
-@pytest.mark.parametrize("call", [lambda: pge.spring(None, None, 1, 0), lambda: pge.play("x"),
+@pytest.mark.parametrize("call", [lambda: pge.play("x"),
                                   lambda: pge.message("x"), lambda: pge.delay(1),
                                   lambda: pge.draw_collision(True, True)])
 def test_the_unsupported_ones_raise_naming_themselves(call) -> None:
