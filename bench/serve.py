@@ -220,7 +220,7 @@ async def _load(port: int, clients: int, seconds: float, server_pid: int) -> dic
             super().data_received(data)
 
     async def one(k: int, lat: list, counts: list):
-        ws = await connect(f"ws://127.0.0.1:{port}/ws", max_queue=None, create_connection=Counted)
+        ws = await connect(f"ws://127.0.0.1:{port}/ws?room={room}", max_queue=None, create_connection=Counted)
         await ws.send(json.dumps({"type": "hello", "v": protocol.VERSION, "seq": 0, "play": False, "room": room}))
         json.loads(await ws.recv())
         seq, best = 1, None

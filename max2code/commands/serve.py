@@ -1,7 +1,7 @@
 """`max2code serve SCENE_OR_GAME`: a scene's world (or a PGE game's), authoritative on this machine, played from browsers.
 
     max2code serve examples/scenes/arena.toml            # then open http://127.0.0.1:8036/
-    max2code serve SCENE_OR_GAME [--host 127.0.0.1] [--port 8036] [--player NAME ...] [--rooms N] [--speed V] [--tolerance EPS] [--rate HZ]
+    max2code serve SCENE_OR_GAME [--host 127.0.0.1] [--port 8036] [--player NAME ...] [--rooms N] [--workers N] [--speed V] [--tolerance EPS] [--rate HZ]
 
 Each browser that joins a room (the page's ?room=NAME, default "main") gets the world and then
 only events (docs/server.md). A joining client controls the first player body nobody else
@@ -14,6 +14,8 @@ from __future__ import annotations
 
 import argparse
 import asyncio
+import contextlib
+import io
 import signal
 import sys
 
@@ -46,7 +48,7 @@ def _game(path: str, player: list[str]):
     return scene, tuple(names[n] for n in wanted), lambda: GameWorld(load_game(path)), wanted
 
 
-def main(argv: list[str]) -> int:
+def _parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(prog="max2code serve", description=__doc__.split("\n\n")[0])
     ap.add_argument("scene", metavar="SCENE_OR_GAME",
                     help="a scene file (.toml or .json), or a PGE program (GAME.py)")
@@ -55,7 +57,11 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--port", type=int, default=8036, help="TCP port (default 8036; 0: any free)")
     ap.add_argument("--player", action="append", default=[], metavar="NAME",
                     help="a body clients may control (repeat; default: bodies named player*)")
-    ap.add_argument("--rooms", type=int, default=16, metavar="N", help="most rooms at once (default 16)")
+    ap.add_argument("--rooms", type=int, default=16, metavar="N",
+                    help="most rooms at once in each process (default 16)")
+    ap.add_argument("--workers", type=int, metavar="N",
+                    help="worker processes, each running the rooms whose names hash to it "
+                         "(default: one per core; 1: one process, no front)")
     ap.add_argument("--speed", type=float, metavar="V",
                     help="input speed in scene units per second (default: a quarter of the view's width)")
     ap.add_argument("--tolerance", type=float, metavar="EPS",
@@ -66,17 +72,14 @@ def main(argv: list[str]) -> int:
                     help="most event messages a second per room (default 60: changes within 1/60 s "
                          "of the last message wait for the next, each body's latest segment only); "
                          "0: every step's changes at once")
-    args = ap.parse_args(argv)
-    if not 0 <= args.port <= 65535 or args.rooms < 1 or (args.speed is not None and not 0 < args.speed < 1e300) \
-            or (args.tolerance is not None and args.tolerance != -1 and not 0 <= args.tolerance < 1e300) \
-            or not 0 <= args.rate < 1e300:
-        print("max2code serve: error: --port must be 0..65535, --rooms at least 1, --speed positive, "
-              "--tolerance finite and >= 0 (or -1), --rate finite and >= 0",
-              file=sys.stderr)
-        return 2
+    return ap
 
+
+def _options(args):
+    """The server's Options from the command line, with the scene's name and the players'
+    names; or an exit code (the error printed)."""
     from ..engine.scenefile import SceneError, load
-    from ..server.app import Options, run
+    from ..server.app import Options
 
     tolerance = None if args.tolerance == -1 else (args.tolerance or 0.0)
     if args.scene.endswith(".py"):   # a PGE program (docs/server.md, "Serving a PGE game")
@@ -84,45 +87,108 @@ def main(argv: list[str]) -> int:
         if isinstance(made, int):
             return made
         scene, players, make, wanted = made
-        options = Options(scene, players, max_rooms=args.rooms, tolerance=tolerance, world=make,
-                          rate=args.rate)
+        return Options(scene, players, max_rooms=args.rooms, tolerance=tolerance, world=make,
+                       rate=args.rate), scene.name, wanted
+    try:
+        scene = load(args.scene)
+    except SceneError as exc:
+        for d in exc.diagnostics:
+            print(d, file=sys.stderr)
+        return 1
+    names = {b.name: i for i, b in enumerate(scene.bodies)}
+    wanted = args.player or [b.name for b in scene.bodies
+                             if b.name.startswith("player") and b.kind == "dynamic"]
+    bad = [n for n in wanted if n not in names or scene.bodies[names[n]].kind != "dynamic"]
+    if bad:
+        print(f"{args.scene}: error: --player {bad[0]!r}: no dynamic body of that name", file=sys.stderr)
+        return 1
+    return Options(scene, tuple(names[n] for n in wanted), max_rooms=args.rooms, speed=args.speed,
+                   tolerance=tolerance, rate=args.rate), scene.name, wanted
+
+
+async def _until_signal(coro) -> int:
+    """Run coro until SIGTERM, SIGINT or SIGHUP (then 128 + the signal), with asyncio's own
+    signal handlers: the CLI's raise an exception in whatever runs when the signal comes,
+    which inside a task only ends that task (the server went on)."""
+    loop, task, got = asyncio.get_running_loop(), asyncio.current_task(), []
+    for sig in (signal.SIGTERM, signal.SIGINT, signal.SIGHUP):
+        loop.add_signal_handler(sig, lambda s=sig: (got.append(s), task.cancel()))
+    try:
+        await coro
+    except asyncio.CancelledError:
+        if not got:
+            raise
+    return 128 + got[0] if got else 0
+
+
+def _worker(index: int, count: int, channel, argv: list[str]) -> None:
+    """A worker process (spawned by the front, server/workers.py): the same options, its
+    share of the rooms."""
+    import signal as signals
+
+    signals.signal(signals.SIGINT, signals.SIG_IGN)   # (before anything slow: the front coordinates)
+    from ..server.app import run_worker
+
+    with contextlib.redirect_stderr(io.StringIO()):   # (a bad scene: the front says so, once)
+        made = _options(_parser().parse_args(argv))
+    if isinstance(made, int):
+        sys.exit(made)
+    asyncio.run(run_worker(made[0], index, count, channel))
+
+
+def main(argv: list[str]) -> int:
+    args = _parser().parse_args(argv)
+    from ..server import workers as cluster
+
+    count = cluster.cores() if args.workers is None else args.workers
+    if not 0 <= args.port <= 65535 or args.rooms < 1 or (args.speed is not None and not 0 < args.speed < 1e300) \
+            or (args.tolerance is not None and args.tolerance != -1 and not 0 <= args.tolerance < 1e300) \
+            or not 0 <= args.rate < 1e300 or not 1 <= count <= 256:
+        print("max2code serve: error: --port must be 0..65535, --rooms at least 1, --speed positive, "
+              "--tolerance finite and >= 0 (or -1), --rate finite and >= 0, --workers 1..256",
+              file=sys.stderr)
+        return 2
+    if count == 1:
+        made = _options(args)
+        if isinstance(made, int):
+            return made
     else:
         try:
-            scene = load(args.scene)
-        except SceneError as exc:
-            for d in exc.diagnostics:
-                print(d, file=sys.stderr)
-            return 1
-        names = {b.name: i for i, b in enumerate(scene.bodies)}
-        wanted = args.player or [b.name for b in scene.bodies
-                                 if b.name.startswith("player") and b.kind == "dynamic"]
-        bad = [n for n in wanted if n not in names or scene.bodies[names[n]].kind != "dynamic"]
-        if bad:
-            print(f"{args.scene}: error: --player {bad[0]!r}: no dynamic body of that name", file=sys.stderr)
-            return 1
-        options = Options(scene, tuple(names[n] for n in wanted), max_rooms=args.rooms, speed=args.speed,
-                          tolerance=tolerance, rate=args.rate)
-
-    def ready(server, port: int) -> None:
-        print(f"max2code serve: {scene.name} on http://{args.host}:{port}/ "
-              f"(players: {', '.join(wanted) or 'none'})", file=sys.stderr, flush=True)
-
-    async def serve_until_signal() -> int:
-        # asyncio's own signal handlers: the CLI's raise an exception in whatever runs when
-        # the signal comes, which inside a task only ends that task (the server went on)
-        loop, task, got = asyncio.get_running_loop(), asyncio.current_task(), []
-        for sig in (signal.SIGTERM, signal.SIGINT, signal.SIGHUP):
-            loop.add_signal_handler(sig, lambda s=sig: (got.append(s), task.cancel()))
+            listener = cluster.listen(args.host, args.port)
+        except OSError as exc:
+            return _cannot_listen(args, exc)
+        # the workers first: a PGE program, loaded below to check it, runs as __main__ in a
+        # thread of its own, and a process spawned then would load it as its own main module
+        workers = cluster.start_workers(count, _worker, (argv,))
         try:
-            await run(options, args.host, args.port, ready)
-        except asyncio.CancelledError:
-            if not got:
-                raise
-        return 128 + got[0] if got else 0
+            made = _options(args)
+            if isinstance(made, int):
+                return made
+            cluster.wait_ready(workers)
+            _say(args, made, f"on {count} worker processes", listener.getsockname()[1])
+            return asyncio.run(_until_signal(cluster.front(listener, workers)))
+        except RuntimeError as exc:
+            print(f"max2code serve: error: {exc}", file=sys.stderr)
+            return 1
+        finally:
+            listener.close()
+            cluster.stop_workers(workers)
+    from ..server.app import run
 
     try:
-        return asyncio.run(serve_until_signal())
+        return asyncio.run(_until_signal(run(made[0], args.host, args.port,
+                                             lambda server, port: _say(args, made, "in one process", port))))
     except OSError as exc:
-        print(f"max2code serve: error: cannot listen on {args.host}:{args.port}: {exc.strerror or exc}",
-              file=sys.stderr)
-        return 1
+        return _cannot_listen(args, exc)
+
+
+def _say(args, made, how: str, port: int) -> None:
+    _, name, wanted = made
+    print(f"max2code serve: {name} on http://{args.host}:{port}/ "
+          f"(players: {', '.join(wanted) or 'none'}) {how}", file=sys.stderr, flush=True)
+
+
+def _cannot_listen(args, exc: OSError) -> int:
+    print(f"max2code serve: error: cannot listen on {args.host}:{args.port}: {exc.strerror or exc}",
+          file=sys.stderr)
+    return 1

@@ -9,7 +9,7 @@ on the first join that names it, up to `max_rooms`.
 from __future__ import annotations
 
 import asyncio
-import json
+import socket
 from dataclasses import dataclass
 from typing import Callable
 from importlib import resources
@@ -18,13 +18,16 @@ from urllib.parse import urlsplit
 from websockets.asyncio.server import ServerConnection, serve
 from websockets.datastructures import Headers
 from websockets.exceptions import ConnectionClosed
+from websockets.extensions.permessage_deflate import enable_server_permessage_deflate
 from websockets.http11 import Request, Response
+from websockets.server import ServerProtocol
 
 from ..engine.scenefile import Scene
 from ..engine.world import World
 from . import protocol
 from .protocol import Hello, Key, Ping, Point, ProtocolError, RateLimit
 from .room import RATE as ROOM_RATE, Room
+from . import workers as cluster
 
 STATIC = {"/": ("index.html", "text/html; charset=utf-8"),
           "/client.js": ("client.js", "text/javascript; charset=utf-8"),
@@ -32,6 +35,8 @@ STATIC = {"/": ("index.html", "text/html; charset=utf-8"),
 SECURITY_HEADERS = [("Content-Security-Policy", "default-src 'self'; connect-src 'self'; img-src 'self' data:"),
                     ("X-Content-Type-Options", "nosniff"), ("Cache-Control", "no-cache")]
 HELLO_TIMEOUT = 10.0
+# the WebSocket connections' settings (serve's, and an adopted connection's: run_worker)
+MAX_QUEUE, CLOSE_TIMEOUT = 16, 1
 
 
 @dataclass(frozen=True)
@@ -47,10 +52,12 @@ class Options:
 
 
 class Server:
-    """Rooms by name, and the connection handler."""
+    """Rooms by name, and the connection handler. `shard` (index, count): this process runs
+    the rooms workers.owner gives it (a worker of `max2code serve --workers`)."""
 
-    def __init__(self, options: Options) -> None:
+    def __init__(self, options: Options, shard: tuple[int, int] = (0, 1)) -> None:
         self.options = options
+        self.shard = shard
         self.rooms: dict[str, Room] = {}
         self.files = {path: (resources.files(__package__).joinpath("static").joinpath(name).read_bytes(), kind)
                       for path, (name, kind) in STATIC.items()}
@@ -105,9 +112,9 @@ class Server:
             if not isinstance(msg, Hello):
                 raise ProtocolError("the first message must be hello")
             seq += 1
-            room = self.room(msg.room)
+            room = self.room(self._room_name(msg, ws))
             if len(room.clients) >= self.options.max_clients:
-                raise ProtocolError(f"room {msg.room!r} is full")
+                raise ProtocolError(f"room {room.name!r} is full")
             client, world = room.join(_sender(ws), msg.name, msg.play, msg.events)
             await ws.send(world)
             async for frame in ws:
@@ -125,6 +132,18 @@ class Server:
         finally:
             if room is not None and client is not None:
                 room.leave(client)
+
+    def _room_name(self, hello: Hello, ws: ServerConnection) -> str:
+        """The room to join: hello's, else the URL's (/ws?room=NAME), else main. The two must
+        agree, and a worker serves only its own rooms (the front routes by the URL's)."""
+        url = cluster.room_of_path(ws.request.path) if ws.request else None
+        if hello.room is not None and url is not None and hello.room != url:
+            raise ProtocolError(f"hello's room {hello.room!r} is not the URL's ({url!r})")
+        name = hello.room or url or "main"
+        index, count = self.shard
+        if cluster.owner(name, count) != index:
+            raise ProtocolError(f"room {name!r} is served by another worker: connect to /ws?room={name}")
+        return name
 
     def _dispatch(self, room: Room, client, msg) -> str | None:
         """A checked message to its room; the text to answer with, if any."""
@@ -162,11 +181,48 @@ async def run(options: Options, host: str, port: int, ready=None) -> None:
     """Serve until cancelled; `ready(port)` is called once listening (port 0 picks one)."""
     server = Server(options)
     async with serve(server.handler, host, port, process_request=server.process_request,
-                     max_size=protocol.HARD_MAX_MESSAGE, max_queue=16, close_timeout=1) as ws_server:
+                     max_size=protocol.HARD_MAX_MESSAGE, max_queue=MAX_QUEUE,
+                     close_timeout=CLOSE_TIMEOUT) as ws_server:
         bound = ws_server.sockets[0].getsockname()[1]
         if ready is not None:
             ready(server, bound)
         try:
             await asyncio.Future()
+        finally:
+            await server.close()
+
+
+async def run_worker(options: Options, index: int, count: int, channel: socket.socket) -> None:
+    """One worker of `max2code serve --workers`: serve the connections the front hands over
+    (workers.py) until the front closes the channel or SIGTERM comes."""
+    server = Server(options, shard=(index, count))
+    task = asyncio.current_task()
+    cluster.worker_signals(task)
+    # websockets' server on a socket nobody is told of (the front accepts): its handler runs
+    # each adopted connection as if it had accepted it (handshake, keepalive, close). It
+    # must be serving (else websockets answers 503); a Unix socket under an unused abstract
+    # name, reachable only from this machine, as the TCP port on loopback is.
+    placeholder = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+    placeholder.bind("")        # (Linux: autobind to an unused abstract name)
+    async with serve(server.handler, sock=placeholder, process_request=server.process_request,
+                     max_size=protocol.HARD_MAX_MESSAGE, max_queue=MAX_QUEUE,
+                     close_timeout=CLOSE_TIMEOUT) as ws_server:
+        loop = asyncio.get_running_loop()
+
+        def connection() -> ServerConnection:   # what serve() makes for each accepted socket
+            proto = ServerProtocol(extensions=enable_server_permessage_deflate(None),
+                                   max_size=protocol.HARD_MAX_MESSAGE)
+            return ServerConnection(proto, ws_server, max_queue=MAX_QUEUE, close_timeout=CLOSE_TIMEOUT)
+
+        def adopt(sock: socket.socket) -> None:
+            sock.setblocking(False)
+            loop.create_task(loop.connect_accepted_socket(connection, sock))
+
+        adopter = cluster.Adopter(channel, adopt, task)
+        adopter.ready()
+        try:
+            await asyncio.Future()
+        except asyncio.CancelledError:
+            pass
         finally:
             await server.close()

@@ -48,7 +48,7 @@ class ProtocolError(ValueError):
 @dataclass(frozen=True)
 class Hello:
     seq: int
-    room: str
+    room: str | None      # None: the URL's (/ws?room=NAME), else main
     name: str
     play: bool = True     # false: watch only (never given a body)
     events: bool = True   # false: ev messages without their events (the page draws none)
@@ -151,7 +151,7 @@ def parse(frame: str | bytes, expected_seq: int) -> Message:
         play, events = data.get("play", True), data.get("events", True)
         if not isinstance(play, bool) or not isinstance(events, bool):
             raise ProtocolError("play and events must be true or false")
-        return Hello(seq, _str(data.get("room", "main"), "room", ROOM),
+        return Hello(seq, _str(data["room"], "room", ROOM) if "room" in data else None,
                      _str(data.get("name", ""), "name", NAME), play, events)
     if kind == "ping":
         return Ping(seq, _int(data["id"], "id", 0, _BIG), _num(data["c"], "c"))

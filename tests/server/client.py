@@ -24,7 +24,7 @@ class Client:
     @classmethod
     async def join(cls, url: str, room: str = "main", play: bool = True, events: bool = True,
                    **kw) -> "Client":
-        ws = await connect(url, **kw)
+        ws = await connect(f"{url}?room={room}", **kw)   # (the front routes by the URL's room)
         c = cls(ws)
         hello = {"type": "hello", "v": protocol.VERSION, "room": room, "play": play}
         if not events:

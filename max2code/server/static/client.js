@@ -87,7 +87,8 @@ function ping() {
 }
 
 function connect() {
-  ws = new WebSocket((location.protocol === "https:" ? "wss://" : "ws://") + location.host + "/ws");
+  ws = new WebSocket((location.protocol === "https:" ? "wss://" : "ws://") + location.host + "/ws?room="
+                     + encodeURIComponent(state.room));   // the URL's room routes to its worker
   ws.onopen = () => {
     // events: false: the page draws from segments only, so the server leaves the event lists out
     send({type: "hello", v: PROTOCOL, room: state.room, name: params.get("name") || "", events: false});
