@@ -188,7 +188,7 @@ def window_for(s: System, y: np.ndarray, budget: Sequence[float], h_max: float,
                h_min: float = 1e-12) -> tuple[float, Bounds]:
     """The longest window h <= h_max (halving, or the bound's own estimate) whose proven
     deviation stays within budget[i] for every body i."""
-    h = h_max
+    h, h_min = h_max, min(h_min, h_max)
     while h >= h_min:
         b = window_bounds(s, y, h)
         if b is not None:

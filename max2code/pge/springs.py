@@ -303,7 +303,7 @@ class Springs:
                                    mass=1.0, group=info.group, sensor=True,
                                    name=f"{info.name}~{self.windows}"))
         self.windows += 1
-        target = t_local if end == h_cap else t0 + end
+        target = t_local if end >= t_local - t0 else t0 + end
         self.window = Window(t0, end, ids, y0, a0, [v[2] for v in vel3], sol,
                              [e for _, e in events], sensors, target)
         try:
