@@ -35,6 +35,8 @@ import time
 import zlib
 from pathlib import Path
 
+import msgpack
+
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
@@ -67,8 +69,12 @@ def replay(scene, until: float, listeners: int = 1, tolerance: float | None = No
     sent: list[str] = []
     world_msg = room.join(sent.append, "bench")[1]
     room.page: list[str] = []    # what the page gets (hello's events: false)
+    room.packed: list[bytes] = []    # the same as MessagePack (hello's enc: msgpack)
+    room.packed_page: list[bytes] = []
     if page:
         room.join(room.page.append, "page", events=False)
+        room.join(room.packed.append, "msgpack", enc="msgpack")
+        room.join(room.packed_page.append, "msgpack page", events=False, enc="msgpack")
     for _ in range(listeners - 1):
         room.join(lambda text: None, "bench")
     cpu = time.process_time()
@@ -133,6 +139,12 @@ def bytes_table(quick: bool, tolerance: float | None, rate: float | None = None)
         decoded = [m for m in map(json.loads, sent) if m["type"] == "ev"]
         events = sum(len(m["ev"]) for m in decoded)
         segs = sum(len(m["seg"]) for m in decoded)
+        # where the bytes go: the envelope (type, n, t, rm, add), the event lists, the segments
+        parts = {"ev": sum(len(protocol.encode(m["ev"])) + 6 for m in decoded),
+                 "seg": sum(len(protocol.encode(m["seg"])) + 7 for m in decoded)}
+        parts["envelope"] = ev_bytes - parts["ev"] - parts["seg"]
+        snap_mp = sum(len(msgpack.packb(json.loads(t))) for t in snaps)
+        ev_mp, page_mp = sum(map(len, room.packed)), sum(map(len, room.packed_page))
         rows.append({"scene": name, "bodies": len(world.bodies), "seconds": until,
                      "engine_events": room.stats.events,
                      "messages": len(sent), "events": events, "segments": segs,
@@ -144,7 +156,12 @@ def bytes_table(quick: bool, tolerance: float | None, rate: float | None = None)
                      "page_Bps": page_bytes / until, "page_ratio": snap_bytes / max(page_bytes, 1),
                      "page_Bps_deflate": deflate_sizes(room.page) / until,
                      "page_ratio_deflate": snap_z / max(deflate_sizes(room.page), 1),
-                     "bytes_per_message": ev_bytes / max(len(sent), 1)})
+                     "bytes_per_message": ev_bytes / max(len(sent), 1),
+                     "parts": parts, "segment_numbers": sum(len(g) - 1 for m in decoded for g in m["seg"]),
+                     "snapshot_numbers": sum(3 * len(json.loads(t)["p"]) for t in snaps),
+                     "msgpack_Bps": ev_mp / until, "snapshot_msgpack_Bps": snap_mp / until,
+                     "ratio_msgpack": snap_mp / max(ev_mp, 1), "ratio_msgpack_json_snapshots": snap_bytes / max(ev_mp, 1),
+                     "page_msgpack_Bps": page_mp / until, "page_ratio_msgpack": snap_mp / max(page_mp, 1)})
     lines = ["| scene | bodies | s | engine events | messages | segments | events sent | join B "
              "| events B/s | 60 Hz snapshots B/s | ratio "
              "| deflated: events B/s | snapshots B/s | ratio | B per message "
@@ -159,6 +176,16 @@ def bytes_table(quick: bool, tolerance: float | None, rate: float | None = None)
                      f"{r['bytes_per_message']:.0f} | {r['page_Bps']:.0f} | "
                      f"{ratio(r['page_ratio'], r['sent'])} | {r['page_Bps_deflate']:.0f} | "
                      f"{ratio(r['page_ratio_deflate'], r['sent'])} |")
+    lines += ["", "The same runs in MessagePack (hello's `enc: \"msgpack\"`: the same values, binary "
+              "frames), against snapshots in MessagePack too (the same encoding) and in JSON:", "",
+              "| scene | events JSON B/s | MessagePack B/s | MessagePack snapshots B/s | ratio "
+              "| ratio to JSON snapshots | page (no event lists) MessagePack B/s | ratio |",
+              "|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        lines.append(f"| {r['scene']} | {r['event_Bps']:.0f} | {r['msgpack_Bps']:.0f} | "
+                     f"{r['snapshot_msgpack_Bps']:.0f} | **{ratio(r['ratio_msgpack'], r['sent'])}** | "
+                     f"{ratio(r['ratio_msgpack_json_snapshots'], r['sent'])} | {r['page_msgpack_Bps']:.0f} | "
+                     f"{ratio(r['page_ratio_msgpack'], r['sent'])} |")
     return lines, rows
 
 
@@ -178,7 +205,12 @@ def dense_text(rows: list[dict]) -> list[str]:
             "carries: a segment is up to 8 numbers (position, angle, velocity, spin, acceleration) "
             "where a pose is 3, and the message names the events (each kind and pair once, with a "
             "count). Snapshots win when most bodies change at every frame; events win by the "
-            "fraction of bodies and frames in which nothing changes."]
+            "fraction of bodies and frames in which nothing changes.", "",
+            "Where their bytes go (JSON, after the join): " + "; ".join(
+                f"{r['scene']}: envelope {100 * r['parts']['envelope'] / r['sent']:.0f} %, event lists "
+                f"{100 * r['parts']['ev'] / r['sent']:.0f} %, segments {100 * r['parts']['seg'] / r['sent']:.0f} % "
+                f"({r['segment_numbers']} numbers, against the snapshots' {r['snapshot_numbers']})"
+                for r in dense) + "."]
 
 
 def capacity_table(quick: bool) -> tuple[list[str], list[dict]]:
@@ -289,6 +321,106 @@ def load_table(quick: bool, scene: str = "pinball") -> tuple[list[str], list[dic
     return lines, rows
 
 
+def _tree_cpu(pid: int) -> float:
+    """CPU seconds of pid and every process below it (the front, its workers)."""
+    kids: dict[int, list[int]] = {}
+    for d in Path("/proc").iterdir():
+        if d.name.isdigit():
+            with contextlib.suppress(OSError, IndexError, ValueError):
+                kids.setdefault(int((d / "stat").read_text().rsplit(")", 1)[1].split()[1]), []).append(int(d.name))
+    total, todo = 0.0, [pid]
+    while todo:
+        p = todo.pop()
+        with contextlib.suppress(OSError):
+            total += _cpu_of(p)
+        todo += kids.get(p, [])
+    return total
+
+
+async def _rooms(port: int, rooms: int, seconds: float, tag: str, server_pid: int, expected: int) -> dict:
+    """`rooms` fresh rooms with one watching client each (one asyncio process), all joined at
+    once (each room starts at its first join); per message of each room's first `seconds`
+    (room time), the latency from its time to its arrival on the client's estimate of its
+    room's clock (every room has its own); the server's CPU (front and workers) per second."""
+    from websockets.asyncio.client import connect
+
+    async def one(name: str, lat: list):
+        ws = await connect(f"ws://127.0.0.1:{port}/ws?room={name}", max_queue=None)
+        await ws.send(json.dumps({"type": "hello", "v": protocol.VERSION, "seq": 0, "play": False,
+                                  "events": False}))
+        json.loads(await ws.recv())
+        seq, best, held = 1, (float("inf"), 0.0), []
+        end = None
+        while end is None or time.monotonic() < end:
+            # a ping every 0.2 s all along: the least round trip's offset, applied at the end
+            # (while 80 rooms join, round trips are long, and so is the offset's error)
+            c = time.monotonic()
+            await ws.send(json.dumps({"type": "ping", "seq": seq, "id": seq, "c": c}))
+            seq += 1
+            while True:
+                try:
+                    m = json.loads(await asyncio.wait_for(ws.recv(), 0.2))
+                except asyncio.TimeoutError:
+                    break
+                if m["type"] == "pong":
+                    now = time.monotonic()
+                    if now - m["c"] < best[0]:
+                        best = (now - m["c"], m["s"] - (m["c"] + now) / 2)
+                else:
+                    held.append((time.monotonic(), m))
+            if end is None:   # its room's time `seconds`, plus 2 s for what is late
+                end = time.monotonic() + seconds + 2.0 - (time.monotonic() + best[1])
+        lat.extend(arrived + best[1] - m["t"] for arrived, m in held if m["type"] == "ev" and m["t"] < seconds)
+        await ws.close()
+
+    lat: list[float] = []
+    cpu0, wall0, ccpu = _tree_cpu(server_pid), time.monotonic(), time.process_time()
+    await asyncio.gather(*(one(f"{tag}-{k}", lat) for k in range(rooms)))
+    scpu, wall = _tree_cpu(server_pid) - cpu0, time.monotonic() - wall0
+    ccpu = time.process_time() - ccpu
+    lat.sort()
+    q = lambda p: lat[min(len(lat) - 1, int(p * len(lat)))] if lat else float("nan")  # noqa: E731
+    return {"rooms": rooms, "messages": len(lat), "p50_ms": 1e3 * q(0.5), "p99_ms": 1e3 * q(0.99),
+            "late_50ms": sum(x > 0.05 for x in lat) / max(len(lat), 1),
+            "expected": rooms * expected,
+            "server_cpu_per_s": scpu / wall, "server_cpu_per_room": scpu / wall / rooms,
+            "wall": wall, "client_cpu_per_s": ccpu / wall, "load": os.getloadavg()[0]}
+
+
+def rooms_table(quick: bool, scene: str = "pinball") -> tuple[list[str], list[dict]]:
+    """Rooms of `scene` per machine with 1 and 2 worker processes: levels of rooms at once."""
+    levels = (5, 20) if quick else (10, 40, 80)
+    seconds = 2.0 if quick else 4.0
+    # what one room sends the page over its first seconds (a replay waking at each event)
+    expected = len(replay(load(ROOT / "examples" / "scenes" / f"{scene}.toml"), seconds)[3].page)
+    rows = []
+    for workers in (1, 2):
+        proc = subprocess.Popen([sys.executable, "-m", "max2code", "serve",
+                                 str(ROOT / "examples" / "scenes" / f"{scene}.toml"), "--port", "0",
+                                 "--rooms", "200", "--workers", str(workers)],
+                                stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        try:
+            port = int(re.search(r":(\d+)/", proc.stderr.readline()).group(1))
+            for k in levels:   # fresh rooms each level: every scene from its start, all at once
+                r = asyncio.run(_rooms(port, k, seconds, f"w{workers}-n{k}", proc.pid, expected))
+                rows.append({"workers": workers, **r})
+        finally:
+            proc.send_signal(2)
+            proc.wait(30)
+    lines = [f"Scene {scene}: that many fresh rooms at once (the scenes from their start, their "
+             "busiest seconds), one watching client each (the page's hello: no event lists), all "
+             "clients in one asyncio process; `max2code serve --workers 1` (one process) and "
+             "`--workers 2` (a front and two workers):", "",
+             "| workers | rooms | messages received (a replay's count) | latency p50 | p99 | later than 50 ms "
+             "| server CPU s per s (front + workers) | per room | clients' CPU s per s "
+             "| machine load (1 min) |", "|---|---|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        lines.append(f"| {r['workers']} | {r['rooms']} | {r['messages']} ({r['expected']}) | {r['p50_ms']:.1f} ms | "
+                     f"{r['p99_ms']:.1f} ms | {100 * r['late_50ms']:.1f} % | {r['server_cpu_per_s']:.3f} | {r['server_cpu_per_room']:.4f} | "
+                     f"{r['client_cpu_per_s']:.2f} | {r['load']:.1f} |")
+    return lines, rows
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--quick", action="store_true")
@@ -299,6 +431,7 @@ def main() -> int:
     t_lines, t_rows = bytes_table(args.quick, None)
     c_lines, c_rows = capacity_table(args.quick)
     l_lines, l_rows = load_table(args.quick)
+    m_lines, m_rows = rooms_table(args.quick)
     text = "\n".join([
         "# max2code serve: events against 60 Hz snapshots (bench/serve.py)", "",
         f"Machine: {os.cpu_count()} cores (shared), Python {sys.version.split()[0]}; "
@@ -331,10 +464,15 @@ def main() -> int:
         "engine's) to its arrival, on the clients' estimate of the server clock (a change earlier "
         "in a burst waited up to 1/60 s more for its message); it includes the server's wake-up lateness "
         "(asyncio's timer), encoding, the send to every client and the clients' own queueing "
-        "(100 clients share one Python process here).", ""])
+        "(100 clients share one Python process here).", "",
+        "## Rooms per machine: one process against two workers", "", *m_lines, "",
+        "A room keeps real time while its messages arrive within a frame or two of their time; "
+        "CPU per room times rooms is what the cores must give (docs/server.md, \"Rooms across "
+        "cores and machines\").", ""])
     Path(args.o).write_text(text)
     (Path(args.o).with_suffix(".json")).write_text(json.dumps(
-        {"bytes": b_rows, "bytes_every_step": r_rows, "bytes_quarter_pixel": t_rows, "capacity": c_rows, "load": l_rows}, indent=1))
+        {"bytes": b_rows, "bytes_every_step": r_rows, "bytes_quarter_pixel": t_rows, "capacity": c_rows, "load": l_rows,
+         "rooms": m_rows}, indent=1))
     print(text)
     return 0
 

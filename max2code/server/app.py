@@ -103,6 +103,7 @@ class Server:
         loop = asyncio.get_running_loop()
         seq = 0
         room = client = None
+        enc = "json"       # (hello is JSON text; after it, what hello asked for)
         try:
             try:
                 first = await asyncio.wait_for(ws.recv(), HELLO_TIMEOUT)
@@ -115,18 +116,19 @@ class Server:
             room = self.room(self._room_name(msg, ws))
             if len(room.clients) >= self.options.max_clients:
                 raise ProtocolError(f"room {room.name!r} is full")
-            client, world = room.join(_sender(ws), msg.name, msg.play, msg.events)
+            client, world = room.join(_sender(ws), msg.name, msg.play, msg.events, msg.enc)
+            enc = msg.enc
             await ws.send(world)
             async for frame in ws:
                 if not limit.allow(loop.time()):
                     raise ProtocolError(f"more than {protocol.RATE:g} messages per second")
-                msg = protocol.parse(frame, seq)
+                msg = protocol.parse(frame, seq, enc)
                 seq += 1
                 reply = self._dispatch(room, client, msg)
                 if reply is not None:
-                    await ws.send(reply)
+                    await ws.send(protocol.encode(reply, enc))
         except ProtocolError as exc:
-            await _refuse(ws, exc)
+            await _refuse(ws, exc, enc)
         except ConnectionClosed:
             pass
         finally:
@@ -145,10 +147,10 @@ class Server:
             raise ProtocolError(f"room {name!r} is served by another worker: connect to /ws?room={name}")
         return name
 
-    def _dispatch(self, room: Room, client, msg) -> str | None:
-        """A checked message to its room; the text to answer with, if any."""
+    def _dispatch(self, room: Room, client, msg) -> dict | None:
+        """A checked message to its room; the message to answer with, if any."""
         if isinstance(msg, Ping):
-            return protocol.encode({"type": "pong", "id": msg.id, "c": msg.c, "s": room.clock()})
+            return {"type": "pong", "id": msg.id, "c": msg.c, "s": room.clock()}
         if isinstance(msg, Hello):
             raise ProtocolError("hello twice")
         if isinstance(msg, Key):
@@ -158,7 +160,7 @@ class Server:
             why = room.point(client, msg.body, msg.x, msg.y)
         if why is None:
             return None
-        return protocol.encode({"type": "refused", "seq": msg.seq, "reason": why})
+        return {"type": "refused", "seq": msg.seq, "reason": why}
 
 
 def _sender(ws: ServerConnection):
@@ -166,12 +168,12 @@ def _sender(ws: ServerConnection):
     (websockets.broadcast semantics), so a slow client never holds the world up."""
     from websockets.asyncio.server import broadcast
 
-    return lambda text: broadcast([ws], text)
+    return lambda frame: broadcast([ws], frame)
 
 
-async def _refuse(ws: ServerConnection, exc: ProtocolError) -> None:
+async def _refuse(ws: ServerConnection, exc: ProtocolError, enc: str) -> None:
     try:
-        await ws.send(protocol.error(exc.reason))
+        await ws.send(protocol.error(exc.reason, enc))
         await ws.close(exc.code, exc.reason[:120])
     except ConnectionClosed:
         pass

@@ -35,13 +35,15 @@ RATE = 60.0          # most event messages per second (a display's frame rate); 
 
 @dataclass(eq=False)
 class Client:
-    """A joined connection: `send` takes a text frame (the server's WebSocket, or a test's list)."""
-    send: Callable[[str], None]
+    """A joined connection: `send` takes a frame (the server's WebSocket, or a test's list):
+    JSON text, or MessagePack bytes when its hello asked for them (`enc`)."""
+    send: Callable[[str | bytes], None]
     name: str
     controls: tuple[int, ...] = ()
     keys: set[str] = field(default_factory=set)
     sent_bytes: int = 0
     events: bool = True      # false: ev messages reach it without "ev" (hello's events)
+    enc: str = "json"        # hello's enc: "json" text frames or "msgpack" binary ones
 
 
 @dataclass
@@ -253,29 +255,29 @@ class Room:
 
     def _broadcast(self, message: dict) -> None:
         """One message to every client; an ev message without its events to those that asked
-        for none (encoded once for each kind of client there is)."""
-        texts: dict[bool, str] = {}
+        for none, in each client's encoding (encoded once for each kind of client there is)."""
+        texts: dict[tuple[bool, str], str | bytes] = {}
         self.stats.messages += 1
         for c in list(self.clients):
             events = c.events or "ev" not in message
-            text = texts.get(events)
+            text = texts.get((events, c.enc))
             if text is None:
-                text = texts[events] = protocol.encode(
-                    message if events else {k: v for k, v in message.items() if k != "ev"})
+                text = texts[events, c.enc] = protocol.encode(
+                    message if events else {k: v for k, v in message.items() if k != "ev"}, c.enc)
             c.sent_bytes += len(text)
             self.stats.bytes_sent += len(text)
             c.send(text)
 
     # -- clients ----------------------------------------------------------------------------
 
-    def join(self, send: Callable[[str], None], name: str, play: bool = True,
-             events: bool = True) -> tuple[Client, str]:
+    def join(self, send: Callable[[str | bytes], None], name: str, play: bool = True,
+             events: bool = True, enc: str = "json") -> tuple[Client, str | bytes]:
         """A new client: the bodies it controls (the first free player body, if any) and the
         world message it starts from (every body's shape, style and segment now). `events`
-        false: its ev messages come without their list of events."""
+        false: its ev messages come without their list of events; `enc`: its frames' encoding."""
         taken = {b for c in self.clients for b in c.controls}
         free = [b for b in self.players if b not in taken]
-        client = Client(send, name, tuple(free[:1]) if play else (), events=events)
+        client = Client(send, name, tuple(free[:1]) if play else (), events=events, enc=enc)
         self.advance(self.clock())
         if self._waiting():   # what the others are owed goes out first: a joiner starts level
             self._flush(self.world.motions()[0], None)
@@ -292,7 +294,7 @@ class Room:
         if self.failed:
             message["failed"] = self.failed
         self.clients.append(client)
-        return client, protocol.encode(message)
+        return client, protocol.encode(message, enc)
 
     def leave(self, client: Client) -> None:
         if client in self.clients:

@@ -6,6 +6,7 @@ from __future__ import annotations
 import asyncio
 import json
 
+import msgpack
 from websockets.asyncio.client import connect
 
 from max2code.server import protocol, wire
@@ -20,17 +21,32 @@ class Client:
         self.bodies: dict[int, dict] = {}
         self.messages: list[dict] = []
         self.n = 0
+        self.enc = "json"      # (hello is JSON; later frames as hello asked)
+        self.frames: list[str | bytes] = []   # every frame received, as it came
+
+    def decode(self, frame: str | bytes) -> dict:
+        """A server frame: JSON text, or MessagePack binary on a connection that asked for it
+        (a frame of the other kind is a failure)."""
+        self.frames.append(frame)
+        if self.enc == "msgpack":
+            assert isinstance(frame, bytes), frame
+            return msgpack.unpackb(frame, raw=False)
+        assert isinstance(frame, str), frame
+        return json.loads(frame)
 
     @classmethod
     async def join(cls, url: str, room: str = "main", play: bool = True, events: bool = True,
-                   **kw) -> "Client":
+                   enc: str | None = None, **kw) -> "Client":
         ws = await connect(f"{url}?room={room}", **kw)   # (the front routes by the URL's room)
         c = cls(ws)
         hello = {"type": "hello", "v": protocol.VERSION, "room": room, "play": play}
         if not events:
             hello["events"] = False
+        if enc is not None:
+            hello["enc"] = enc
         await c.send(hello)
-        c.world = json.loads(await ws.recv())
+        c.enc = enc or "json"
+        c.world = c.decode(await ws.recv())
         assert c.world["type"] == "world", c.world
         c.n = c.world["n"]
         c.bodies = {b["id"]: b for b in c.world["bodies"]}
@@ -39,7 +55,8 @@ class Client:
         return c
 
     async def send(self, message: dict) -> None:
-        await self.ws.send(json.dumps({**message, "seq": self.seq}))
+        message = {**message, "seq": self.seq}
+        await self.ws.send(msgpack.packb(message) if self.enc == "msgpack" else json.dumps(message))
         self.seq += 1
 
     def apply(self, m: dict) -> None:
@@ -64,7 +81,7 @@ class Client:
                 text = await asyncio.wait_for(self.ws.recv(), left)
             except asyncio.TimeoutError:
                 break
-            m = json.loads(text)
+            m = self.decode(text)
             self.apply(m)
             out.append(m)
         return out
@@ -73,7 +90,7 @@ class Client:
         loop = asyncio.get_running_loop()
         end = loop.time() + seconds
         while (left := end - loop.time()) > 0:
-            m = json.loads(await asyncio.wait_for(self.ws.recv(), left))
+            m = self.decode(await asyncio.wait_for(self.ws.recv(), left))
             self.apply(m)
             if predicate(m):
                 return m
