@@ -1589,6 +1589,7 @@ static double isolation_split(double a, double b)
 #define ISOLATED 1
 #define CLEARED 0
 #define UNRESOLVED (-1)
+#define SCANNED 2 /* isolated by the derivative method (never_late looks again) */
 
 static int derivative_method(const double c[], int n, double lo, double T,
                              double x0, double skin, double *t, int *graze);
@@ -2048,9 +2049,10 @@ static int speculate_first_root(const double p[], int n, double T, double *r,
 }
 
 /* First event in (0, T] for p (T <= FAST_LIMIT, p(0) > 0) by Budan-Fourier
- * bisection.  Returns ISOLATED with *t (and *graze) set, CLEARED when there
- * is nothing in (0, T], or UNRESOLVED with *a the left end of what is left
- * to the derivative method. */
+ * bisection.  Returns ISOLATED with *t (and *graze) set (SCANNED where the
+ * derivative method found it), CLEARED when there is nothing in (0, T], or
+ * UNRESOLVED with *a the left end of what is left to the derivative
+ * method. */
 static int isolate_first_root(const double p[], int n, double skin,
                               double T, double failed_w, double *t, int *graze,
                               double *a_out)
@@ -2166,7 +2168,7 @@ static int isolate_first_root(const double p[], int n, double skin,
             }
             PHASE(1);
             if (hit)
-                return ISOLATED;
+                return SCANNED;
             if (hi == T)
                 return CLEARED;
             from = hi;
@@ -2273,7 +2275,7 @@ static int isolate_first_root(const double p[], int n, double skin,
         int hit = derivative_method(p, n, a.x, b->x, 0, skin, t, graze);
         PHASE(1);
         if (hit)
-            return ISOLATED;
+            return SCANNED;
         if (!(b->qt[0] - b->tol[0] > 0)) {
             /* p has no root in (a, b], so p(b) > 0, but q(b) is not: the
              * counts for q cannot go on from b */
@@ -2630,7 +2632,10 @@ static double touch_critical(const double p[], double d[MAXN + 1][MAXN + 1],
 /* Interval solver                                                      */
 /* ------------------------------------------------------------------ */
 
-/* First root in (0, T] of p (degree n >= 3, normalised, p[0] > 0). */
+/* First root in (0, T] of p (degree n >= 3, normalised, p[0] > 0):
+ * ISOLATED, SCANNED where the derivative method found it (its scan's fma
+ * signs cannot see a crossing pair inside the noise: never_late looks
+ * again), or 0 (none). */
 static int first_root_interval(const double p[], int n, double T,
                                double skin, double failed_w, double *t, int *graze)
 {
@@ -2638,9 +2643,9 @@ static int first_root_interval(const double p[], int n, double T,
     if (T <= (n <= 8 ? FAST_LIMIT_LOW : FAST_LIMIT_HIGH)) {
         int r = isolate_first_root(p, n, skin, T, failed_w, t, graze, &lo);
         if (r != UNRESOLVED)
-            return r == ISOLATED;
+            return r; /* (CLEARED is 0) */
     }
-    return derivative_method(p, n, lo, T, 0, skin, t, graze);
+    return derivative_method(p, n, lo, T, 0, skin, t, graze) ? SCANNED : 0;
 }
 
 /* Degree-specialised copies of the solve for degrees 4 and 8 -- the
@@ -3440,16 +3445,11 @@ static void shift_dd(const double c[], int n, double x, double w, double q[])
     }
 }
 
-/* inside_the_noise's shortcut for the common near miss, a double root's:
- * p certainly positive on [r - h, r] and above the fma noise at r - h, so
- * no root hides in the noise to the left of the touch r.  From Horner's
- * chains at r (p and its first three derivatives over k!, and the sums of
- * |terms| that bound their rounding and, at |x| <= r, the derivatives: as
- * touch_critical has them), p's compensated value less its error (m), and
- * Taylor's bound p(r - s) >= m - S s + L s^2 over [0, h], with S >= |p'(r)|
- * and L a lower bound of p''/2 there; h twice where the quadratic leaves
- * the noise. */
-static int positive_through_the_noise(const double c[], int n, double r)
+/* Horner's chains at r for the certificates below: f[0..3] = p(r), p'(r),
+ * p''(r)/2, p'''(r)/6, and the sums of |terms| g[k] = sum C(i, k) |c_i|
+ * r^(i-k), k = 0..4, that bound their rounding and, at |x| <= r, the
+ * derivatives |p^(k)(x)| / k! (as touch_critical has them). */
+static void noise_chains(const double c[], int n, double r, double f[4], double g[5])
 {
     double f0 = c[n], f1 = 0, f2 = 0, f3 = 0;
     double g0 = fabs(c[n]), g1 = 0, g2 = 0, g3 = 0, g4 = 0;
@@ -3464,35 +3464,86 @@ static int positive_through_the_noise(const double c[], int n, double r)
         g1 = g1 * r + g0;
         g0 = g0 * r + fabs(c[i]);
     }
-    (void)f0;
+    f[0] = f0; f[1] = f1; f[2] = f2; f[3] = f3;
+    g[0] = g0; g[1] = g1; g[2] = g2; g[3] = g3; g[4] = g4;
+}
+
+/* inside_the_noise's shortcut for the common near miss, a double root's:
+ * p certainly positive on [r - h, r] and above the fma noise at r - h, so
+ * no root hides in the noise to the left of the touch r.  From Horner's
+ * chains at r (noise_chains), p's compensated value less its error (m),
+ * and Taylor's bound p(r - s) >= m - S s + L s^2 over [0, h], with S >=
+ * |p'(r)| and L a lower bound of p''/2 there; h twice where the quadratic
+ * leaves the noise. */
+static int positive_through_the_noise(const double c[], int n, double r)
+{
+    double f[4], gs[5];
+    noise_chains(c, n, r, f, gs);
     double e = noise_factor(n), rel = 4.0 * (n + 1) * UNIT_ROUNDOFF, g = 0.5 * e;
     double v = horner_compensated(c, n, r);
-    double m = v - 2 * (UNIT_ROUNDOFF * fabs(v) + g * g * g0); /* p(r) >= m */
-    double S = (fabs(f1) + e * g1) * (1 + rel);                /* >= |p'(r)| */
-    double N = e * g0 * (1 + rel); /* >= the fma noise anywhere in [0, r] */
-    if (!(m > 0 && f2 > 0))
+    double m = v - 2 * (UNIT_ROUNDOFF * fabs(v) + g * g * gs[0]); /* p(r) >= m */
+    double S = (fabs(f[1]) + e * gs[1]) * (1 + rel);              /* >= |p'(r)| */
+    double N = e * gs[0] * (1 + rel); /* >= the fma noise anywhere in [0, r] */
+    if (!(m > 0 && f[2] > 0))
         return 0;
-    double h = (S + sqrt(S * S + 4 * f2 * N)) / f2;
-    double L = f2 * (1 - rel) - (e * g2 + 3 * (fabs(f3) + e * g3) * h + 6 * g4 * h * h) * (1 + rel);
+    double h = (S + sqrt(S * S + 4 * f[2] * N)) / f[2];
+    double L = f[2] * (1 - rel) -
+               (e * gs[2] + 3 * (fabs(f[3]) + e * gs[3]) * h + 6 * gs[4] * h * h) * (1 + rel);
     return h < r && L > 0 && S * S < 4 * L * m * (1 - rel)
            && (m - S * h + L * h * h) * (1 - rel) > N;
 }
 
+/* inside_the_noise's shortcut for a crossing r the derivative method's
+ * scan found, the common case: p' certainly negative on [r - h, r] and p
+ * above the fma noise at r - h, so p falls monotonely through the noise
+ * left of r and no crossing pair hides in it (never_late settles the one
+ * root there).  From the chains at r (noise_chains), signed: m <= p(r)
+ * (the plain chain less its noise: no compensated evaluation, which cost
+ * graze8 3 % of its instructions), D <= -p'(r) and L <= p''/2 over
+ * [r - h, r] (as positive_through_the_noise has it), so -p'(r - s) >= D +
+ * 2 L s and p(r - s) >= m + D s + L s^2 for s in [0, h]; h twice where that quadratic leaves the noise (where L > 0, as
+ * at the first root of a near-double pair, the common slow crossing: the
+ * graze family's).  Fails, as it should, where p' is within its own noise:
+ * a cluster's. */
+static int falls_through_the_noise(const double c[], int n, double r)
+{
+    double f[4], gs[5];
+    noise_chains(c, n, r, f, gs);
+    double e = noise_factor(n), rel = 4.0 * (n + 1) * UNIT_ROUNDOFF;
+    double N = e * gs[0] * (1 + rel); /* >= the fma noise anywhere in [0, r] */
+    double m = f[0] - N;              /* p(r) >= m (the chain's own noise) */
+    double D = -(f[1] + e * gs[1]) * (1 - rel); /* <= -p'(r) */
+    if (!(D > 0 && N > m))
+        return 0;
+    double k = f[2] > 0 ? f[2] : 0;
+    double h = 4 * (N - m) / (D + sqrt(D * D + 4 * k * (N - m)));
+    double L = f[2] * (1 - rel) -
+               (e * gs[2] + 3 * (fabs(f[3]) + e * gs[3]) * h + 6 * gs[4] * h * h) * (1 + rel);
+    double low = L < 0 ? L : 0;
+    return h < r && D + 2 * low * h * (1 + rel) > 0 && (m + D * h + L * h * h) * (1 - rel) > N;
+}
+
 /* A touch r where p is certainly positive (compensated), found only because
- * its fma value was within the noise there.  Inside that noise the scan
- * cannot see a cluster's crossings: a quartic cluster (the hostile fuzz at
- * WINDOW_FUZZ_COUNT=20000) had its exact first root 5.3e-8 before 1 and
- * the touch at 1 + 7.6e-6.  So p is solved again from where the noise
+ * its fma value was within the noise there (touch = 1), or a crossing r
+ * that the derivative method's scan found by fma signs (touch = 0).  Inside
+ * that noise the scan cannot see a cluster's crossings: a quartic cluster
+ * (the hostile fuzz at WINDOW_FUZZ_COUNT=20000) had its exact first root
+ * 5.3e-8 before 1 and the touch at 1 + 7.6e-6; a quintic one its first
+ * root at 1 - 1.7e-4 and the scan's crossing at 1 + 1.7e-4, the two roots
+ * before it in the noise.  So p is solved again from where the noise
  * begins to its left, x_b (steps to the left, doubling, to the first point
  * outside it, where p is certainly positive), after a shift of p to x_b in
  * double-double (shift_dd), over (x_b, r): its first root if it has one,
- * else the touch as it was.  A near miss of a double root keeps its touch:
- * the shifted p's minimum is certainly positive, no touch in its far smaller
- * noise. */
-NOINLINE static void inside_the_noise(const double c[], int n, double *root, int *g)
+ * else the answer as it was.  Not where Taylor's bounds at r show that
+ * nothing hides there: a near miss of a double root keeps its touch
+ * (positive_through_the_noise), a crossing where p falls through the
+ * noise its root (falls_through_the_noise). */
+NOINLINE static void inside_the_noise(const double c[], int n, int touch, double *root,
+                                      int *g)
 {
     double r = *root;
-    if (scale_exponent(r, n) != 0 || positive_through_the_noise(c, n, r))
+    if (scale_exponent(r, n) != 0 ||
+        (touch ? positive_through_the_noise(c, n, r) : falls_through_the_noise(c, n, r)))
         return;
     double step = r * 0x1p-50, xb;
     for (;;) {
@@ -3535,7 +3586,7 @@ static void never_late(const double c[], int n, const double tail[], int m, doub
     double before = r - d;
     int hs = band_side(c, n, tail, m, *g ? r : before);
     if (*g && hs == 1 && n >= 3 && m == 0) {
-        inside_the_noise(c, n, root, g);
+        inside_the_noise(c, n, 1, root, g);
         return;
     }
     if (*g ? hs != -1 : hs == 1)
@@ -3580,6 +3631,22 @@ NOINLINE static void late_with_tail(const double c[], int n, const double droppe
     for (int j = 0; j < m; j++)
         tail[j] = ldexp(sign * dropped[j], -E);
     never_late(c, n, tail, m, root, g);
+}
+
+/* never_late for a root the derivative method found (SCANNED), with no
+ * terms dropped: a crossing there is then looked for again inside the fma
+ * noise to its left (inside_the_noise), from where it stands or where
+ * never_late's steps left it -- where those steps can run (r 2^-50 > 0,
+ * r <= 2^60).  (Out of line, never_late unchanged: with a flag of its own
+ * for this, bench/roots_ab.py HEAD --instructions counted generic4 1.007,
+ * noroot8 1.005, which never come here.) */
+NOINLINE static void late_scanned(const double c[], int n, double *root, int *g)
+{
+    int crossing = !*g && n >= 3;
+    never_late(c, n, NULL, 0, root, g);
+    double r = *root;
+    if (crossing && r <= 0x1p60 && r * 0x1p-50 > 0)
+        inside_the_noise(c, n, 0, root, g);
 }
 
 /* The leading terms reduce dropped from c_in (of the given degree; n kept
@@ -3629,12 +3696,16 @@ static int solve_normalised(double c[], const int e[], const int nz[], int n,
     /* (the exponents before scaling: the same; reduce's where it has it) */
     double B = bound >= 0 ? bound : root_bound(e, nz, skin > 0 ? NULL : c, n);
     double T = tu < B ? tu : B;      /* (fmin is a library call) */
-    int found = T > 0 && first_root_interval_fixed(c, n, T, skin, failed_w, root, g);
-    if (found && skin == 0 && m == 0)
+    int found = T > 0 ? first_root_interval_fixed(c, n, T, skin, failed_w, root, g) : 0;
+    if (!found)
+        return 0;
+    if (skin == 0 && m == 0 && found != SCANNED)
         never_late(c, n, NULL, 0, root, g);
-    else if (found && skin == 0)
+    else if (skin == 0 && m == 0)
+        late_scanned(c, n, root, g);
+    else if (skin == 0)
         late_with_tail(c, n, dropped, m, sign, E, root, g);
-    return found;
+    return 1;
 }
 
 /* The common path of every entry point: eps is the contact skin (>= 0, in

@@ -204,12 +204,18 @@ def test_no_crossing_from_the_noise_at_the_window_end(runtime: str, tmp_path: Pa
 # scan saw a near-miss touch where p is certainly positive (compensated) -- at 1 + 9.1e-5 and
 # 1 + 7.6e-6 -- while the exact polynomial of the doubles has its first root at 1 (a quintic
 # cluster) and at 1 - 5.3e-8 (a quartic one).  Now solved again inside the noise, after a
-# double-double shift (docs/runtimes.md).
+# double-double shift (docs/runtimes.md).  The third: a crossing the derivative method's scan
+# found at 1 + 1.7e-4 by fma signs, with the quintic cluster's first two roots (at 1 - 1.7e-4,
+# the exact first, and near 1) inside the noise to its left; never_late took it to the edge
+# of its band (a touch at 1.0001726794909491).  Now a scanned crossing is looked for again
+# inside the noise too.
 INSIDE_THE_NOISE = [
     ((-0.07951226132556138, 0.397481868769649, -0.7948048618280069, 0.7946459861217404,
       -0.3972435552102493, 0.07943282347242814), math.inf),
     ((0.007883173239276923, -0.03153269330775821, 0.04729904048761308, -0.03153269400905923,
-      0.007883173589927435), 2.0)]
+      0.007883173589927435), 2.0),
+    ((-1.000000124361768, 5.000000497447069, -10.000000746170599, 10.000000497447063,
+      -5.000000124361765, 1.0), 1000.0)]
 
 
 @pytest.mark.parametrize("runtime", er.RUNTIMES)

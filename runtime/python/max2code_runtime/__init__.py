@@ -110,11 +110,16 @@ def _solve_normalised(c: list[float], n: int, emax: int, tu: float, method: str,
     # contact need not be near a positive root)
     B = solver.root_bound(c, n, positive=not skin > 0)
     T = tu if tu < B else B
-    hit = solver.first_root_interval(c, n, T, skin, failed_w) if T > 0 else None
-    if hit is None or skin != 0:
-        return hit
+    found = solver.first_root_interval(c, n, T, skin, failed_w) if T > 0 else None
+    if found is None:
+        return None
+    t, g, scanned = found
+    if skin != 0:
+        return t, g
     tail = [solver._ldexp(sign * v, -E) for v in dropped]  # scaled as c
-    return solver.never_late(c, n, tail, hit)
+    if scanned and not tail:
+        return solver.late_scanned(c, n, (t, g))
+    return solver.never_late(c, n, tail, (t, g))
 
 
 def _solve_python(cc: list[float], tmax: float, method: str, eps: float) -> tuple[int, float, bool]:

@@ -327,9 +327,10 @@ def _shift_dd(c: Sequence[float], n: int, x: float, w: float) -> list[float]:
     return out
 
 
-def _positive_through_the_noise(c: Sequence[float], n: int, r: float) -> bool:
-    """C positive_through_the_noise: p certainly positive on [r - h, r] and above the fma noise
-    at r - h (Taylor's bound from Horner's chains at r; the C source has it)."""
+def _noise_chains(c: Sequence[float], n: int, r: float) -> tuple[list[float], list[float]]:
+    """C noise_chains: Horner's chains at r, f = p, p', p''/2, p'''/6 at r, and
+    the sums of |terms| g_k = sum C(i, k) |c_i| r^(i-k), k = 0..4, that bound their rounding
+    and, at |x| <= r, the derivatives |p^(k)(x)| / k!."""
     f0, f1, f2, f3 = c[n], 0.0, 0.0, 0.0
     g0, g1, g2, g3, g4 = abs(c[n]), 0.0, 0.0, 0.0, 0.0
     for i in range(n - 1, -1, -1):
@@ -342,6 +343,13 @@ def _positive_through_the_noise(c: Sequence[float], n: int, r: float) -> bool:
         g2 = g2 * r + g1
         g1 = g1 * r + g0
         g0 = g0 * r + abs(c[i])
+    return [f0, f1, f2, f3], [g0, g1, g2, g3, g4]
+
+
+def _positive_through_the_noise(c: Sequence[float], n: int, r: float) -> bool:
+    """C positive_through_the_noise: p certainly positive on [r - h, r] and above the fma noise
+    at r - h (Taylor's bound from Horner's chains at r; the C source has it)."""
+    (_, f1, f2, f3), (g0, g1, g2, g3, g4) = _noise_chains(c, n, r)
     e, rel = noise_factor(n), 4.0 * (n + 1) * U
     g = 0.5 * e
     v = _horner_compensated(c, n, r)
@@ -356,15 +364,37 @@ def _positive_through_the_noise(c: Sequence[float], n: int, r: float) -> bool:
             and (m - S * h + L * h * h) * (1 - rel) > N)
 
 
-def _inside_the_noise(c: Sequence[float], n: int, hit: tuple[float, bool]) -> tuple[float, bool]:
+def _falls_through_the_noise(c: Sequence[float], n: int, r: float) -> bool:
+    """C falls_through_the_noise: p' certainly negative on [r - h, r] and p above the fma noise
+    at r - h, so no crossing pair hides in the noise to the left of the crossing r (Taylor's
+    bounds from Horner's chains at r, signed; the C source has it)."""
+    (f0, f1, f2, f3), (g0, g1, g2, g3, g4) = _noise_chains(c, n, r)
+    e, rel = noise_factor(n), 4.0 * (n + 1) * U
+    N = e * g0 * (1 + rel)  # >= the fma noise anywhere in [0, r]
+    m = f0 - N  # p(r) >= m (the chain's own noise)
+    D = -(f1 + e * g1) * (1 - rel)  # <= -p'(r)
+    if not (D > 0 and N > m):
+        return False
+    k = f2 if f2 > 0 else 0.0
+    h = 4 * (N - m) / (D + math.sqrt(D * D + 4 * k * (N - m)))
+    L = f2 * (1 - rel) - (e * g2 + 3 * (abs(f3) + e * g3) * h + 6 * g4 * h * h) * (1 + rel)
+    low = L if L < 0 else 0.0
+    return h < r and D + 2 * low * h * (1 + rel) > 0 and (m + D * h + L * h * h) * (1 - rel) > N
+
+
+def _inside_the_noise(c: Sequence[float], n: int, hit: tuple[float, bool], touch: bool
+                      ) -> tuple[float, bool]:
     """C inside_the_noise: a touch r where p is certainly positive (compensated), found only
-    because the fma value was within its noise there.  Inside that noise the scan cannot see a
-    cluster's crossings: p is solved again from where the noise begins to its left, x_b (steps
-    to the left, doubling, to the first point outside it, where p is certainly positive), after
-    an exact-as-can-be shift of p to x_b (_shift_dd), over (x_b, r).  Its first root if it has
-    one, else the touch as it was."""
+    because the fma value was within its noise there, or a crossing r that the derivative
+    method's scan found by fma signs.  Inside that noise the scan cannot see a cluster's
+    crossings: p is solved again from where the noise begins to its left, x_b (steps to the
+    left, doubling, to the first point outside it, where p is certainly positive), after an
+    exact-as-can-be shift of p to x_b (_shift_dd), over (x_b, r).  Its first root if it has
+    one, else the answer as it was.  Not where Taylor's bounds at r show that no root hides
+    there (_positive_through_the_noise for a touch, _falls_through_the_noise for a crossing)."""
     r, _ = hit
-    if _scale_exponent(r, n) != 0 or _positive_through_the_noise(c, n, r):
+    certified = _positive_through_the_noise if touch else _falls_through_the_noise
+    if _scale_exponent(r, n) != 0 or certified(c, n, r):
         return hit
     step = r * 2.0**-50
     while True:
@@ -407,7 +437,7 @@ def never_late(c: Sequence[float], n: int, tail: Sequence[float], hit: tuple[flo
     before = r - d
     hs = _band_side(c, n, tail, r if g else before)
     if g and hs == 1 and n >= 3 and not tail:
-        return _inside_the_noise(c, n, hit)
+        return _inside_the_noise(c, n, hit, True)
     if (hs != -1) if g else (hs == 1):
         return hit
     hi, lo, step = (r if g else before), 0.0, 2 * d
@@ -431,6 +461,19 @@ def never_late(c: Sequence[float], n: int, tail: Sequence[float], hit: tuple[flo
         else:
             hi, hs = mid, s
     return hi, hs != -1
+
+
+def late_scanned(c: Sequence[float], n: int, hit: tuple[float, bool]) -> tuple[float, bool]:
+    """C late_scanned: never_late for a root the derivative method found, no terms dropped; a
+    crossing there is then looked for again inside the fma noise to its left
+    (_inside_the_noise), from where it stands or where never_late's steps left it -- where
+    those steps can run (r 2^-50 > 0, r <= 2^60)."""
+    crossing = not hit[1] and n >= 3
+    out = never_late(c, n, [], hit)
+    r = out[0]
+    if crossing and r <= 2.0**60 and r * 2.0**-50 > 0:
+        return _inside_the_noise(c, n, out, False)
+    return out
 
 
 def dropped_terms(cc: Sequence[float], n: int) -> list[float]:
@@ -1044,7 +1087,8 @@ _CLEARED = object()
 
 
 def _isolate_first_root(p: Sequence[float], n: int, skin: float, T: float, failed_w: float):
-    """(t, graze), _CLEARED, or a float: the left end left to the derivative method.  failed_w:
+    """(t, graze, scanned), _CLEARED, or a float: the left end left to the derivative method
+    (scanned: the hit is its, first_root_interval).  failed_w:
     the window step 0b's test failed on (cleared_at_once; 0 when not tried), whose first
     _clearly_positive is that very test when T equals it: skipped then, as C does."""
     e = noise_factor(n) if skin >= 0 else 0.0
@@ -1066,7 +1110,7 @@ def _isolate_first_root(p: Sequence[float], n: int, skin: float, T: float, faile
         w = w if w < T else T
         if _bernstein_test(a, n, w, False).answer == BERN_ONE:
             tol = 0.0 if guess.over > 0 else PRECISE_NOW
-            return _refine_root(p, _derivative(p, n), n, 0.0, w, 1, tol, r), False
+            return _refine_root(p, _derivative(p, n), n, 0.0, w, 1, tol, r), False, False
     frm = 0.0  # > 0: (0, frm] is settled, the counts go on from it (C's `from`)
     # A touch ahead, with the graze check only: (0, lo] certified clear by the Bernstein test,
     # then the derivative method on (lo, hi] -- small, so few roots of the derivatives in it
@@ -1090,7 +1134,7 @@ def _isolate_first_root(p: Sequence[float], n: int, skin: float, T: float, faile
             hit = (_scan_pieces(p, d, n, lo, hi, [b], skin, b) if b > 0 else
                    _derivative_method(p, n, lo, hi, touch, skin))
             if hit is not None:
-                return hit
+                return (*hit, True)
             if hi == T:
                 return _CLEARED
             frm = hi
@@ -1099,7 +1143,7 @@ def _isolate_first_root(p: Sequence[float], n: int, skin: float, T: float, faile
         if start.answer == BERN_CLEAR:
             return _CLEARED
         if start.answer == BERN_ONE:
-            return _polish_isolated(p, n, 0.0, T, a.px, start.pend), False
+            return _polish_isolated(p, n, 0.0, T, a.px, start.pend), False, False
         q = start.q
         assert q is not None  # (asked for, and not cleared)
         if q.even and _bernstein_clear(q, n, _div(guess.dip, T)):  # (after a guess that failed)
@@ -1128,10 +1172,10 @@ def _isolate_first_root(p: Sequence[float], n: int, skin: float, T: float, faile
                 return _CLEARED
             continue
         if a.vp - b.vp == 1 and a.vq - b.vq == 1:
-            return _polish_isolated(p, n, a.x, b.x, a.px, b.px), False
+            return _polish_isolated(p, n, a.x, b.x, a.px, b.px), False, False
         # Bernstein only for an odd count (a root certain), and not again on (0, T]
         if odd and not tested and _bernstein_test(a, n, w, False).answer == BERN_ONE:
-            return _polish_isolated(p, n, a.x, b.x, a.px, b.px), False
+            return _polish_isolated(p, n, a.x, b.x, a.px, b.px), False, False
         tested = False
         # two roots in (a, b] by both counts within a quarter of b (mostly a touch): to the
         # derivative method at once, once per solve; else split, at the tangent rule's point,
@@ -1157,7 +1201,7 @@ def _isolate_first_root(p: Sequence[float], n: int, skin: float, T: float, faile
                     continue
         hit = _derivative_method(p, n, a.x, b.x, 0.0, skin)
         if hit is not None:
-            return hit
+            return (*hit, True)
         if not (b.qt[0] - b.tol[0] > 0):
             return b.x
         a = stack.pop()
@@ -1345,9 +1389,11 @@ def _scan_pieces(c: Sequence[float], d: list[list[float]], n: int, lo: float, T:
 
 
 def first_root_interval(p: Sequence[float], n: int, T: float, skin: float,
-                        failed_w: float) -> tuple[float, bool] | None:
-    """First root in (0, T] of p (degree n >= 3, normalised, p[0] > 0: normalise's sign);
-    failed_w: the window step 0b's test failed on, 0 if none (_isolate_first_root)."""
+                        failed_w: float) -> tuple[float, bool, bool] | None:
+    """First root in (0, T] of p (degree n >= 3, normalised, p[0] > 0: normalise's sign), as
+    (t, graze, scanned): scanned where the derivative method found it (its scan's fma signs
+    cannot see a crossing pair inside the noise: never_late looks again); failed_w: the window
+    step 0b's test failed on, 0 if none (_isolate_first_root)."""
     lo = 0.0
     if T <= (FAST_LIMIT_LOW if n <= 8 else FAST_LIMIT_HIGH):
         r = _isolate_first_root(p, n, skin, T, failed_w)
@@ -1356,7 +1402,8 @@ def first_root_interval(p: Sequence[float], n: int, T: float, skin: float,
         if isinstance(r, tuple):
             return r
         lo = r
-    return _derivative_method(p, n, lo, T, 0.0, skin)
+    hit = _derivative_method(p, n, lo, T, 0.0, skin)
+    return None if hit is None else (*hit, True)
 
 
 # ---------------------------------------------------------------------------

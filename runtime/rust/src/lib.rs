@@ -323,8 +323,14 @@ fn interval(c: &Coeffs, e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n: usize, tu
     let b = solver::root_bound(e, nz, if skin > 0.0 { None } else { Some(c) }, n);
     let t_end = if tu < b { tu } else { b };
     if t_end > 0.0 {
-        let hit = solver::first_root_interval(c, n, t_end, skin, failed_w)?;
-        Some(if skin == 0.0 { solver::never_late(c, n, tail, hit) } else { hit })
+        let (t, g, scanned) = solver::first_root_interval(c, n, t_end, skin, failed_w)?;
+        Some(if skin != 0.0 {
+            (t, g)
+        } else if scanned && tail.is_empty() {
+            solver::late_scanned(c, n, (t, g))
+        } else {
+            solver::never_late(c, n, tail, (t, g))
+        })
     } else {
         None
     }

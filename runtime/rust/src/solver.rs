@@ -748,9 +748,10 @@ fn shift_dd(c: &[f64], n: usize, x: f64, w: f64) -> Coeffs {
     q
 }
 
-/// C `positive_through_the_noise`: p certainly positive on [r - h, r] and above the fma noise
-/// at r - h (Taylor's bound from Horner's chains at r; the C source has it).
-fn positive_through_the_noise(c: &[f64], n: usize, r: f64) -> bool {
+/// C `noise_chains`: Horner's chains at r, f = p, p', p''/2, p'''/6 there, and the sums of
+/// |terms| g_k = sum C(i, k) |c_i| r^(i-k), k = 0..4, that bound their rounding and, at
+/// |x| <= r, the derivatives |p^(k)(x)| / k!.
+fn noise_chains(c: &[f64], n: usize, r: f64) -> ([f64; 4], [f64; 5]) {
     let (mut f1, mut f2, mut f3) = (0.0, 0.0, 0.0);
     let mut f0 = c[n];
     let (mut g0, mut g1, mut g2, mut g3, mut g4) = (c[n].abs(), 0.0, 0.0, 0.0, 0.0);
@@ -765,6 +766,13 @@ fn positive_through_the_noise(c: &[f64], n: usize, r: f64) -> bool {
         g1 = g1 * r + g0;
         g0 = g0 * r + c[i].abs();
     }
+    ([f0, f1, f2, f3], [g0, g1, g2, g3, g4])
+}
+
+/// C `positive_through_the_noise`: p certainly positive on [r - h, r] and above the fma noise
+/// at r - h (Taylor's bound from Horner's chains at r; the C source has it).
+fn positive_through_the_noise(c: &[f64], n: usize, r: f64) -> bool {
+    let ([_, f1, f2, f3], [g0, g1, g2, g3, g4]) = noise_chains(c, n, r);
     let e = noise_factor(n);
     let rel = 4.0 * (n + 1) as f64 * U;
     let g = 0.5 * e;
@@ -780,14 +788,38 @@ fn positive_through_the_noise(c: &[f64], n: usize, r: f64) -> bool {
     h < r && l > 0.0 && s * s < 4.0 * l * m * (1.0 - rel) && (m - s * h + l * h * h) * (1.0 - rel) > noise
 }
 
+/// C `falls_through_the_noise`: p' certainly negative on [r - h, r] and p above the fma noise
+/// at r - h, so no crossing pair hides in the noise left of the crossing r (Taylor's bounds
+/// from Horner's chains at r, signed; the C source has it).
+fn falls_through_the_noise(c: &[f64], n: usize, r: f64) -> bool {
+    let ([f0, f1, f2, f3], [g0, g1, g2, g3, g4]) = noise_chains(c, n, r);
+    let e = noise_factor(n);
+    let rel = 4.0 * (n + 1) as f64 * U;
+    let noise = e * g0 * (1.0 + rel); // >= the fma noise anywhere in [0, r]
+    let m = f0 - noise; // p(r) >= m (the chain's own noise)
+    let d = -(f1 + e * g1) * (1.0 - rel); // <= -p'(r)
+    if !(d > 0.0 && noise > m) {
+        return false;
+    }
+    let k = if f2 > 0.0 { f2 } else { 0.0 };
+    let h = 4.0 * (noise - m) / (d + (d * d + 4.0 * k * (noise - m)).sqrt());
+    let l = f2 * (1.0 - rel) - (e * g2 + 3.0 * (f3.abs() + e * g3) * h + 6.0 * g4 * h * h) * (1.0 + rel);
+    let low = if l < 0.0 { l } else { 0.0 };
+    h < r && d + 2.0 * low * h * (1.0 + rel) > 0.0 && (m + d * h + l * h * h) * (1.0 - rel) > noise
+}
+
 /// C `inside_the_noise`: a touch r where p is certainly positive (compensated), found only
-/// because its fma value was within the noise there: p solved again from where the noise
-/// begins to its left, x_b, after a shift to x_b in double-double, over (x_b, r); its first
-/// root if it has one, else the touch as it was (the C source says why).
+/// because its fma value was within the noise there (`touch`), or a crossing r that the
+/// derivative method's scan found by fma signs: p solved again from where the noise begins to
+/// its left, x_b, after a shift to x_b in double-double, over (x_b, r); its first root if it
+/// has one, else the answer as it was -- unless Taylor's bounds at r show that nothing hides
+/// there (the C source says why).
 #[inline(never)]
-fn inside_the_noise(c: &[f64], n: usize, hit: (f64, bool)) -> (f64, bool) {
+fn inside_the_noise(c: &[f64], n: usize, touch: bool, hit: (f64, bool)) -> (f64, bool) {
     let r = hit.0;
-    if scale_exponent(r, n) != 0 || positive_through_the_noise(c, n, r) {
+    if scale_exponent(r, n) != 0
+        || if touch { positive_through_the_noise(c, n, r) } else { falls_through_the_noise(c, n, r) }
+    {
         return hit;
     }
     let mut step = r * TWO_M50;
@@ -815,7 +847,7 @@ fn inside_the_noise(c: &[f64], n: usize, hit: (f64, bool)) -> (f64, bool) {
     }
     normalise(&mut q, n, emax, 1.0);
     match first_root_interval(&q, n, ldexp(w, -i64::from(e)), 0.0, 0.0) {
-        Some((u, gu)) => {
+        Some((u, gu, _)) => {
             let t = xb + ldexp(u, i64::from(e));
             if t < r { (t, gu) } else { hit }
         }
@@ -840,7 +872,7 @@ pub(crate) fn never_late(c: &[f64], n: usize, tail: &[f64], hit: (f64, bool)) ->
     let before = r - d;
     let mut hs = band_side(c, n, tail, if g { r } else { before });
     if g && hs == 1 && n >= 3 && tail.is_empty() {
-        return inside_the_noise(c, n, hit);
+        return inside_the_noise(c, n, true, hit);
     }
     if if g { hs != -1 } else { hs == 1 } {
         return hit;
@@ -875,6 +907,22 @@ pub(crate) fn never_late(c: &[f64], n: usize, tail: &[f64], hit: (f64, bool)) ->
         }
     }
     (hi, hs != -1)
+}
+
+/// C `late_scanned`: `never_late` for a root the derivative method found, no terms dropped; a
+/// crossing there is then looked for again inside the fma noise to its left
+/// (`inside_the_noise`), from where it stands or where never_late's steps left it -- where
+/// those steps can run (r 2^-50 > 0, r <= 2^60).
+#[inline(never)]
+pub(crate) fn late_scanned(c: &[f64], n: usize, hit: (f64, bool)) -> (f64, bool) {
+    let crossing = !hit.1 && n >= 3;
+    let out = never_late(c, n, &[], hit);
+    let r = out.0;
+    if crossing && r <= TWO_60 && r * TWO_M50 > 0.0 {
+        inside_the_noise(c, n, false, out)
+    } else {
+        out
+    }
 }
 
 /// C `dropped_terms`: the leading terms reduce dropped from coef (n kept after the factors of t
@@ -1874,6 +1922,8 @@ fn polish_isolated(p: &[f64], n: usize, a: f64, b: f64, pa: f64, pb: f64) -> f64
 
 enum Isolation {
     Isolated(f64, bool),
+    /// isolated by the derivative method (C SCANNED: never_late looks again)
+    Scanned(f64, bool),
     Cleared,
     Unresolved(f64),
 }
@@ -1959,7 +2009,7 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64, failed_w: f64)
             };
             count::phase(1);
             if let Some((t, g)) = hit {
-                return Isolation::Isolated(t, g);
+                return Isolation::Scanned(t, g);
             }
             if hi == t_end {
                 return Isolation::Cleared;
@@ -2063,7 +2113,7 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64, failed_w: f64)
         let hit = derivative_method(p, n, a.x, b.x, 0.0, skin);
         count::phase(1);
         if let Some(hit) = hit {
-            return Isolation::Isolated(hit.0, hit.1);
+            return Isolation::Scanned(hit.0, hit.1);
         }
         if !(b.qt(0) - b.tol(0) > 0.0) {
             return Isolation::Unresolved(b.x);
@@ -2397,11 +2447,13 @@ fn scan_pieces(c: &[f64], d: &Chain, n: usize, lo: f64, t_end: f64, crit: &[f64]
     None
 }
 
-/// First root in (0, T] of p (degree n >= 3, normalised, p[0] > 0).
+/// First root in (0, T] of p (degree n >= 3, normalised, p[0] > 0), as (t, graze, scanned):
+/// scanned where the derivative method found it (its scan's fma signs cannot see a crossing
+/// pair inside the noise: `never_late` looks again).
 /// `failed_w`: see `isolate_first_root`.  By its copy for the degree where there is one (C's
 /// `first_root_interval_fixed` and `INTERVAL_CLONE`: degrees 4 and 8, compiled with n a
 /// constant; the same operations in the same order).
-pub(crate) fn first_root_interval(p: &Coeffs, n: usize, t_end: f64, skin: f64, failed_w: f64) -> Option<(f64, bool)> {
+pub(crate) fn first_root_interval(p: &Coeffs, n: usize, t_end: f64, skin: f64, failed_w: f64) -> Option<(f64, bool, bool)> {
     match n {
         8 => first_root_interval_of::<8>(p, t_end, skin, failed_w),
         4 => first_root_interval_of::<4>(p, t_end, skin, failed_w),
@@ -2411,29 +2463,30 @@ pub(crate) fn first_root_interval(p: &Coeffs, n: usize, t_end: f64, skin: f64, f
 
 /// `first_root_interval_core` for degree `N` (C `first_root_interval_N`).
 #[inline(never)]
-fn first_root_interval_of<const N: usize>(p: &Coeffs, t_end: f64, skin: f64, failed_w: f64) -> Option<(f64, bool)> {
+fn first_root_interval_of<const N: usize>(p: &Coeffs, t_end: f64, skin: f64, failed_w: f64) -> Option<(f64, bool, bool)> {
     first_root_interval_core(p, N, t_end, skin, failed_w)
 }
 
 /// `first_root_interval_core` for any degree (C `first_root_interval_any`).
 #[inline(never)]
-fn first_root_interval_any(p: &Coeffs, n: usize, t_end: f64, skin: f64, failed_w: f64) -> Option<(f64, bool)> {
+fn first_root_interval_any(p: &Coeffs, n: usize, t_end: f64, skin: f64, failed_w: f64) -> Option<(f64, bool, bool)> {
     first_root_interval_core(p, n, t_end, skin, failed_w)
 }
 
 /// C `first_root_interval`.
 #[inline(always)]
-fn first_root_interval_core(p: &Coeffs, n: usize, t_end: f64, skin: f64, failed_w: f64) -> Option<(f64, bool)> {
+fn first_root_interval_core(p: &Coeffs, n: usize, t_end: f64, skin: f64, failed_w: f64) -> Option<(f64, bool, bool)> {
     debug_assert!(p[0] > 0.0);
     let mut lo = 0.0;
     if t_end <= if n <= 8 { FAST_LIMIT_LOW } else { FAST_LIMIT_HIGH } {
         match isolate_first_root(p, n, skin, t_end, failed_w) {
-            Isolation::Isolated(t, g) => return Some((t, g)),
+            Isolation::Isolated(t, g) => return Some((t, g, false)),
+            Isolation::Scanned(t, g) => return Some((t, g, true)),
             Isolation::Cleared => return None,
             Isolation::Unresolved(a) => lo = a,
         }
     }
-    derivative_method(p, n, lo, t_end, 0.0, skin)
+    derivative_method(p, n, lo, t_end, 0.0, skin).map(|(t, g)| (t, g, true))
 }
 
 /// The quadratic, for the entry point.
