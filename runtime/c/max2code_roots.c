@@ -2167,8 +2167,10 @@ static int isolate_first_root(const double p[], int n, double skin,
                 hit = derivative_method(p, n, lo, hi, touch, skin, t, graze);
             }
             PHASE(1);
+            /* (on (lo, hi], convex by touch_critical's certificate, p falls
+             * to b alone: no crossing pair can hide there, not SCANNED) */
             if (hit)
-                return SCANNED;
+                return b > 0 ? ISOLATED : SCANNED;
             if (hi == T)
                 return CLEARED;
             from = hi;
@@ -3498,13 +3500,13 @@ static int positive_through_the_noise(const double c[], int n, double r)
  * above the fma noise at r - h, so p falls monotonely through the noise
  * left of r and no crossing pair hides in it (never_late settles the one
  * root there).  From the chains at r (noise_chains), signed: m <= p(r)
- * (the plain chain less its noise: no compensated evaluation, which cost
- * graze8 3 % of its instructions), D <= -p'(r) and L <= p''/2 over
- * [r - h, r] (as positive_through_the_noise has it), so -p'(r - s) >= D +
- * 2 L s and p(r - s) >= m + D s + L s^2 for s in [0, h]; h twice where that quadratic leaves the noise (where L > 0, as
- * at the first root of a near-double pair, the common slow crossing: the
- * graze family's).  Fails, as it should, where p' is within its own noise:
- * a cluster's. */
+ * (the plain chain less its noise: no compensated evaluation), D <=
+ * -p'(r) and L <= p''/2 over [r - h, r] (as positive_through_the_noise
+ * has it), so -p'(r - s) >= D + 2 L s and p(r - s) >= m + D s + L s^2 for
+ * s in [0, h]; h twice where that quadratic leaves the noise.  Signed, so
+ * that the first root of a near-double pair passes (L > 0 there: bounding
+ * |p''| instead failed all 115 such crossings of bench/roots.py's graze8).
+ * Fails, as it should, where p' is within its own noise: a cluster's. */
 static int falls_through_the_noise(const double c[], int n, double r)
 {
     double f[4], gs[5];

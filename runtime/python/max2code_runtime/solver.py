@@ -1133,8 +1133,10 @@ def _isolate_first_root(p: Sequence[float], n: int, skin: float, T: float, faile
             b = _touch_critical(p, d, n, lo, hi, touch)
             hit = (_scan_pieces(p, d, n, lo, hi, [b], skin, b) if b > 0 else
                    _derivative_method(p, n, lo, hi, touch, skin))
+            # (on (lo, hi], convex by _touch_critical's certificate, p falls to b alone: no
+            # crossing pair can hide there, not scanned)
             if hit is not None:
-                return (*hit, True)
+                return (*hit, not b > 0)
             if hi == T:
                 return _CLEARED
             frm = hi

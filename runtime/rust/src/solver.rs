@@ -1999,7 +1999,9 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64, failed_w: f64)
             // (touch_critical), else the derivative method (see the C source)
             count::phase(3);
             let d = derivative_rows(p, n, n - 2);
-            let hit = match touch_critical(p, &d, n, lo, hi, touch) {
+            let critical = touch_critical(p, &d, n, lo, hi, touch);
+            let convex = critical.is_some();
+            let hit = match critical {
                 Some(b) => {
                     // (b < hi: no scaling at b when none at hi, touch_critical's)
                     let tv = touch_values(p, d.row(n - 1), d.row(n - 2), n, b, hi);
@@ -2008,8 +2010,10 @@ fn isolate_first_root(p: &[f64], n: usize, skin: f64, t_end: f64, failed_w: f64)
                 None => derivative_method(p, n, lo, hi, touch, skin),
             };
             count::phase(1);
+            // (on (lo, hi], convex by touch_critical's certificate, p falls to b alone: no
+            // crossing pair can hide there, not scanned)
             if let Some((t, g)) = hit {
-                return Isolation::Scanned(t, g);
+                return if convex { Isolation::Isolated(t, g) } else { Isolation::Scanned(t, g) };
             }
             if hi == t_end {
                 return Isolation::Cleared;
