@@ -2591,6 +2591,42 @@ NOINLINE static int derivative_method(const double c[], int n, double lo, double
  * touch's interval, the derivative method's p''', its convexity test and
  * the signs of p' at both ends, one after the other, by chains that run
  * side by side: the same critical point, bit for bit. */
+/* Horner's chains for the Taylor certificates (touch_critical,
+ * positive_through_the_noise, falls_through_the_noise): f[0..3] = p(x),
+ * p'(x), p''(x)/2, p'''(x)/6, and at y >= |x| the sums of |terms| g[k] =
+ * sum C(i, k) |c_i| y^(i-k), k = 0..4, that bound their rounding and, at
+ * |z| <= y, the derivatives |p^(k)(z)| / k!. */
+static inline void noise_chains(const double c[], int n, double x, double y, double f[4],
+                                double g[5])
+{
+    double f0 = c[n], f1 = 0, f2 = 0, f3 = 0;
+    double g0 = fabs(c[n]), g1 = 0, g2 = 0, g3 = 0, g4 = 0;
+    for (int i = n - 1; i >= 0; i--) {
+        f3 = f3 * x + f2;
+        f2 = f2 * x + f1;
+        f1 = f1 * x + f0;
+        f0 = f0 * x + c[i];
+        g4 = g4 * y + g3;
+        g3 = g3 * y + g2;
+        g2 = g2 * y + g1;
+        g1 = g1 * y + g0;
+        g0 = g0 * y + fabs(c[i]);
+    }
+    f[0] = f0; f[1] = f1; f[2] = f2; f[3] = f3;
+    g[0] = g0; g[1] = g1; g[2] = g2; g[3] = g3; g[4] = g4;
+}
+
+/* From the chains at x (noise_chains; e = noise_factor(n), rel its
+ * relative slack): a lower bound of p''/2 over [x - h, x + h] within
+ * [-y, y], by Taylor from p''(x)/2 with |p'''(x)|/6 and the bound of
+ * |p''''|/24 there. */
+static inline double half_curvature_floor(const double f[4], const double g[5], double e,
+                                          double rel, double h)
+{
+    return f[2] * (1 - rel) -
+           (e * g[2] + 3 * (fabs(f[3]) + e * g[3]) * h + 6 * g[4] * h * h) * (1 + rel);
+}
+
 static double touch_critical(const double p[], double d[MAXN + 1][MAXN + 1],
                              int n, double lo, double hi, double x)
 {
@@ -2599,24 +2635,12 @@ static double touch_critical(const double p[], double d[MAXN + 1][MAXN + 1],
     if (!(lo >= 0 && lo < x && hi - x > TOL_CRITICAL * hi) || scale_exponent(hi, n) != 0)
         return 0;
     COUNT_MADDS(9 * n);
-    double f0 = p[n], f1 = 0, f2 = 0, f3 = 0;
-    double g0 = fabs(p[n]), g1 = 0, g2 = 0, g3 = 0, g4 = 0;
-    for (int i = n - 1; i >= 0; i--) {
-        f3 = f3 * x + f2;
-        f2 = f2 * x + f1;
-        f1 = f1 * x + f0;
-        f0 = f0 * x + p[i];
-        g4 = g4 * hi + g3;
-        g3 = g3 * hi + g2;
-        g2 = g2 * hi + g1;
-        g1 = g1 * hi + g0;
-        g0 = g0 * hi + fabs(p[i]);
-    }
+    double f[4], g[5];
+    noise_chains(p, n, x, hi, f, g);
     double e = noise_factor(n), rel = 4.0 * (n + 1) * UNIT_ROUNDOFF;
     double h = x - lo > hi - x ? x - lo : hi - x;
-    double L = f2 * (1 - rel) -
-               (e * g2 + 3 * (fabs(f3) + e * g3) * h + 6 * g4 * h * h) * (1 + rel);
-    double slope = (fabs(f1) + e * g1) * (1 + rel); /* >= |p'(x)| */
+    double L = half_curvature_floor(f, g, e, rel, h);
+    double slope = (fabs(f[1]) + e * g[1]) * (1 + rel); /* >= |p'(x)| */
     if (!(L > 0 && slope < 2 * L * (x - lo) * (1 - rel) &&
           slope < 2 * L * (hi - x) * (1 - rel)))
         return 0;
@@ -3402,22 +3426,6 @@ static int band_side(const double c[], int n, const double tail[], int m, double
     return v > eb ? 1 : v < -eb ? -1 : 0;
 }
 
-/* Never later than the first root (issue 33, item 11).  Inside a cluster's
- * rounding band the polish can settle on a later root of the cluster, or on
- * a point where the plain sign was noise, and a touch found at a critical
- * point can follow a real crossing within the band.  A root (not a touch)
- * stands when p is certainly positive just before it, at r (1 - 2^-50):
- * one compensated evaluation, and almost always so (kappa below about
- * 1 / (n^2 u)).  A touch stands unless p is certainly negative at it: p
- * falls monotonely to it (the piece before it), so only then can a
- * crossing lie before it (an exact multiple root, (t - 1000)^4, stays
- * where it is).  Otherwise the earliest point that cannot be excluded is
- * the answer: steps to the left, doubling, until p is certainly positive,
- * then bisection between that and the last point that was not, until they
- * are r 2^-50 apart; reported as a crossing where p is certainly negative
- * there, else as a touch.  "Certainly" is for the polynomial as given: the
- * m leading terms reduce dropped (tail) are evaluated with it.  (Windows
- * beyond 2^60 are left as they are: compensated Horner is unscaled.) */
 /* The coefficients of p(x + w u) in u (w a power of two): Horner's Taylor
  * shift in double-double (each product split by fma, each sum by two_sum),
  * rounded once at the end, so that near a cluster they keep what plain
@@ -3447,29 +3455,6 @@ static void shift_dd(const double c[], int n, double x, double w, double q[])
     }
 }
 
-/* Horner's chains at r for the certificates below: f[0..3] = p(r), p'(r),
- * p''(r)/2, p'''(r)/6, and the sums of |terms| g[k] = sum C(i, k) |c_i|
- * r^(i-k), k = 0..4, that bound their rounding and, at |x| <= r, the
- * derivatives |p^(k)(x)| / k! (as touch_critical has them). */
-static void noise_chains(const double c[], int n, double r, double f[4], double g[5])
-{
-    double f0 = c[n], f1 = 0, f2 = 0, f3 = 0;
-    double g0 = fabs(c[n]), g1 = 0, g2 = 0, g3 = 0, g4 = 0;
-    for (int i = n - 1; i >= 0; i--) {
-        f3 = f3 * r + f2;
-        f2 = f2 * r + f1;
-        f1 = f1 * r + f0;
-        f0 = f0 * r + c[i];
-        g4 = g4 * r + g3;
-        g3 = g3 * r + g2;
-        g2 = g2 * r + g1;
-        g1 = g1 * r + g0;
-        g0 = g0 * r + fabs(c[i]);
-    }
-    f[0] = f0; f[1] = f1; f[2] = f2; f[3] = f3;
-    g[0] = g0; g[1] = g1; g[2] = g2; g[3] = g3; g[4] = g4;
-}
-
 /* inside_the_noise's shortcut for the common near miss, a double root's:
  * p certainly positive on [r - h, r] and above the fma noise at r - h, so
  * no root hides in the noise to the left of the touch r.  From Horner's
@@ -3480,7 +3465,7 @@ static void noise_chains(const double c[], int n, double r, double f[4], double 
 static int positive_through_the_noise(const double c[], int n, double r)
 {
     double f[4], gs[5];
-    noise_chains(c, n, r, f, gs);
+    noise_chains(c, n, r, r, f, gs);
     double e = noise_factor(n), rel = 4.0 * (n + 1) * UNIT_ROUNDOFF, g = 0.5 * e;
     double v = horner_compensated(c, n, r);
     double m = v - 2 * (UNIT_ROUNDOFF * fabs(v) + g * g * gs[0]); /* p(r) >= m */
@@ -3489,8 +3474,7 @@ static int positive_through_the_noise(const double c[], int n, double r)
     if (!(m > 0 && f[2] > 0))
         return 0;
     double h = (S + sqrt(S * S + 4 * f[2] * N)) / f[2];
-    double L = f[2] * (1 - rel) -
-               (e * gs[2] + 3 * (fabs(f[3]) + e * gs[3]) * h + 6 * gs[4] * h * h) * (1 + rel);
+    double L = half_curvature_floor(f, gs, e, rel, h);
     return h < r && L > 0 && S * S < 4 * L * m * (1 - rel)
            && (m - S * h + L * h * h) * (1 - rel) > N;
 }
@@ -3510,7 +3494,7 @@ static int positive_through_the_noise(const double c[], int n, double r)
 static int falls_through_the_noise(const double c[], int n, double r)
 {
     double f[4], gs[5];
-    noise_chains(c, n, r, f, gs);
+    noise_chains(c, n, r, r, f, gs);
     double e = noise_factor(n), rel = 4.0 * (n + 1) * UNIT_ROUNDOFF;
     double N = e * gs[0] * (1 + rel); /* >= the fma noise anywhere in [0, r] */
     double m = f[0] - N;              /* p(r) >= m (the chain's own noise) */
@@ -3519,8 +3503,7 @@ static int falls_through_the_noise(const double c[], int n, double r)
         return 0;
     double k = f[2] > 0 ? f[2] : 0;
     double h = 4 * (N - m) / (D + sqrt(D * D + 4 * k * (N - m)));
-    double L = f[2] * (1 - rel) -
-               (e * gs[2] + 3 * (fabs(f[3]) + e * gs[3]) * h + 6 * gs[4] * h * h) * (1 + rel);
+    double L = half_curvature_floor(f, gs, e, rel, h);
     double low = L < 0 ? L : 0;
     return h < r && D + 2 * low * h * (1 + rel) > 0 && (m + D * h + L * h * h) * (1 - rel) > N;
 }
@@ -3540,6 +3523,9 @@ static int falls_through_the_noise(const double c[], int n, double r)
  * nothing hides there: a near miss of a double root keeps its touch
  * (positive_through_the_noise), a crossing where p falls through the
  * noise its root (falls_through_the_noise). */
+static void band_walk(const double c[], int n, const double tail[], int m, double r,
+                      double d, int hs, double *root, int *g);
+
 NOINLINE static void inside_the_noise(const double c[], int n, int touch, double *root,
                                       int *g)
 {
@@ -3570,12 +3556,36 @@ NOINLINE static void inside_the_noise(const double c[], int n, int touch, double
     if (!first_root_interval(q, n, ldexp(w, -e), 0, 0, &u, &gu))
         return;
     t = xb + ldexp(u, e);
-    if (t < r) {
-        *root = t;
-        *g = gu;
-    }
+    if (!(t < r))
+        return;
+    /* q's doubles are p shifted and rounded once: near a cluster that rounding
+     * moves q's roots by far more than p's own band (the fourth vector of
+     * INSIDE_THE_NOISE: 2.1e-13 late), so t is held to p's compensated band as
+     * never_late holds a root (no second look inside the noise). */
+    double d = t * 0x1p-50;
+    int hs = band_side(c, n, NULL, 0, gu ? t : t - d);
+    if (gu ? hs == -1 : hs != 1)
+        band_walk(c, n, NULL, 0, t, d, hs, &t, &gu);
+    *root = t;
+    *g = gu;
 }
 
+/* Never later than the first root (issue 33, item 11).  Inside a cluster's
+ * rounding band the polish can settle on a later root of the cluster, or on
+ * a point where the plain sign was noise, and a touch found at a critical
+ * point can follow a real crossing within the band.  A root (not a touch)
+ * stands when p is certainly positive just before it, at r (1 - 2^-50):
+ * one compensated evaluation, and almost always so (kappa below about
+ * 1 / (n^2 u)).  A touch stands unless p is certainly negative at it: p
+ * falls monotonely to it (the piece before it), so only then can a
+ * crossing lie before it (an exact multiple root, (t - 1000)^4, stays
+ * where it is).  Otherwise the earliest point that cannot be excluded is
+ * the answer: steps to the left, doubling, until p is certainly positive,
+ * then bisection between that and the last point that was not, until they
+ * are r 2^-50 apart; reported as a crossing where p is certainly negative
+ * there, else as a touch.  "Certainly" is for the polynomial as given: the
+ * m leading terms reduce dropped (tail) are evaluated with it.  (Windows
+ * beyond 2^60 are left as they are: compensated Horner is unscaled.) */
 static void never_late(const double c[], int n, const double tail[], int m, double *root,
                        int *g)
 {
@@ -3593,7 +3603,16 @@ static void never_late(const double c[], int n, const double tail[], int m, doub
     }
     if (*g ? hs != -1 : hs == 1)
         return;
-    double hi = *g ? r : before, lo = 0, step = 2 * d;
+    band_walk(c, n, tail, m, r, d, hs, root, g);
+}
+
+/* never_late's steps from a root r that does not stand (d = r 2^-50, hs p's
+ * band side at r - d for a crossing, at r for a touch): out of line, rarely
+ * taken. */
+NOINLINE static void band_walk(const double c[], int n, const double tail[], int m, double r,
+                               double d, int hs, double *root, int *g)
+{
+    double hi = *g ? r : r - d, lo = 0, step = 2 * d;
     for (;;) {
         double x = r - step;
         if (!(x > 0))

@@ -217,9 +217,10 @@ INSIDE_THE_NOISE = [
     ((-1.000000124361768, 5.000000497447069, -10.000000746170599, 10.000000497447063,
       -5.000000124361765, 1.0), 1000.0),
     # drawn by the default-count never_later test in tests/runtime's order (2026-12-07): the
-    # second solve's crossing, 0.99988437111925, is still 2.1e-13 later than the exact first
-    # root 0.9998843711190396 -- its root has not had never_late's rule in the shifted
-    # polynomial's own band.  FAILS on this branch: the next step.
+    # second solve's crossing, 0.99988437111925, was 2.1e-13 later than the exact first root
+    # 0.9998843711190396: the shift's coefficients, rounded once, move the cluster's roots by
+    # that much.  Now the second solve's root is held to p's own compensated band as
+    # never_late holds a root (0.99988437111892936, 1.1e-13 early).
     ((-0.0012138810749942042, 0.006069405374970908, -0.012138810749941588, 0.012138810749941357,
       -0.006069405374970563, 0.0012138810749940897), 1000.0)]
 

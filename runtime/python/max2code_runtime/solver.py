@@ -327,29 +327,38 @@ def _shift_dd(c: Sequence[float], n: int, x: float, w: float) -> list[float]:
     return out
 
 
-def _noise_chains(c: Sequence[float], n: int, r: float) -> tuple[list[float], list[float]]:
-    """C noise_chains: Horner's chains at r, f = p, p', p''/2, p'''/6 at r, and
-    the sums of |terms| g_k = sum C(i, k) |c_i| r^(i-k), k = 0..4, that bound their rounding
-    and, at |x| <= r, the derivatives |p^(k)(x)| / k!."""
+def _noise_chains(c: Sequence[float], n: int, x: float, y: float
+                  ) -> tuple[list[float], list[float]]:
+    """C noise_chains: Horner's chains for the Taylor certificates, f = p, p', p''/2, p'''/6 at
+    x, and at y >= |x| the sums of |terms| g_k = sum C(i, k) |c_i| y^(i-k), k = 0..4, that bound
+    their rounding and, at |z| <= y, the derivatives |p^(k)(z)| / k!."""
     f0, f1, f2, f3 = c[n], 0.0, 0.0, 0.0
     g0, g1, g2, g3, g4 = abs(c[n]), 0.0, 0.0, 0.0, 0.0
     for i in range(n - 1, -1, -1):
-        f3 = f3 * r + f2
-        f2 = f2 * r + f1
-        f1 = f1 * r + f0
-        f0 = f0 * r + c[i]
-        g4 = g4 * r + g3
-        g3 = g3 * r + g2
-        g2 = g2 * r + g1
-        g1 = g1 * r + g0
-        g0 = g0 * r + abs(c[i])
+        f3 = f3 * x + f2
+        f2 = f2 * x + f1
+        f1 = f1 * x + f0
+        f0 = f0 * x + c[i]
+        g4 = g4 * y + g3
+        g3 = g3 * y + g2
+        g2 = g2 * y + g1
+        g1 = g1 * y + g0
+        g0 = g0 * y + abs(c[i])
     return [f0, f1, f2, f3], [g0, g1, g2, g3, g4]
+
+
+def _half_curvature_floor(f: Sequence[float], g: Sequence[float], e: float, rel: float,
+                          h: float) -> float:
+    """C half_curvature_floor: a lower bound of p''/2 over [x - h, x + h] within [-y, y], by
+    Taylor from the chains at x (_noise_chains)."""
+    return f[2] * (1 - rel) - (e * g[2] + 3 * (abs(f[3]) + e * g[3]) * h + 6 * g[4] * h * h) * (1 + rel)
 
 
 def _positive_through_the_noise(c: Sequence[float], n: int, r: float) -> bool:
     """C positive_through_the_noise: p certainly positive on [r - h, r] and above the fma noise
     at r - h (Taylor's bound from Horner's chains at r; the C source has it)."""
-    (_, f1, f2, f3), (g0, g1, g2, g3, g4) = _noise_chains(c, n, r)
+    f, gs = _noise_chains(c, n, r, r)
+    (_, f1, f2, _), (g0, g1, *_) = f, gs
     e, rel = noise_factor(n), 4.0 * (n + 1) * U
     g = 0.5 * e
     v = _horner_compensated(c, n, r)
@@ -359,7 +368,7 @@ def _positive_through_the_noise(c: Sequence[float], n: int, r: float) -> bool:
     if not (m > 0 and f2 > 0):
         return False
     h = (S + math.sqrt(S * S + 4 * f2 * N)) / f2
-    L = f2 * (1 - rel) - (e * g2 + 3 * (abs(f3) + e * g3) * h + 6 * g4 * h * h) * (1 + rel)
+    L = _half_curvature_floor(f, gs, e, rel, h)
     return (h < r and L > 0 and S * S < 4 * L * m * (1 - rel)
             and (m - S * h + L * h * h) * (1 - rel) > N)
 
@@ -368,7 +377,8 @@ def _falls_through_the_noise(c: Sequence[float], n: int, r: float) -> bool:
     """C falls_through_the_noise: p' certainly negative on [r - h, r] and p above the fma noise
     at r - h, so no crossing pair hides in the noise to the left of the crossing r (Taylor's
     bounds from Horner's chains at r, signed; the C source has it)."""
-    (f0, f1, f2, f3), (g0, g1, g2, g3, g4) = _noise_chains(c, n, r)
+    f, gs = _noise_chains(c, n, r, r)
+    (f0, f1, f2, _), (g0, g1, *_) = f, gs
     e, rel = noise_factor(n), 4.0 * (n + 1) * U
     N = e * g0 * (1 + rel)  # >= the fma noise anywhere in [0, r]
     m = f0 - N  # p(r) >= m (the chain's own noise)
@@ -377,7 +387,7 @@ def _falls_through_the_noise(c: Sequence[float], n: int, r: float) -> bool:
         return False
     k = f2 if f2 > 0 else 0.0
     h = 4 * (N - m) / (D + math.sqrt(D * D + 4 * k * (N - m)))
-    L = f2 * (1 - rel) - (e * g2 + 3 * (abs(f3) + e * g3) * h + 6 * g4 * h * h) * (1 + rel)
+    L = _half_curvature_floor(f, gs, e, rel, h)
     low = L if L < 0 else 0.0
     return h < r and D + 2 * low * h * (1 + rel) > 0 and (m + D * h + L * h * h) * (1 - rel) > N
 
@@ -417,8 +427,17 @@ def _inside_the_noise(c: Sequence[float], n: int, hit: tuple[float, bool], touch
     found = first_root_interval(q, n, T, 0.0, 0.0)
     if found is None:
         return hit
-    t = xb + _ldexp(found[0], e)
-    return (t, found[1]) if t < r else hit
+    t, gu = xb + _ldexp(found[0], e), found[1]
+    if not t < r:
+        return hit
+    # q's doubles are p shifted and rounded once: near a cluster that moves q's roots by far
+    # more than p's own band (INSIDE_THE_NOISE's fourth vector: 2.1e-13 late), so t is held to
+    # p's compensated band as never_late holds a root (no second look inside the noise).
+    d = t * 2.0**-50
+    hs = _band_side(c, n, [], t if gu else t - d)
+    if (hs == -1) if gu else (hs != 1):
+        return _band_walk(c, n, [], t, d, hs, gu)
+    return t, gu
 
 
 def never_late(c: Sequence[float], n: int, tail: Sequence[float], hit: tuple[float, bool]
@@ -440,7 +459,14 @@ def never_late(c: Sequence[float], n: int, tail: Sequence[float], hit: tuple[flo
         return _inside_the_noise(c, n, hit, True)
     if (hs != -1) if g else (hs == 1):
         return hit
-    hi, lo, step = (r if g else before), 0.0, 2 * d
+    return _band_walk(c, n, tail, r, d, hs, g)
+
+
+def _band_walk(c: Sequence[float], n: int, tail: Sequence[float], r: float, d: float, hs: int,
+               g: bool) -> tuple[float, bool]:
+    """C band_walk: never_late's steps from a root r that does not stand (d = r 2^-50, hs p's
+    band side at r - d for a crossing, at r for a touch)."""
+    hi, lo, step = (r if g else r - d), 0.0, 2 * d
     while True:
         x = r - step
         if not x > 0:
@@ -1311,22 +1337,11 @@ def _touch_critical(p: Sequence[float], d: list[list[float]], n: int, lo: float,
     # (a bracket below TOL_CRITICAL would end refine_root before its step: left to it)
     if not (lo >= 0 and lo < x and hi - x > TOL_CRITICAL * hi) or _scale_exponent(hi, n) != 0:
         return 0.0
-    f0, f1, f2, f3 = p[n], 0.0, 0.0, 0.0
-    g0, g1, g2, g3, g4 = abs(p[n]), 0.0, 0.0, 0.0, 0.0
-    for i in range(n - 1, -1, -1):
-        f3 = f3 * x + f2
-        f2 = f2 * x + f1
-        f1 = f1 * x + f0
-        f0 = f0 * x + p[i]
-        g4 = g4 * hi + g3
-        g3 = g3 * hi + g2
-        g2 = g2 * hi + g1
-        g1 = g1 * hi + g0
-        g0 = g0 * hi + abs(p[i])
+    f, g = _noise_chains(p, n, x, hi)
     e, rel = noise_factor(n), 4.0 * (n + 1) * U
     h = x - lo if x - lo > hi - x else hi - x
-    L = f2 * (1 - rel) - (e * g2 + 3 * (abs(f3) + e * g3) * h + 6 * g4 * h * h) * (1 + rel)
-    slope = (abs(f1) + e * g1) * (1 + rel)  # >= |p'(x)|
+    L = _half_curvature_floor(f, g, e, rel, h)
+    slope = (abs(f[1]) + e * g[1]) * (1 + rel)  # >= |p'(x)|
     if not (L > 0 and slope < 2 * L * (x - lo) * (1 - rel) and slope < 2 * L * (hi - x) * (1 - rel)):
         return 0.0
     # refine_root's first step on p' from x (tol TOL_CRITICAL), and its stop

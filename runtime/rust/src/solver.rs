@@ -748,31 +748,40 @@ fn shift_dd(c: &[f64], n: usize, x: f64, w: f64) -> Coeffs {
     q
 }
 
-/// C `noise_chains`: Horner's chains at r, f = p, p', p''/2, p'''/6 there, and the sums of
-/// |terms| g_k = sum C(i, k) |c_i| r^(i-k), k = 0..4, that bound their rounding and, at
-/// |x| <= r, the derivatives |p^(k)(x)| / k!.
-fn noise_chains(c: &[f64], n: usize, r: f64) -> ([f64; 4], [f64; 5]) {
+/// C `noise_chains`: Horner's chains for the Taylor certificates, f = p, p', p''/2, p'''/6 at
+/// x, and at y >= |x| the sums of |terms| g_k = sum C(i, k) |c_i| y^(i-k), k = 0..4, that
+/// bound their rounding and, at |z| <= y, the derivatives |p^(k)(z)| / k!.
+#[inline(always)]
+fn noise_chains(c: &[f64], n: usize, x: f64, y: f64) -> ([f64; 4], [f64; 5]) {
     let (mut f1, mut f2, mut f3) = (0.0, 0.0, 0.0);
     let mut f0 = c[n];
     let (mut g0, mut g1, mut g2, mut g3, mut g4) = (c[n].abs(), 0.0, 0.0, 0.0, 0.0);
-    for i in (0..n).rev() {
-        f3 = f3 * r + f2;
-        f2 = f2 * r + f1;
-        f1 = f1 * r + f0;
-        f0 = f0 * r + c[i];
-        g4 = g4 * r + g3;
-        g3 = g3 * r + g2;
-        g2 = g2 * r + g1;
-        g1 = g1 * r + g0;
-        g0 = g0 * r + c[i].abs();
+    for &ci in c[..n].iter().rev() {
+        f3 = f3 * x + f2;
+        f2 = f2 * x + f1;
+        f1 = f1 * x + f0;
+        f0 = f0 * x + ci;
+        g4 = g4 * y + g3;
+        g3 = g3 * y + g2;
+        g2 = g2 * y + g1;
+        g1 = g1 * y + g0;
+        g0 = g0 * y + ci.abs();
     }
     ([f0, f1, f2, f3], [g0, g1, g2, g3, g4])
+}
+
+/// C `half_curvature_floor`: a lower bound of p''/2 over [x - h, x + h] within [-y, y], by
+/// Taylor from the chains at x (`noise_chains`).
+#[inline(always)]
+fn half_curvature_floor(f: &[f64; 4], g: &[f64; 5], e: f64, rel: f64, h: f64) -> f64 {
+    f[2] * (1.0 - rel) - (e * g[2] + 3.0 * (f[3].abs() + e * g[3]) * h + 6.0 * g[4] * h * h) * (1.0 + rel)
 }
 
 /// C `positive_through_the_noise`: p certainly positive on [r - h, r] and above the fma noise
 /// at r - h (Taylor's bound from Horner's chains at r; the C source has it).
 fn positive_through_the_noise(c: &[f64], n: usize, r: f64) -> bool {
-    let ([_, f1, f2, f3], [g0, g1, g2, g3, g4]) = noise_chains(c, n, r);
+    let (f, gs) = noise_chains(c, n, r, r);
+    let ([_, f1, f2, _], [g0, g1, ..]) = (f, gs);
     let e = noise_factor(n);
     let rel = 4.0 * (n + 1) as f64 * U;
     let g = 0.5 * e;
@@ -784,7 +793,7 @@ fn positive_through_the_noise(c: &[f64], n: usize, r: f64) -> bool {
         return false;
     }
     let h = (s + (s * s + 4.0 * f2 * noise).sqrt()) / f2;
-    let l = f2 * (1.0 - rel) - (e * g2 + 3.0 * (f3.abs() + e * g3) * h + 6.0 * g4 * h * h) * (1.0 + rel);
+    let l = half_curvature_floor(&f, &gs, e, rel, h);
     h < r && l > 0.0 && s * s < 4.0 * l * m * (1.0 - rel) && (m - s * h + l * h * h) * (1.0 - rel) > noise
 }
 
@@ -792,7 +801,8 @@ fn positive_through_the_noise(c: &[f64], n: usize, r: f64) -> bool {
 /// at r - h, so no crossing pair hides in the noise left of the crossing r (Taylor's bounds
 /// from Horner's chains at r, signed; the C source has it).
 fn falls_through_the_noise(c: &[f64], n: usize, r: f64) -> bool {
-    let ([f0, f1, f2, f3], [g0, g1, g2, g3, g4]) = noise_chains(c, n, r);
+    let (f, gs) = noise_chains(c, n, r, r);
+    let ([f0, f1, f2, _], [g0, g1, ..]) = (f, gs);
     let e = noise_factor(n);
     let rel = 4.0 * (n + 1) as f64 * U;
     let noise = e * g0 * (1.0 + rel); // >= the fma noise anywhere in [0, r]
@@ -803,7 +813,7 @@ fn falls_through_the_noise(c: &[f64], n: usize, r: f64) -> bool {
     }
     let k = if f2 > 0.0 { f2 } else { 0.0 };
     let h = 4.0 * (noise - m) / (d + (d * d + 4.0 * k * (noise - m)).sqrt());
-    let l = f2 * (1.0 - rel) - (e * g2 + 3.0 * (f3.abs() + e * g3) * h + 6.0 * g4 * h * h) * (1.0 + rel);
+    let l = half_curvature_floor(&f, &gs, e, rel, h);
     let low = if l < 0.0 { l } else { 0.0 };
     h < r && d + 2.0 * low * h * (1.0 + rel) > 0.0 && (m + d * h + l * h * h) * (1.0 - rel) > noise
 }
@@ -849,7 +859,19 @@ fn inside_the_noise(c: &[f64], n: usize, touch: bool, hit: (f64, bool)) -> (f64,
     match first_root_interval(&q, n, ldexp(w, -i64::from(e)), 0.0, 0.0) {
         Some((u, gu, _)) => {
             let t = xb + ldexp(u, i64::from(e));
-            if t < r { (t, gu) } else { hit }
+            if !(t < r) {
+                return hit;
+            }
+            // q's doubles are p shifted and rounded once: near a cluster that moves q's roots
+            // by far more than p's own band, so t is held to p's compensated band as
+            // never_late holds a root (no second look inside the noise).
+            let d = t * TWO_M50;
+            let hs = band_side(c, n, &[], if gu { t } else { t - d });
+            if if gu { hs == -1 } else { hs != 1 } {
+                band_walk(c, n, &[], t, d, hs, gu)
+            } else {
+                (t, gu)
+            }
         }
         None => hit,
     }
@@ -869,15 +891,22 @@ pub(crate) fn never_late(c: &[f64], n: usize, tail: &[f64], hit: (f64, bool)) ->
     if !(d > 0.0) {
         return hit; // (r below 2^-1024: the steps would not move)
     }
-    let before = r - d;
-    let mut hs = band_side(c, n, tail, if g { r } else { before });
+    let hs = band_side(c, n, tail, if g { r } else { r - d });
     if g && hs == 1 && n >= 3 && tail.is_empty() {
         return inside_the_noise(c, n, true, hit);
     }
     if if g { hs != -1 } else { hs == 1 } {
         return hit;
     }
-    let (mut hi, mut lo, mut step) = (if g { r } else { before }, 0.0, 2.0 * d);
+    band_walk(c, n, tail, r, d, hs, g)
+}
+
+/// C `band_walk`: never_late's steps from a root r that does not stand (d = r 2^-50, hs p's
+/// band side at r - d for a crossing, at r for a touch).
+#[inline(never)]
+fn band_walk(c: &[f64], n: usize, tail: &[f64], r: f64, d: f64, hs: i32, g: bool) -> (f64, bool) {
+    let mut hs = hs;
+    let (mut hi, mut lo, mut step) = (if g { r } else { r - d }, 0.0, 2.0 * d);
     loop {
         let x = r - step;
         if !(x > 0.0) {
@@ -2311,23 +2340,12 @@ fn touch_critical(p: &[f64], d: &Chain, n: usize, lo: f64, hi: f64, x: f64) -> O
         return None;
     }
     count::madds(9 * n);
-    let (mut f0, mut f1, mut f2, mut f3) = (p[n], 0.0f64, 0.0f64, 0.0f64);
-    let (mut g0, mut g1, mut g2, mut g3, mut g4) = (p[n].abs(), 0.0f64, 0.0f64, 0.0f64, 0.0f64);
-    for &pi in p[..n].iter().rev() {
-        f3 = f3 * x + f2;
-        f2 = f2 * x + f1;
-        f1 = f1 * x + f0;
-        f0 = f0 * x + pi;
-        g4 = g4 * hi + g3;
-        g3 = g3 * hi + g2;
-        g2 = g2 * hi + g1;
-        g1 = g1 * hi + g0;
-        g0 = g0 * hi + pi.abs();
-    }
+    let (f, gs) = noise_chains(p, n, x, hi);
+    let (f1, g1) = (f[1], gs[1]);
     let e = noise_factor(n);
     let rel = 4.0 * (n + 1) as f64 * U;
     let h = if x - lo > hi - x { x - lo } else { hi - x };
-    let l = f2 * (1.0 - rel) - (e * g2 + 3.0 * (f3.abs() + e * g3) * h + 6.0 * g4 * h * h) * (1.0 + rel);
+    let l = half_curvature_floor(&f, &gs, e, rel, h);
     let slope = (f1.abs() + e * g1) * (1.0 + rel); // >= |p'(x)|
     if !(l > 0.0 && slope < 2.0 * l * (x - lo) * (1.0 - rel) && slope < 2.0 * l * (hi - x) * (1.0 - rel)) {
         return None;
