@@ -10,13 +10,17 @@
    each frame) in the same encoding (protocol.encode, protocol.number); also after a
    permessage-deflate-like compression (one zlib stream per connection, a sync flush per
    message, as websockets does with context takeover). And PGE's breakout, served as
-   `max2code serve GAME.py` serves it (read from the shared corpus, when it is there).
+   `max2code serve GAME.py` serves it (read from the shared corpus, when it is there). The
+   same messages in MessagePack (hello's enc), against snapshots in MessagePack, and where the
+   dense scenes' bytes go (envelope, event lists, segments).
 2. capacity: CPU seconds the Room spends per engine event, message and client (1 and 100
    listeners), so events per second one core serves.
 3. load: `max2code serve` in a process of its own on 127.0.0.1; 1, 10 and 100 protocol
    clients (one asyncio process) joined to one room of a busy scene; per message, the latency
    from the event's time to its arrival (the clients estimate the server's clock as the page
    does: the least-round-trip ping); the clients' and the server's CPU seconds per second.
+4. rooms per machine: `max2code serve --workers 1` and `--workers 2`, with 10, 40 and 80 fresh
+   rooms of pinball at once, one watching client each: latency and the server's CPU.
 Bounded in count and time: every run has a fixed duration; nothing listens beyond loopback.
 """
 from __future__ import annotations
@@ -285,10 +289,10 @@ async def _load(port: int, clients: int, seconds: float, server_pid: int) -> dic
 
     lat: list[float] = []
     counts: list[int] = []
-    cpu0, scpu0, t0 = time.process_time(), _cpu_of(server_pid), time.monotonic()
+    cpu0, scpu0, t0 = time.process_time(), _tree_cpu(server_pid), time.monotonic()
     await asyncio.gather(*(one(k, lat, counts) for k in range(clients)))
     wall = time.monotonic() - t0
-    cpu, scpu = time.process_time() - cpu0, _cpu_of(server_pid) - scpu0
+    cpu, scpu = time.process_time() - cpu0, _tree_cpu(server_pid) - scpu0
     lat.sort()
     q = lambda p: lat[min(len(lat) - 1, int(p * len(lat)))] if lat else float("nan")  # noqa: E731
     return {"clients": clients, "messages": len(lat), "p50_ms": 1e3 * q(0.5), "p99_ms": 1e3 * q(0.99),
@@ -301,7 +305,7 @@ async def _load(port: int, clients: int, seconds: float, server_pid: int) -> dic
 def load_table(quick: bool, scene: str = "pinball") -> tuple[list[str], list[dict]]:
     proc = subprocess.Popen([sys.executable, "-m", "max2code", "serve",
                              str(ROOT / "examples" / "scenes" / f"{scene}.toml"), "--port", "0",
-                             "--rooms", "8"], stderr=subprocess.PIPE, text=True)
+                             "--rooms", "8", "--workers", "1"], stderr=subprocess.PIPE, text=True)
     try:
         port = int(re.search(r":(\d+)/", proc.stderr.readline()).group(1))
         rows = [asyncio.run(_load(port, n, 2.0 if quick else 6.0, proc.pid)) for n in (1, 10, 100)]
