@@ -183,6 +183,7 @@ int predict_check_generated(m2c_world *w);
 /* The earliest contact of bodies i (dynamic) and j at a time in (now, now + tmax]; 1 and
  * *c if there is one before *the current best* (c->t on entry), else 0. */
 int predict_pair(m2c_world *w, int i, int j, contact *c);
+/* The second time derivative of the event's gap now (relative acceleration and rotation). */
 double contact_gap_accel(m2c_world *w, int i, int j, const event *ev);
 
 /* response.c */
@@ -220,7 +221,6 @@ void solver_save(const m2c_world *w, void (*put)(void *, const void *, size_t), 
 int solver_load(m2c_world *w, int (*get)(void *, void *, size_t), void *ctx);  /* 0 or -1 */
 void solver_wedged(m2c_world *w, int k);
 int solver_soft_response(m2c_world *w, int i, int j, const event *ev, double closing, m2c_event *out);
-double solver_gap_accel(const m2c_world *w, int i, int j, const event *ev);
 
 /* motion.c */
 double first_crossing(double x, double v, double a, double edge, int dir, double tmax);

@@ -867,12 +867,13 @@ static void points_on_edges(feat *f, contact *best, int swapped)
 }
 
 /* The second derivative now of the gap (a distance) of the event's feature between bodies i
- * and j, from the order-2 model: the bodies' relative acceleration along the normal plus what
- * rotation adds (a spinning corner curves into its partner); 0 when rotation moves neither
- * feature (the linear part is the caller's). The response needs it when the
- * pair is pressed together with no approach speed: solve_rotating reports such a contact now
- * (pressed_in), and unless the response parts the pair, the same contact is found again at
- * the same instant, forever. */
+ * and j, from the order-2 model of the generated equations: the bodies' relative acceleration
+ * along the normal plus what rotation adds (a spinning corner curves into its partner, the
+ * centripetal and Coriolis terms). Two responses need it: a pair pressed together with no
+ * approach speed (solve_rotating reports such a contact now, pressed_in: unless the response
+ * parts the pair, the same contact is found again at the same instant, forever), and a soft
+ * contact of the contact solver, which parts at -accel h / 2 (contact_solver.c) for the
+ * same reason. One helper for both: they computed it twice, by hand and from the model. */
 double contact_gap_accel(m2c_world *w, int i, int j, const event *ev)
 {
     int swapped = ev->feature == F_LP;
@@ -891,8 +892,6 @@ double contact_gap_accel(m2c_world *w, int i, int j, const event *ev)
     f.R = f.A->radius + f.B->radius;
     set_point(w, f.B, &f.b, f.vb, f.pb);
     f.rot_b = ev->feature == F_PP ? f.b.w != 0.0 && (f.pb[0] != 0.0 || f.pb[1] != 0.0) : f.b.w != 0.0;
-    if (!f.rot_a && !f.rot_b)
-        return 0.0; /* rotation moves neither the point nor the edge (a spinning ball's centre) */
     double p[PL_NPARAMS + 1], c[MAXC] = {0};
     if (ev->feature == F_PP) {
         /* the gap is |P - Q|^2 - R^2 = d^2 - R^2: c2 = d d'' + d'^2 with d = R, d' = c1 / 2R */

@@ -250,7 +250,7 @@ int respond(m2c_world *w, int i, int j, const event *ev)
         }
     }
     if (soft && k > 1e-12 * (ima + imb)) { /* part fast enough not to meet again before a tick */
-        double acc = solver_gap_accel(w, i, j, ev);
+        double acc = contact_gap_accel(w, i, j, ev);
         double want = acc < 0 ? -0.5 * acc * solver_step(w) : 0.0;
         double sep = -closing + J * k;
         if (sep < want)
