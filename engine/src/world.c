@@ -431,6 +431,14 @@ void world_predict(m2c_world *w, int i)
         ev.t = w->now + horizon(w->now);
         ev.kind = EV_WINDOW;
     }
+    /* a body in the contact solver is predicted again at every tick (solver_tick): searching
+     * beyond the next one is wasted (in a settled pile, most of a tick's cost) */
+    double tick = b->state == SOLVING ? solver_next_tick(w) : INFINITY;
+    int capped = tick < ev.t;
+    if (capped) {
+        ev.t = tick;
+        ev.kind = EV_NONE;
+    }
     best_contact bc;
     memset(&bc, 0, sizeof bc);
     bc.c.t = ev.t;
@@ -439,6 +447,8 @@ void world_predict(m2c_world *w, int i)
     bc.partner = -1;
     grid_neighbours(w, i, visit, &bc);
     set_contact(w, &ev, &bc);
+    if (capped && ev.kind == EV_NONE)
+        ev.t = INFINITY; /* nothing before the tick, which predicts it again */
     b->ev = ev;
     heap_update(w, i);
 }
