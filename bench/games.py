@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import argparse
 import importlib.util
+import json
 import math
 import platform
 import random
@@ -237,6 +238,116 @@ def ours_platformer(seconds: float) -> dict:
     return r
 
 
+def pymunk_platformer(seconds: float) -> dict:
+    """The platformer's level in pymunk at 1/60, played by the same timed keys (applied at the
+    first frame at or after their time): a walk sets the player's horizontal speed every frame
+    while a key is held, a jump adds JUMP to its vertical speed when a contact holds it from
+    below, a one-way platform's pre-solve rejects the contact unless the feet come down onto
+    it, coins and the goal are sensors, and the lift is a kinematic body on the same
+    timetable."""
+    import pymunk
+
+    pf = load_example("platformer")
+    script = [(float(e["t"]), e["type"], e["key"])
+              for e in map(json.loads, pf.SCRIPT.read_text().splitlines()) if e]
+    space = pymunk.Space()
+    space.gravity = (0, -pf.G)
+    PLAYER, GROUND, ONEWAY, SENSOR = 1, 2, 3, 4
+
+    def box_shape(body, box, offset=(0.0, 0.0)):
+        x0, y0, x1, y1 = box
+        r = pf.ROUND
+        pts = [(x - offset[0], y - offset[1])
+               for x, y in pf.rect(x0 + r, y0 + r, x1 - r, y1 - r)]
+        return pymunk.Poly(body, pts, radius=r)
+
+    tops = {}
+    for kind, *box in pf.BOXES:
+        s = box_shape(space.static_body, box)
+        s.friction, s.collision_type = 0.0, (ONEWAY if kind == "oneway" else GROUND)
+        space.add(s)
+        tops[s] = box[3]
+    x0, x1, h = pf.LIFT
+    lift = pymunk.Body(body_type=pymunk.Body.KINEMATIC)
+    lift.position = (0.0, pf.LIFT_LOW)
+    ls = box_shape(lift, (x0, -h, x1, 0))
+    ls.friction, ls.collision_type = 0.0, GROUND
+    space.add(lift, ls)
+    sensors = {}
+    for (x, y), what, r in [(c, "coin", 0.25) for c in pf.COINS] + [(pf.GOAL, "goal", 0.5)]:
+        s = pymunk.Circle(space.static_body, r, (x, y))
+        s.sensor, s.collision_type = True, SENSOR
+        space.add(s)
+        sensors[s] = what
+    player = pymunk.Body(1.0, pymunk.moment_for_circle(1.0, 0, pf.RADIUS))
+    player.position = (1.5, 1.0 + pf.RADIUS)
+    ps = pymunk.Circle(player, pf.RADIUS)
+    ps.friction, ps.elasticity, ps.collision_type = 0.0, 0.0, PLAYER
+    space.add(player, ps)
+    state = {"coins": 0, "won": False, "held": []}
+
+    def sensed(arbiter, space, data):
+        s = arbiter.shapes[1]
+        if sensors.get(s) == "coin":
+            state["coins"] += 1
+            del sensors[s]
+            space.add_post_step_callback(lambda sp, key: sp.remove(key), s)
+        elif sensors.get(s) == "goal":
+            state["won"] = True
+
+    def one_way(arbiter, space, data):
+        top = tops[arbiter.shapes[1]]
+        arbiter.process_collision = (player.velocity.y <= 0
+                                     and player.position.y - pf.RADIUS >= top - 0.05)
+
+    space.on_collision(PLAYER, SENSOR, begin=sensed)
+    space.on_collision(PLAYER, ONEWAY, pre_solve=one_way)
+
+    def standing() -> bool:
+        below = []
+        player.each_arbiter(lambda arb: below.append(
+            arb.process_collision and not arb.is_removal
+            and arb.contact_point_set.normal.y * (1 if arb.shapes[0] is ps else -1) < -0.7))
+        return any(below)
+
+    phases = [(v, s) for v, s in pf.LIFT_PHASES]
+    cycle = sum(s for _, s in phases)
+
+    def lift_speed(t: float) -> float:
+        t %= cycle
+        for v, s in phases:
+            if t < s:
+                return v
+            t -= s
+        return 0.0
+
+    queue = list(script)
+
+    def step(k: int):
+        t = k / FPS
+        while queue and queue[0][0] <= t:
+            _, kind, key = queue.pop(0)
+            held = state["held"]
+            if key in ("K_LEFT", "K_RIGHT"):
+                if kind == "KEYDOWN" and key not in held:
+                    held.append(key)
+                elif kind == "KEYUP" and key in held:
+                    held.remove(key)
+            elif key in ("K_UP", "K_SPACE") and kind == "KEYDOWN" and standing():
+                player.velocity = (player.velocity.x, player.velocity.y + pf.JUMP)
+        held = state["held"]
+        d = (1 if held[-1] == "K_RIGHT" else -1) if held else 0
+        player.velocity = (pf.WALK * d, player.velocity.y)
+        lift.velocity = (0.0, lift_speed(t - 1 / FPS))
+        space.step(1 / FPS)
+        [b.position for b in space.bodies]
+        return not state["won"]
+
+    r = frames_of(step, seconds)
+    r["outcome"] = ("goal" if state["won"] else "no goal") + f", {state['coins']} coins"
+    return r
+
+
 # -- churn --------------------------------------------------------------------------------------
 
 def ours_churn(n: int, seconds: float, seed: int = 1) -> dict:
@@ -323,7 +434,7 @@ def main(argv: list[str] | None = None) -> int:
     rows = []
     scenes = [("breakout", ours_breakout, pymunk_breakout), ("snooker (PGE)", ours_snooker, pymunk_snooker)]
     if (ROOT / "examples" / "games" / "platformer" / "platformer.py").exists():
-        scenes.append(("platformer", ours_platformer, None))
+        scenes.append(("platformer", ours_platformer, pymunk_platformer))
     for name, ours, theirs in scenes:
         rows.append((name, "ours (predictive)", summary(ours(args.seconds))))
         if theirs:
