@@ -41,7 +41,7 @@ from PIL import Image  # noqa: E402
 
 from max2code.engine.frames import render_bodies, run_frames  # noqa: E402
 from max2code.engine.scenefile import build_world, load  # noqa: E402
-from max2code.render import raster, write  # noqa: E402
+from max2code.render import fidelity, raster, write  # noqa: E402
 from max2code.commands.sim import picture_view  # noqa: E402
 
 SCENES = ("billiards-break", "bullet", "idle-orbit", "paddles", "pile", "pinball")
@@ -58,6 +58,13 @@ BASELINE_COMMIT = "fd2e4b758a86fd51e922558ac4250feb199795e4"   # before issue 37
 # turned that faint edge solid.)
 MEAN_DIFFERENT = 1.0
 SOLID = 96
+# The files written are checked too, each frame decoded again against the frame drawn
+# (render.fidelity): a GIF frame at most GIF_MEAN levels of 255 apart on average and GIF_BODIES
+# at the bodies (measured at most 0.41 and 4.0, pile's many colours on one palette), an MP4
+# frame at least MP4_PSNR dB (measured 33-51; one frame against the next: 24-42).
+GIF_MEAN = 0.5
+GIF_BODIES = 6.0
+MP4_PSNR = 30.0
 REPEATS = 3   # each path timed this many times, the best kept (a shared machine's noise is slower)
 
 
@@ -152,15 +159,19 @@ def scene_frames(name: str, seconds: float):
     return bodies, frames, picture_view(scene, bodies, frames, *SIZE)
 
 
-def mp4_with(drawer_class, preset: str, bodies, frames, view, path: str) -> None:
+# the baseline's x264 options: its default preset, "medium", and imageio's quality 8 (crf 10)
+BASELINE_X264 = ("-preset", "medium", "-crf", "10")
+
+
+def mp4_with(drawer_class, x264, bodies, frames, view, path: str) -> None:
     """write_mp4 drawing with `drawer_class` (the baseline's, or FrameDrawer) and encoding with
-    x264's `preset` (the baseline's was x264's default, "medium")."""
-    saved = raster.FrameDrawer, write.MP4_PRESET
-    raster.FrameDrawer, write.MP4_PRESET = drawer_class, preset
+    the x264 options `x264` (the baseline's, or write.MP4_X264)."""
+    saved = raster.FrameDrawer
+    raster.FrameDrawer = drawer_class
     try:
-        write.write_mp4(path, bodies, frames, view, FPS)
+        write.write_mp4(path, bodies, frames, view, FPS, x264)
     finally:
-        raster.FrameDrawer, write.MP4_PRESET = saved
+        raster.FrameDrawer = saved
 
 
 def measure(name: str, seconds: float, tmp: str) -> dict[str, tuple[float, float]]:
@@ -178,17 +189,40 @@ def measure(name: str, seconds: float, tmp: str) -> dict[str, tuple[float, float
     gif = os.path.join(tmp, "a.gif")
     mp4 = os.path.join(tmp, "a.mp4")
     drawn = [raster.FrameDrawer(bodies, view)]
-    drawn = [drawn[0].pixels(f).copy() for f in frames]   # (for x264 alone)
+    drawn = [drawn[0].pixels(f).copy() for f in frames]   # (for x264 alone, and the checks)
+    fidelities = files_checked(name, bodies, frames, view, drawn, gif, mp4)
     t = fastest({
         "base_frames": (lambda: [old.frame_image(bodies, f, view) for f in frames], 0),
         "new_frames": (lambda: [d.pixels(f) for d in [raster.FrameDrawer(bodies, view)] for f in frames], 0),
         "base_gif": (lambda: baseline_gif(bodies, frames, view), 0),
         "new_gif": (lambda: write.write_gif(gif, bodies, frames, view, FPS), 0),
-        "base_mp4": (lambda: mp4_with(BaselineDrawer, "medium", bodies, frames, view, mp4), 1),
-        "new_mp4": (lambda: mp4_with(raster.FrameDrawer, write.MP4_PRESET, bodies, frames, view, mp4), 1),
+        "base_mp4": (lambda: mp4_with(BaselineDrawer, BASELINE_X264, bodies, frames, view, mp4), 1),
+        "new_mp4": (lambda: mp4_with(raster.FrameDrawer, write.MP4_X264, bodies, frames, view, mp4), 1),
         "x264": (lambda: write.mp4_of(mp4, range(n), drawn.__getitem__, FPS, view.background), 1)})
     return {kind: (n / t[f"base_{kind}"], n / t[f"new_{kind}"]) for kind in ("frames", "gif", "mp4")} | {
-        "count": n, "bodies": len(bodies), "x264": n / t["x264"]}
+        "count": n, "bodies": len(bodies), "x264": n / t["x264"]} | fidelities
+
+
+def files_checked(name, bodies, frames, view, drawn, gif: str, mp4: str) -> dict[str, float]:
+    """Write the GIF and the MP4 once and decode every frame again (render.fidelity); exits if
+    one is not the frame drawn. Returns the worst: GIF mean and bodies error, MP4 PSNR."""
+    step = write.gif_timing(len(frames), FPS)[0]
+    write.write_gif(gif, bodies, frames, view, FPS)
+    errors = [fidelity.frame_error(got, want, view.background)
+              for got, want in zip(fidelity.gif_frames(gif), drawn[::step])]
+    write.write_mp4(mp4, bodies, frames, view, FPS)
+    psnrs = [fidelity.psnr(got, want) for got, want in zip(fidelity.mp4_frames(mp4), drawn)]
+    if len(errors) != len(drawn[::step]) or len(psnrs) != len(drawn):
+        sys.exit(f"render: {name}: {len(errors)} GIF and {len(psnrs)} MP4 frames for {len(drawn)}")
+    for k, e in enumerate(errors):
+        if e.mean > GIF_MEAN or e.bodies > GIF_BODIES:
+            sys.exit(f"render: {name}: GIF frame {k} is {e.mean:.2f} levels off on average, "
+                     f"{e.bodies:.2f} at the bodies")
+    for k, p in enumerate(psnrs):
+        if p < MP4_PSNR:
+            sys.exit(f"render: {name}: MP4 frame {k} has a PSNR of {p:.1f} dB")
+    return {"gif_mean": max(e.mean for e in errors), "gif_bodies": max(e.bodies for e in errors),
+            "mp4_psnr": min(psnrs)}
 
 
 def main() -> int:
@@ -213,10 +247,16 @@ def main() -> int:
              f"average, and every pixel that one paints {SOLID} levels or more from the background "
              "painted by the other too, or a neighbour of it). Last column: write_mp4 given the "
              "frames drawn ahead, so x264 alone (wall seconds): no drawing makes an MP4 faster "
-             "than that, so it bounds the MP4 speed-up.", "",
+             "than that, so it bounds the MP4 speed-up. The baseline's MP4 is encoded as it was "
+             f"(x264 `{' '.join(BASELINE_X264)}`), today's with `{' '.join(write.MP4_X264)}`. "
+             "The files are checked: every frame decoded again against the frame drawn "
+             f"(GIF at most {GIF_MEAN:g} levels off on average and {GIF_BODIES:g} at the bodies, "
+             f"MP4 at least {MP4_PSNR:g} dB PSNR); the worst frame's numbers are in the last "
+             "columns.", "",
              "| scene | bodies | frames | frames: old / new fps | speed-up | GIF: old / new fps "
-             "| speed-up | MP4: old / new fps | speed-up | MP4: x264 alone fps (bound) |",
-             "|---|---|---|---|---|---|---|---|---|---|"]
+             "| speed-up | MP4: old / new fps | speed-up | MP4: x264 alone fps (bound) "
+             "| GIF error: mean / bodies | MP4 PSNR dB |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     totals = {"frames": [0.0, 0.0], "gif": [0.0, 0.0], "mp4": [0.0, 0.0]}
     with tempfile.TemporaryDirectory() as tmp:
         for name in args.scenes:
@@ -229,7 +269,8 @@ def main() -> int:
                 cells.append(f"{old:.1f} / {new:.1f} | {new / old:.1f}x")
             bound = r["x264"] / r["mp4"][0]
             lines.append(f"| {name} | {r['bodies']} | {r['count']} | " + " | ".join(cells)
-                         + f" | {r['x264']:.1f} ({bound:.1f}x) |")
+                         + f" | {r['x264']:.1f} ({bound:.1f}x) | {r['gif_mean']:.2f} / "
+                         f"{r['gif_bodies']:.2f} | {r['mp4_psnr']:.1f} |")
     lines += ["", "All scenes together (total time old / new): " + ", ".join(
         f"{kind} {old / new:.1f}x" for kind, (old, new) in totals.items()) + "."]
     publish(results_dir(ROOT / "bench" / "results"), "render.md", "\n".join(lines) + "\n")

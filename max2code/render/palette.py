@@ -91,10 +91,11 @@ class Mapper:
 
     def _learn(self, colours: np.ndarray) -> None:
         """Nearest entries of new colours: |c - e|^2 = |c|^2 - 2 c.e + |e|^2, and |c|^2 is the
-        same for every entry (a product of matrices, exact in float64)."""
-        rgb = _unpacked(colours).astype(np.float64)
-        entries = self.entries.astype(np.float64)
-        d = (entries * entries).sum(axis=1)[None, :] - 2.0 * rgb @ entries.T
+        same for every entry (a product of matrices). Exact in float32, twice as fast as in
+        float64: every term and partial sum is a whole number below 2^24 (3 x 2 x 255^2)."""
+        rgb = _unpacked(colours).astype(np.float32)
+        entries = self.entries.astype(np.float32)
+        d = (entries * entries).sum(axis=1)[None, :] - 2.0 * (rgb @ entries.T)
         self.table[colours] = np.argmin(d, axis=1) + 1
 
     def _entries(self, keys: np.ndarray) -> np.ndarray:
@@ -106,28 +107,59 @@ class Mapper:
         return (index - 1).astype(np.uint8)
 
     def mapped(self, image: Image.Image | np.ndarray,
-               changed: list[tuple[int, int, int, int]] | None = None) -> Image.Image:
+               changed: list[tuple[int, int, int, int]] | np.ndarray | None = None) -> Image.Image:
         """`image` (RGB, or its RGB or opaque RGBA bytes) as a 'P' image on the palette.
-        `changed`: the boxes (rows j0:j1, columns i0:i1) outside which `image` is the previous
-        one mapped (FrameDrawer.changed); None: map every pixel."""
+        `changed`: where `image` may differ from the previous one mapped, as boxes (rows j0:j1,
+        columns i0:i1; FrameDrawer.changed) or as a mask of square tiles (FrameDrawer.
+        changed_tiles); None: map every pixel."""
         pixels = np.asarray(image)
         if changed is None or self.index is None or self.index.shape != pixels.shape[:2]:
             self.index = self._entries(_packed(pixels))
+        elif isinstance(changed, np.ndarray):
+            self._map_tiles(pixels, changed)
         else:
-            # (all boxes in one lookup: per box, the lookup's dozen numpy calls cost more
-            # than its pixels when a frame has a hundred small boxes)
-            boxes = [(slice(j0, j1), slice(i0, i1)) for j0, j1, i0, i1 in changed if j0 < j1 and i0 < i1]
-            if boxes:
-                words = _words(pixels)
-                keys = (np.concatenate([words[b].ravel() for b in boxes]) & np.uint32(0xFFFFFF)
-                        if words is not None else
-                        np.concatenate([_packed(pixels[b]).ravel() for b in boxes]))
-                entries = self._entries(keys)
-                at = 0
-                for rows, cols in boxes:
-                    region = self.index[rows, cols]
-                    region[...] = entries[at:at + region.size].reshape(region.shape)
-                    at += region.size
+            self._map_boxes(pixels, changed)
         out = Image.fromarray(self.index.copy(), "P")   # (a 'P' image would share the array)
         out.putpalette(self.flat, "RGB")
         return out
+
+    def _map_boxes(self, pixels: np.ndarray, changed: list[tuple[int, int, int, int]]) -> None:
+        # (all boxes in one lookup: per box, the lookup's dozen numpy calls cost more
+        # than its pixels when a frame has a hundred small boxes)
+        boxes = [(slice(j0, j1), slice(i0, i1)) for j0, j1, i0, i1 in changed if j0 < j1 and i0 < i1]
+        if not boxes:
+            return
+        words = _words(pixels)
+        keys = (np.concatenate([words[b].ravel() for b in boxes]) & np.uint32(0xFFFFFF)
+                if words is not None else
+                np.concatenate([_packed(pixels[b]).ravel() for b in boxes]))
+        entries = self._entries(keys)
+        at = 0
+        for rows, cols in boxes:
+            region = self.index[rows, cols]
+            region[...] = entries[at:at + region.size].reshape(region.shape)
+            at += region.size
+
+    def _map_tiles(self, pixels: np.ndarray, mask: np.ndarray) -> None:
+        """The tiles of `mask` (tile rows x tile columns; the picture cut into squares of
+        height / tile rows pixels, the last row and column of tiles possibly cut short), in
+        one gather and one scatter where the tiles fit the picture, else as boxes."""
+        h, w = self.index.shape
+        size = -(-h // mask.shape[0])
+        words = _words(pixels)
+        if words is None or h % size or w % size or w != mask.shape[1] * size:
+            self._map_boxes(pixels, [(r * size, min(r * size + size, h), c * size,
+                                      min(c * size + size, w)) for r, c in np.argwhere(mask).tolist()])
+            return
+        if not mask.any():
+            return
+        keys = _tiles_of(words, size)[mask] & np.uint32(0xFFFFFF)
+        _tiles_of(self.index, size)[mask] = self._entries(keys.ravel()).reshape(keys.shape)
+
+
+def _tiles_of(a: np.ndarray, size: int) -> np.ndarray:
+    """A 2-D array whose sides are multiples of `size` as (tile rows, tile columns, size,
+    size), a view (indexed by a tile mask, it reads or writes those tiles)."""
+    return np.lib.stride_tricks.as_strided(
+        a, (a.shape[0] // size, a.shape[1] // size, size, size),
+        (a.strides[0] * size, a.strides[1] * size) + a.strides, writeable=True)

@@ -114,20 +114,38 @@ def merged(boxes: Sequence[Box] | set[Box], height: int, width: int) -> list[Box
     return boxes if len(boxes) <= 1 else runs(tiles(boxes, height, width), height, width)
 
 
+def tile_view(store: np.ndarray) -> np.ndarray:
+    """A picture padded to whole tiles (rows, columns, ...) as (tile rows, tile columns, TILE,
+    TILE, ...), a view: indexed by a tile mask (tiles()[:, :-1] as bool) it reads or writes
+    those tiles' pixels, all in one call."""
+    rows, cols = store.shape[0] // TILE, store.shape[1] // TILE
+    return np.lib.stride_tricks.as_strided(
+        store, (rows, cols, TILE, TILE) + store.shape[2:],
+        (store.strides[0] * TILE, store.strides[1] * TILE) + store.strides, writeable=True)
+
+
 class Canvas:
     """An RGBA picture (rows, columns, 4 bytes, opaque) that Skia draws into in place; `painted`
     keeps the pixel boxes touched since it was made, so that a FrameDrawer converts and restores
-    those only."""
+    those only.
 
-    def __init__(self, view: View, pixels: np.ndarray | None = None) -> None:
-        """A fresh picture of the background, or one drawing into `pixels` itself."""
+    Skia draws into `store`, the picture padded to whole TILE x TILE tiles (Skia takes only
+    contiguous rows, so the picture is its top-left view, `pixels`): a FrameDrawer then copies
+    whole tiles by a mask in one numpy call (tile_view), where box by box the Python of a
+    hundred small boxes cost more than their pixels. The padding is painted by shapes at the
+    edge but is never part of a picture."""
+
+    def __init__(self, view: View, store: np.ndarray | None = None) -> None:
+        """A fresh picture of the background, or one drawing into `store` itself (padded)."""
         self.view = view
         self.painted: set[Box] = set()
-        if pixels is None:
-            pixels = np.empty((view.height, view.width, 4), dtype=np.uint8)
-            pixels[:] = [int(view.background[i:i + 2], 16) for i in (1, 3, 5)] + [255]
-        self.pixels = pixels
-        self.surface = skia.Surface(pixels)
+        if store is None:
+            store = np.empty((-(-view.height // TILE) * TILE, -(-view.width // TILE) * TILE, 4),
+                             dtype=np.uint8)
+            store[:] = [int(view.background[i:i + 2], 16) for i in (1, 3, 5)] + [255]
+        self.store = store
+        self.pixels = store[:view.height, :view.width]
+        self.surface = skia.Surface(store)
         self.skia = self.surface.getCanvas()
 
     def box(self, x0: float, y0: float, x1: float, y1: float) -> Box | None:
@@ -484,8 +502,9 @@ class FrameDrawer:
 
     Frames stay RGBA (opaque) from Skia to the writers: ffmpeg takes them as they are, a GIF
     palette looks them up as one 32-bit number a pixel, and no RGB copy is made (it was a
-    fifth of a frame's drawing). `changed` says where the last frame may differ from the one
-    before (None: anywhere), so a GIF palette (palette.Mapper) maps only those pixels again."""
+    fifth of a frame's drawing). `changed_tiles` says where the last frame may differ from the
+    one before, as a mask of TILE x TILE tiles (None: anywhere), so a GIF palette
+    (palette.Mapper) maps only those pixels again; `changed` says it as boxes."""
 
     def __init__(self, bodies: Sequence[Body], view: View) -> None:
         self.bodies = list(bodies)
@@ -493,16 +512,17 @@ class FrameDrawer:
         self.previous: tuple | None = None
         self.layers_painted = 0
         self._paint_layer(())
-        self.changed: list[Box] | None = None
+        self.changed_tiles: np.ndarray | None = None
 
     def _paint_layer(self, poses: tuple) -> None:
         canvas = Canvas(self.view)
         for body, pose in zip(self.bodies, poses):
             draw_body(canvas, body, pose)
-        self.layer_poses, self.layer = poses, canvas.pixels
+        self.layer_poses, self.layer = poses, canvas.store
         self.work = Canvas(self.view, self.layer.copy())
-        self._painted: list[Box] = []       # the working copy's pixels that are not the layer's
-        self._drawn = tiles((), self.view.height, self.view.width)   # (their tiles)
+        self._layer_tiles, self._work_tiles = tile_view(self.layer), tile_view(self.work.store)
+        # the tiles of the working copy that are not the layer's
+        self._drawn = np.zeros(self._layer_tiles.shape[:2], dtype=bool)
         self.layers_painted += 1
 
     def pixels(self, frame: Frame) -> np.ndarray:
@@ -519,18 +539,25 @@ class FrameDrawer:
             self._paint_layer(poses[:still])
             kept = still
         work, h, w = self.work, self.view.height, self.view.width
-        for j0, j1, i0, i1 in self._painted:
-            work.pixels[j0:j1, i0:i1] = self.layer[j0:j1, i0:i1]
+        if self._drawn.any():
+            self._work_tiles[self._drawn] = self._layer_tiles[self._drawn]
         work.painted = set()
         for body, pose in zip(self.bodies[kept:], poses[kept:]):
             draw_body(work, body, pose)
         _draw_contacts(work, frame)
         work.painted.update(_draw_text_boxed(work.pixels, self.bodies, frame, self.view))
-        drawn = tiles(work.painted, h, w)
-        self._painted = runs(drawn, h, w)
-        self.changed = None if rebuilt or first else runs(drawn | self._drawn, h, w)
+        drawn = tiles(work.painted, h, w)[:, :-1].astype(bool)
+        self.changed_tiles = None if rebuilt or first else drawn | self._drawn
         self._drawn = drawn
         return work.pixels
+
+    @property
+    def changed(self) -> list[Box] | None:
+        """changed_tiles as boxes that do not overlap (None: anywhere)."""
+        if self.changed_tiles is None:
+            return None
+        h, w = self.view.height, self.view.width
+        return runs(np.pad(self.changed_tiles, ((0, 0), (0, 1))).astype(np.int8), h, w)
 
     def image(self, frame: Frame) -> Image.Image:
         return rgb_image(self.pixels(frame))

@@ -49,9 +49,14 @@ def drawing_modules() -> tuple[object, object]:
     return raster, Image
 
 
-# x264's speed for its size: "veryfast" encoded 640x480 frames 3.4 times as fast as the
-# default "medium", for a file 9% larger at the same quality (bench/render.py, pinball)
-MP4_PRESET = "veryfast"
+# x264's settings for flat-shaded animation (docs/pictures.md, measured on bullet, paddles and
+# billiards-break at 640x480, 91 frames): "ultrafast" took 0.24-0.27 s of ffmpeg's CPU where
+# "veryfast" took 0.39-0.50 s and the default "medium" 0.6-0.7 s; "-tune animation" and a
+# constant rate factor of 20 keep the file 1.3-1.4 times today's "veryfast" at crf 10 (ultrafast
+# at crf 10: 2.2-2.6 times) at the same fidelity: PSNR of the decoded frames against the drawn
+# ones 40.1-45.5 dB against 40.0-45.2 dB, bounded by yuv420p's halved colour resolution, not by
+# the rate factor (crf 16 to 20 moved it by 0.3 dB).
+MP4_X264 = ("-preset", "ultrafast", "-tune", "animation", "-crf", "20")
 GIF_PALETTE_SAMPLES = 4   # frames whose colours choose a GIF's palette, evenly spaced
 
 
@@ -134,7 +139,7 @@ def write_gif(path: str | os.PathLike, bodies: Sequence[Body], frames: Iterable[
     raster, _ = drawing_modules()
     drawer = raster.FrameDrawer(bodies, view)
     return gif_of(path, frames, drawer.pixels, fps, raster.scene_colours(bodies, view),
-                  lambda: drawer.changed)
+                  lambda: drawer.changed_tiles)
 
 
 def gif_of(path: str | os.PathLike, frames: Iterable[F], draw: Callable[[F], object], fps: float,
@@ -142,8 +147,9 @@ def gif_of(path: str | os.PathLike, frames: Iterable[F], draw: Callable[[F], obj
     """An animated GIF of draw(frame) (an RGB Pillow image, or its RGB or opaque RGBA bytes) for
     each frame: frames that the timing drops are never drawn. One palette for all (render.palette): the colours
     `keys` exactly, and the blends in GIF_PALETTE_SAMPLES kept frames drawn ahead (draw must
-    depend on its frame only). changed(): the boxes where the last drawing may differ from
-    the one before (None: anywhere), so only those are mapped to the palette again."""
+    depend on its frame only). changed(): where the last drawing may differ from the one
+    before, as boxes or a tile mask (palette.Mapper.mapped; None: anywhere), so only those
+    are mapped to the palette again."""
     drawing_modules()
     from . import palette
     fps = check_fps(fps)
@@ -167,18 +173,20 @@ def gif_of(path: str | os.PathLike, frames: Iterable[F], draw: Callable[[F], obj
 
 
 def write_mp4(path: str | os.PathLike, bodies: Sequence[Body], frames: Iterable[Frame], view: View,
-              fps: float, quality: float = 8.0) -> int:
+              fps: float, x264: Sequence[str] = MP4_X264) -> int:
     """An H.264 MP4 of the frames (mp4_of below)."""
     raster, _ = drawing_modules()
     return mp4_of(path, frames, raster.FrameDrawer(bodies, view).pixels, fps,
-                  view.background, quality)
+                  view.background, x264)
 
 
 def mp4_of(path: str | os.PathLike, frames: Iterable[F], draw: Callable[[F], object], fps: float,
-           background: str = "#000000", quality: float = 8.0) -> int:
+           background: str = "#000000", x264: Sequence[str] = MP4_X264) -> int:
     """An H.264 MP4 (yuv420p, so every player takes it) of draw(frame) for each frame, through
-    the ffmpeg binary shipped in the imageio-ffmpeg wheel; odd picture sizes are padded by one
-    pixel of background, as H.264 in 4:2:0 needs even ones. Returns the number of frames."""
+    the ffmpeg binary shipped in the imageio-ffmpeg wheel, encoded by x264 with the options
+    `x264` (MP4_X264); odd picture sizes are padded by one pixel of background, as H.264 in
+    4:2:0 needs even ones. Frames go to ffmpeg as they are drawn (opaque RGBA, the drawer's own
+    buffer written to the pipe as it lies: no RGB copy). Returns the number of frames."""
     drawing_modules()
     fps = check_fps(fps)
     try:
@@ -204,9 +212,9 @@ def mp4_of(path: str | os.PathLike, frames: Iterable[F], draw: Callable[[F], obj
                 if writer is None:
                     writer = imageio.get_writer(tmp, format="FFMPEG", mode="I", fps=fps,
                                                 codec="libx264", pixelformat="yuv420p",
-                                                quality=quality, macro_block_size=1,
+                                                quality=None, macro_block_size=1,
                                                 ffmpeg_log_level="error",
-                                                output_params=["-preset", MP4_PRESET])
+                                                output_params=list(x264))
                 writer.append_data(pixels)
                 count += 1
         finally:
