@@ -505,6 +505,13 @@ static double body_speed(const body *b, const double *v)
     return hypot(v[0], v[1]) + fabs(v[2]) * b->rho;
 }
 
+/* The fastest point of the body's surface (a ball's rim too: a ball spinning on the spot is
+ * not calm, whatever its centre does). */
+static double surface_speed(const body *b, const double *v)
+{
+    return hypot(v[0], v[1]) + fabs(v[2]) * fmax(b->rho, b->bound);
+}
+
 static void gen_visit(m2c_world *w, int i, int j, void *ctx)
 {
     gen_ctx *g = ctx;
@@ -988,7 +995,7 @@ void solver_tick(m2c_world *w)
         B->m.ax = B->m.ay = 0.0;
         B->counter++;
         s->idle[i] = (s->flag[i] & 1) ? 0 : s->idle[i] + 1;
-        double sp = body_speed(B, &s->v[3 * i]);
+        double sp = surface_speed(B, &s->v[3 * i]);
         s->calm[i] = sp <= sleep_speed(w, B) ? s->calm[i] + h : 0.0;
     }
     for (int m = 0; m < s->n;) {

@@ -318,7 +318,15 @@ int rest_after_contact(m2c_world *w, int k, int s, const event *ev, int k_is_a, 
         double up[2] = {-K->gx / gl, -K->gy / gl};
         int on_asleep = S->kind == M2C_DYNAMIC;
         double vt_abs = hypot(vt[0], vt[1]);
-        if (solver_step(w) > 0 && (on_asleep || (vt_abs > vr && K->friction * S->friction > 0)))
+        /* the contact point's own slip: a ball put down spinning on the spot slides on the
+         * floor until friction rolls it (it was frozen, its spin dropped) */
+        snap sk = motion_at(&K->m, w->now);
+        double r[2] = {p[0] - sk.x, p[1] - sk.y};
+        double slip[2] = {vt[0] - K->m.w * r[1], vt[1] + K->m.w * r[0]};
+        double slip_t = fabs(slip[0] * n[1] - slip[1] * n[0]);
+        int rubs = slip_t > vr && K->friction * S->friction > 0;
+        int spins = fabs(K->m.w) * K->rho > vr;
+        if (solver_step(w) > 0 && (on_asleep || rubs || spins || (vt_abs > vr && K->friction * S->friction > 0)))
             return solver_adopt(w, k) | changed; /* sustained contact: the solver decides */
         if ((on_asleep && vt_abs <= settle_speed(w, K))
             || (vt_abs <= vr && holds((const double (*)[2])nrm, g.count, up))) {

@@ -15,7 +15,7 @@ import pickle
 import random
 
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import assume, given, settings, strategies as st
 
 from .force_oracle import Shape, balance, contacts, sleeping_residual
 from .scenes import assert_apart
@@ -144,6 +144,78 @@ def test_frictionless_box_keeps_its_speed(engine) -> None:
     assert x == pytest.approx(2.0 * 3.0, rel=1e-9)
     assert y == pytest.approx(0.1, abs=1e-6) and abs(th) < 1e-9
     assert not w.asleep(b)
+
+
+# -- rolling ---------------------------------------------------------------------------------------
+
+ROLLING = 1e-9   # relative: speed, spin and distance of a rolling ball over 10 s (docs/engine-contact.md)
+
+
+@pytest.mark.parametrize("mu", [0.3, 1.0])
+def test_rolling_ball_keeps_rolling(engine, mu: float) -> None:
+    """A disc rolling without slipping (omega = -v / r) on a floor with friction: the contact
+    point is at rest, no friction acts, and nothing else slows it (no rolling resistance is
+    modelled): after 10 s it still rolls at v0, spins at -v0 / r and has gone v0 t."""
+    r, v0 = 0.2, 1.5
+    w = engine.World(gravity=(0.0, -G), contact_step=H)
+    _floor(w, mu, 0.0, half=100.0)
+    b = w.add_circle((0.0, r), r, velocity=(v0, 0.0), omega=-v0 / r, friction=mu, restitution=0.0)
+    w.step_to(10.0, events=False)
+    x, y, _ = w.pose(b)
+    vx, vy, om = w.velocity(b)
+    assert w.solving(b) and not w.asleep(b)
+    assert vx == pytest.approx(v0, rel=ROLLING) and abs(vy) < ROLLING
+    assert om == pytest.approx(-v0 / r, rel=ROLLING)
+    assert x == pytest.approx(v0 * 10.0, rel=ROLLING) and y == pytest.approx(r, abs=1e-6)
+
+
+def _spinning_drop(engine, r: float, v0: float, w0: float, mu: float, drop: float):
+    w = engine.World(gravity=(0.0, -G), contact_step=H)
+    _floor(w, mu, 0.0, half=1000.0)
+    b = w.add_circle((0.0, r + drop), r, velocity=(v0, 0.0), omega=w0, friction=mu,
+                     restitution=0.0)
+    return w, b
+
+
+@settings(max_examples=25, deadline=None)
+@given(r=st.floats(0.05, 0.5), v0=st.floats(-3.0, 3.0), w0=st.floats(-30.0, 30.0),
+       mu=st.floats(0.1, 1.0), drop=st.one_of(st.just(0.0), st.floats(0.0, 0.2)))
+def test_spinning_ball_ends_rolling_as_the_closed_form_says(engine, r, v0, w0, mu, drop) -> None:
+    """A uniform disc (I = m r^2 / 2) put down or dropped on a floor with friction, moving at v0
+    and spinning at w0 (anticlockwise positive): friction and the floor's push act at the
+    contact point, gravity through the centre, so the angular momentum about the contact point,
+    -m r v + I w, is kept; friction ends the slip when w = -v / r, so it rolls on at
+    v = (2 v0 - r w0) / 3 -- whatever mu and however it landed. (Rolling slower than the
+    sleep speed, max(v_r, |g| h) = 0.041 m/s, it may fall asleep: not tried here.)"""
+    vf = (2 * v0 - r * w0) / 3
+    assume(abs(vf) > 0.1)
+    w, b = _spinning_drop(engine, r, v0, w0, mu, drop)
+    slip = abs(v0 + w0 * r)
+    ends = math.sqrt(2 * drop / G) + slip / (3 * mu * G)   # the slip's end, at the latest
+    w.step_to(ends + 0.5, events=False)
+    vx, vy, om = w.velocity(b)
+    assert vx == pytest.approx(vf, rel=ROLLING, abs=1e-12)
+    assert om * r == pytest.approx(-vf, rel=ROLLING, abs=1e-12)
+    assert abs(vy) < 1e-9 and w.pose(b)[1] == pytest.approx(r, abs=1e-6)
+
+
+@pytest.mark.parametrize("v0, w0, mu", [(2.0, 5.0, 0.5), (-1.0, 30.0, 0.2), (0.5, -20.0, 0.8)])
+def test_spinning_ball_slips_for_the_coulomb_time(engine, v0: float, w0: float, mu: float) -> None:
+    """Put down slipping at s0 = v0 + w0 r: kinetic friction mu m g slows the slip at
+    mu g (1 + m r^2 / I) = 3 mu g, so it rolls from s0 / (3 mu g) on (within a step or two of
+    the solver's)."""
+    r = 0.2
+    w, b = _spinning_drop(engine, r, v0, w0, mu, 0.0)
+    ends = abs(v0 + w0 * r) / (3 * mu * G)
+
+    def slip() -> float:
+        vx, _, om = w.velocity(b)
+        return abs(vx + om * r)
+
+    w.step_to(ends - 2 * H, events=False)
+    assert slip() > mu * G * H
+    w.step_to(ends + 2 * H, events=False)
+    assert slip() < 1e-12
 
 
 # -- a slope -------------------------------------------------------------------------------------
