@@ -52,9 +52,9 @@ def alive(pid: int) -> bool:
     return state != "Z"
 
 
-def serve(*extra: str) -> tuple[subprocess.Popen, int]:
+def serve(*extra: str, session: bool = False) -> tuple[subprocess.Popen, int]:
     proc = subprocess.Popen([sys.executable, "-m", "max2code", "serve", str(ARENA), "--port", "0", *extra],
-                            stderr=subprocess.PIPE, text=True)
+                            stderr=subprocess.PIPE, text=True, start_new_session=session)
     line = proc.stderr.readline()
     m = re.search(r"http://127\.0\.0\.1:(\d+)/ .*on 2 worker processes", line)
     if not m:
@@ -137,6 +137,26 @@ def test_two_rooms_on_two_workers_then_sigint_leaves_no_process():
         while any(alive(k) for k in kids) and time.monotonic() - t0 < 10:
             time.sleep(0.05)
         assert not [k for k in kids if alive(k)], "left behind after SIGINT"
+    finally:
+        proc.kill()
+        proc.wait()
+
+
+def test_ctrl_c_to_the_process_group_leaves_no_process():
+    """A terminal's ^C: SIGINT to every process of the group at once (the workers ignore it,
+    the front stops them)."""
+    proc, port = serve("--workers", "2", session=True)
+    try:
+        kids = descendants(proc.pid)
+        assert len(kids) >= 2
+        asyncio.run(Client.join(f"ws://127.0.0.1:{port}/ws", room="one"))
+        os.killpg(proc.pid, signal.SIGINT)
+        assert proc.wait(20) == 128 + signal.SIGINT
+        end = time.monotonic() + 10
+        while any(alive(k) for k in kids) and time.monotonic() < end:
+            time.sleep(0.05)
+        assert not [k for k in kids if alive(k)]
+        assert "Traceback" not in proc.stderr.read()    # no KeyboardInterrupt in any worker
     finally:
         proc.kill()
         proc.wait()
