@@ -124,9 +124,7 @@ async def _until_signal(coro) -> int:
 def _worker(index: int, count: int, channel, argv: list[str]) -> None:
     """A worker process (spawned by the front, server/workers.py): the same options, its
     share of the rooms."""
-    import signal as signals
-
-    signals.signal(signals.SIGINT, signals.SIG_IGN)   # (before anything slow: the front coordinates)
+    signal.signal(signal.SIGINT, signal.SIG_IGN)   # (before anything slow: the front coordinates)
     from ..server.app import run_worker
 
     with contextlib.redirect_stderr(io.StringIO()):   # (a bad scene: the front says so, once)

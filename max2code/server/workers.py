@@ -27,7 +27,6 @@ import multiprocessing
 import os
 import signal
 import socket
-import sys
 import zlib
 from dataclasses import dataclass
 from typing import Callable
@@ -253,11 +252,3 @@ def listen(host: str, port: int) -> socket.socket:
     """The front's listening socket (as asyncio's create_server makes one: SO_REUSEADDR)."""
     return socket.create_server((host, port), reuse_port=False, backlog=1024,
                                 family=socket.AF_INET6 if ":" in host else socket.AF_INET)
-
-
-def exit_code_of(signals: list[int]) -> int:
-    return 128 + signals[0] if signals else 0
-
-
-def log(text: str) -> None:
-    print(text, file=sys.stderr, flush=True)

@@ -15,7 +15,6 @@ import urllib.request
 import zlib
 from pathlib import Path
 
-import pytest
 from websockets.asyncio.client import connect
 
 from max2code.server import protocol
