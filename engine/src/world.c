@@ -633,8 +633,9 @@ int m2c_world_step(m2c_world *w, double until, m2c_event *events, int capacity, 
             process(w, i);
         }
         /* (counted over the resumed calls of one step: each returns when the buffer fills,
-         * about every thousand events with the Python binding's buffer) */
-        if (w->cfg.max_events > 0 && ++w->step_events > w->cfg.max_events) {
+         * about every thousand events with the Python binding's buffer; a contact solver's
+         * tick is no event: it reports nothing, and there are only until / h of them) */
+        if (!tick && w->cfg.max_events > 0 && ++w->step_events > w->cfg.max_events) {
             w->out = NULL;
             *count = w->out_n;
             w->step_events = 0; /* (a failure ends the step: the next call starts one) */
