@@ -229,6 +229,7 @@ int m2c_world_set_pose(m2c_world *w, int i, double x, double y, double angle)
         grid_insert(w, i);
     }
     wake_around(w, i);          /* what sleeps against it at its new place */
+    ghost_leave_sensors(w, i);  /* it overlaps nothing there (checked above) */
     changed(w, i);
     return 0;
 }

@@ -46,6 +46,7 @@ typedef struct {
     int partner;
     uint32_t partner_counter;
     int feature, fa, fb, side;  /* contact: feature kind, vertex/edge indices, side of the edge */
+    int up;                     /* contact: the gap rises through 0 (a sensor pair's way out) */
     int dx, dy;                 /* cell crossing: the step to the next cell */
 } event;
 
@@ -177,6 +178,7 @@ typedef struct {
     double rate;                /* how fast the gap closes then (ties: the fastest first) */
     int feature, fa, fb, side;
     int improved;               /* set when predict_pair found a better one */
+    int up;                     /* the gap rises through 0 there (only for a sensor's ghost) */
     double window;              /* rotation searched only up to here (then predict again) */
 } contact;
 int predict_check_generated(m2c_world *w);
@@ -229,6 +231,9 @@ double first_crossing(double x, double v, double a, double edge, int dir, double
 /* Gap between the shapes of bodies i and j (radii included): negative when they overlap
  * (a vertex inside the other polygon or crossing edges count as overlapping). */
 double shape_gap(const m2c_world *w, int i, int j);
+/* The signed distance between the shapes of bodies i and j at time t (radii included):
+ * negative by the penetration depth when they overlap (separating axes). */
+double shape_signed_gap(const m2c_world *w, int i, int j, double t);
 /* 1 when the pair may collide: different groups (or none), each category in the other's mask. */
 int pair_filtered(const body *a, const body *b);
 
@@ -237,6 +242,7 @@ int ghost_find(const m2c_world *w, int i, int j);   /* its index, or -1 */
 int ghost_add(m2c_world *w, int i, int j);
 void ghost_remove_at(m2c_world *w, int k);
 void ghost_forget(m2c_world *w, int i);              /* every pair of a removed body */
+void ghost_leave_sensors(m2c_world *w, int i);      /* moved: its sensor pairs end now */
 
 /* world.c */
 void world_predict(m2c_world *w, int i);

@@ -135,6 +135,51 @@ double shape_gap(const m2c_world *w, int i, int j)
     return gap;
 }
 
+/* The largest separation of two cores along the edge normals of either (both senses): the
+ * separating axis theorem -- positive when some axis separates them, else minus the depth of
+ * their overlap (for convex cores the deepest overlap is along an edge normal). */
+static double axis_separation(const shape *A, const shape *B)
+{
+    const shape *S[2] = {A, B};
+    double best = -INFINITY;
+    for (int side = 0; side < 2; side++) {
+        const shape *E = S[side];
+        for (int k = 0; k < nedges_of(E); k++) {
+            double q[2], d[2];
+            if (!(edge_of(E, k, q, d) > 0))
+                continue;
+            double n[2] = {d[1], -d[0]}, lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+            for (int s = 0; s < 2; s++)
+                for (int v = 0; v < S[s]->n; v++) {
+                    double x = S[s]->v[2 * v] * n[0] + S[s]->v[2 * v + 1] * n[1];
+                    lo[s] = fmin(lo[s], x);
+                    hi[s] = fmax(hi[s], x);
+                }
+            best = fmax(best, fmax(lo[1] - hi[0], lo[0] - hi[1]));
+        }
+    }
+    return best;
+}
+
+double shape_signed_gap(const m2c_world *w, int i, int j, double t)
+{
+    shape A, B;
+    double *va = malloc(sizeof(double) * 2 * (size_t)w->b[i].nvert);
+    double *vb = malloc(sizeof(double) * 2 * (size_t)w->b[j].nvert);
+    double gap = -INFINITY; /* out of memory: overlapping (a sensor's leave waits) */
+    if (va && vb) {
+        shape_at(w, i, t, &A, va);
+        shape_at(w, j, t, &B, vb);
+        double d = core_distance(&A, &B);
+        if (d < 0) /* the cores intersect: their depth (no axis when both are points) */
+            d = fmin(0.0, axis_separation(&A, &B));
+        gap = d - A.r - B.r;
+    }
+    free(va);
+    free(vb);
+    return gap;
+}
+
 /* ------------------------------------------------------------------------------------------ */
 /* Queries at a time t >= now (max2code_engine.h)                                              */
 /* ------------------------------------------------------------------------------------------ */

@@ -42,3 +42,17 @@ void ghost_forget(m2c_world *w, int i)
         if (w->ghosts[k].a == i || w->ghosts[k].b == i)
             ghost_remove_at(w, k);
 }
+
+/* Body i was put somewhere else (set_pose, which refuses overlaps): it overlaps no sensor it
+ * was passing through any more -- each such pair is left now. */
+void ghost_leave_sensors(m2c_world *w, int i)
+{
+    for (int k = w->nghosts - 1; k >= 0; k--) {
+        pair p = w->ghosts[k];
+        if ((p.a != i && p.b != i) || !((w->b[p.a].flags | w->b[p.b].flags) & M2C_FLAG_SENSOR))
+            continue;
+        m2c_event e = {w->now, M2C_EVENT_SENSOR_LEAVE, i, p.a == i ? p.b : p.a, 0, 0, 0, 0, 0, 0};
+        world_emit(w, &e);
+        ghost_remove_at(w, k);
+    }
+}

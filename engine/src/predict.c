@@ -119,6 +119,8 @@ typedef struct {
     int no_touch;           /* a two-sided edge's other side: touching now is no contact */
     int ghost;              /* the pair passes through (a veto, a sensor): touching or
                                overlapping now is no contact, only a new crossing is */
+    int leaves;             /* a sensor's ghost: a crossing out (the gap rising through 0 on the
+                               feature) is an event too -- how the pair may stop overlapping */
     double rx, ry;          /* A's reference point minus B's, at the snapshots' time */
     double solver_h;        /* a pair the contact solver holds: the time to its next tick
                                (touching now is its business while the gap stays within the
@@ -292,12 +294,29 @@ static int shallow_dip(const double c[], int n, double tolp)
     return c[0] + c[1] * tau / 2 - rest >= -tolp;
 }
 
+/* The mirror of shallow_dip: a gap that only rises into the tolerance band from below and goes
+ * down again (a sensor's partner grazing its boundary from inside) is no crossing out. */
+static int shallow_peak(const double c[], int n, double tolp)
+{
+    double neg[MAXC] = {0};
+    for (int k = 0; k <= n; k++)
+        neg[k] = -c[k];
+    return shallow_dip(neg, n, tolp);
+}
+
 static int first_contact(feat *f, double c[MAXC], int n, double tmax, double tolp, double vthr,
                          double *tau, double *rate)
 {
     double t0 = 0.0;
     if (clearly_apart(c, n, tmax, tolp))
         return 0;
+    if (f->leaves && c[0] < -tolp) { /* deep inside and staying so: no crossing either way */
+        double neg[MAXC] = {0};
+        for (int k = 0; k <= n; k++)
+            neg[k] = -c[k];
+        if (clearly_apart(neg, n, tmax, tolp))
+            return 0;
+    }
     if (f->solver_h > 0 && stays_within(c, n, fmin(f->solver_h, tmax), tolp))
         return 0; /* the solver's next tick comes first (solver_window) */
     if (c[0] <= tolp && f->ghost) {
@@ -339,6 +358,11 @@ static int first_contact(feat *f, double c[MAXC], int n, double tmax, double tol
         if ((graze ? f->w->any_kinds : d < 0) && on_edge(f, tr)) {
             *tau = tr;
             *rate = -d;
+            return 1;
+        }
+        if (f->leaves && !graze && d > 0 && !shallow_peak(c, n, tolp) && on_edge(f, tr)) {
+            *tau = tr;
+            *rate = -d; /* negative: a crossing out */
             return 1;
         }
         if (graze)
@@ -390,11 +414,11 @@ static double exact_gap(const feat *f, double t)
     return f->side * (dx * D[1] - dy * D[0]) - f->R;
 }
 
-/* A down-crossing of the exact gap in [lo, hi] (absolute times, g(lo) >= 0 >= g(hi)), by the
- * Illinois method: to the last bit. */
-static double refine(const feat *f, double lo, double hi)
+/* A crossing of the exact gap in [lo, hi] (absolute times), down (sense 1: g(lo) >= 0 >= g(hi))
+ * or up (sense -1: the same for -g), by the Illinois method: to the last bit. */
+static double refine_sense(const feat *f, double lo, double hi, double sense)
 {
-    double glo = exact_gap(f, lo), ghi = exact_gap(f, hi);
+    double glo = sense * exact_gap(f, lo), ghi = sense * exact_gap(f, hi);
     if (!(glo > 0))
         return lo;
     if (!(ghi < 0))
@@ -404,7 +428,7 @@ static double refine(const feat *f, double lo, double hi)
         double m = (lo * ghi - hi * glo) / (ghi - glo);
         if (!(m > lo && m < hi))
             m = 0.5 * (lo + hi);
-        double gm = exact_gap(f, m);
+        double gm = sense * exact_gap(f, m);
         if (gm > 0) {
             lo = m;
             glo = gm;
@@ -420,6 +444,11 @@ static double refine(const feat *f, double lo, double hi)
         }
     }
     return hi;
+}
+
+static double refine(const feat *f, double lo, double hi)
+{
+    return refine_sense(f, lo, hi, 1.0);
 }
 
 /* The crossing refined in [lo, hi] (absolute times): 1 and *tau (from now) when its contact
@@ -542,6 +571,23 @@ static int pressed_in(const feat *f, int slot, const double c[MAXC])
         SLOT[2].pl.coef(p, c2);
     }
     return c2[2] < 0;
+}
+
+/* A sensor's ghost, inside: the exact gap g at t (absolute, where the deflated model came up)
+ * is within the band. Its crossing out lies between t and the inflated model's own up-crossing
+ * (the exact gap is above that model); refined there, it counts when on the feature: 1 and
+ * *tau (from now). */
+static int crossing_out(const feat *f, const double ca[MAXC], int deg, double h, double t_win,
+                        double t, double g, double *tau)
+{
+    m2c_world *w = f->w;
+    double tc = t, ta;
+    if (g < 0 && crossing(w, ca, deg, h, +1, &ta) && t_win + ta >= t)
+        tc = refine_sense(f, t, t_win + ta, -1.0);
+    if (!on_edge(f, tc - w->now))
+        return 0;
+    *tau = tc - w->now;
+    return 1;
 }
 
 /* The rotating feature's first contact in (0, tmax] from now: 1 and *tau; 0 for none; 2 when
@@ -686,6 +732,7 @@ static int solve_rotating(feat *f, double tmax, double tolp, double vthr, double
                 t0 += h;
                 continue;
             }
+            double t_win = t0;
             t0 += ta;
             /* the deflated model bounds the gap from above: its up-crossing is the earliest the
              * exact gap can come up, and it may still be below zero there.  Only a gap within
@@ -698,6 +745,10 @@ static int solve_rotating(feat *f, double tmax, double tolp, double vthr, double
             double g = exact_gap(f, w->now + t0);
             if (g < -tolp)
                 continue;
+            if (f->leaves && crossing_out(f, ca, deg, h, w->now + t_win, w->now + t0, g, tau)) {
+                *rate = -(dv + spin + DBL_MIN); /* negative: a crossing out */
+                return 1;
+            }
             mode = ABOVE;
             after_root = g <= tolp;
             continue;
@@ -799,6 +850,7 @@ static void try_feature(feat *f, contact *best, int swapped, int fa, int fb)
         best->fa = fa;
         best->fb = fb;
         best->side = f->side;
+        best->up = rate < 0;
     }
 }
 
@@ -935,6 +987,7 @@ int predict_pair(m2c_world *w, int i, int j, contact *c)
     relative_position(A, B, w->now, &f.rx, &f.ry);
     f.no_touch = 0;
     f.ghost = w->nghosts > 0 && ghost_find(w, i, j) >= 0;
+    f.leaves = f.ghost && ((A->flags | B->flags) & M2C_FLAG_SENSOR);
     f.dir[0] = f.dir[1] = f.len = 0.0;
     f.solver_h = solver_window(w, A, B);
     /* the cheapest test first: can the bounding circles about the reference points meet before

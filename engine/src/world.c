@@ -365,6 +365,7 @@ static void set_contact(const m2c_world *w, event *ev, best_contact *bc)
         ev->fa = bc->c.fa;
         ev->fb = bc->c.fb;
         ev->side = bc->c.side;
+        ev->up = bc->c.up;
     }
 }
 
@@ -477,6 +478,22 @@ static int passes_through(m2c_world *w, int i, int j, const event *ev)
     return 1;
 }
 
+/* A feature crossing of a pair passing through a sensor (ghost k): the shapes' exact signed
+ * distance now decides. A crossing out with the shapes touching (within the tolerance) is the
+ * leave; any other crossing while they overlap is inside the pair (a rotating corner crossing
+ * the sensor's edge while the body straddles it), no event; found clearly apart, they left
+ * unseen: the leave now (never seen in the tests; a guard). */
+static void sensor_crossing(m2c_world *w, int i, int j, int k, const event *ev)
+{
+    double tol = w->cfg.tolerance, gap = shape_signed_gap(w, i, j, w->now);
+    if (ev->up ? gap >= -tol : gap > tol) {
+        ghost_remove_at(w, k);
+        m2c_event e;
+        contact_event(w, i, j, ev, M2C_EVENT_SENSOR_LEAVE, &e);
+        world_emit(w, &e);
+    }
+}
+
 static void process(m2c_world *w, int i)
 {
     event ev = w->b[i].ev;
@@ -495,9 +512,12 @@ static void process(m2c_world *w, int i)
             break;
         }
         int g = w->nghosts > 0 ? ghost_find(w, i, j) : -1;
-        if (g >= 0)
+        int in_sensor = g >= 0 && ((w->b[i].flags | w->b[j].flags) & M2C_FLAG_SENSOR);
+        if (in_sensor)
+            sensor_crossing(w, i, j, g, &ev); /* a leave, or nothing */
+        else if (g >= 0)
             ghost_remove_at(w, g); /* they met again: a contact like any other */
-        if (passes_through(w, i, j, &ev)) {
+        if (in_sensor || passes_through(w, i, j, &ev)) {
             world_predict(w, i);
             if (w->b[j].kind == M2C_DYNAMIC)
                 world_predict(w, j);

@@ -23,7 +23,8 @@ class CollisionHandler:
     response and may return False to veto it (the pair then passes through each other until
     they meet again: a one-way platform); `post_solve` runs after it (the collision event);
     `separate` when a sustained contact ends (a body resting or sliding on the other leaves
-    it: a bounce is its own end). A sensor's contacts go to `begin` and cannot be vetoed."""
+    it: a bounce is its own end). A sensor's contacts go to `begin` and cannot be vetoed; its leaves
+    ("sensor_leave") to `separate`."""
     a: int
     b: int | None
     begin: Callback | None = None
@@ -83,7 +84,8 @@ class Handlers:
         else:
             for cb in self.per_body.get(event.a, []):
                 cb(world, event)
-        slot = {"collision": "post_solve", "separate": "separate", "sensor": "begin"}.get(event.kind)
+        slot = {"collision": "post_solve", "separate": "separate", "sensor": "begin",
+                "sensor_leave": "separate"}.get(event.kind)
         if slot is None or event.b < 0:
             return
         for h in self.typed:

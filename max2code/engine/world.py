@@ -14,7 +14,7 @@ from .shapes import mass_properties, polygon_area
 Vec = tuple[float, float]
 KINDS = {"static": 0, "kinematic": 1, "dynamic": 2}
 EVENT_KINDS = {0: "presolve", 1: "collision", 2: "rest", 3: "wake", 4: "timer", 5: "sensor",
-               6: "separate"}
+               6: "separate", 7: "sensor_leave"}
 BUFFER = 1024
 
 
@@ -185,8 +185,9 @@ class World:
         bodies have none). `friction` is a Coulomb coefficient, at impacts only (a contact uses
         sqrt(fa fb); README). A pair collides when neither `group` is shared and each body's
         `category` bits meet the other's `mask`. `data` is yours (`bodies[id].data`, and
-        every event's `data`). `collision_type` selects collision handlers; a `sensor` reports
-        its contacts ("sensor" events) and never responds."""
+        every event's `data`). `collision_type` selects collision handlers; a `sensor` never
+        responds: it reports a body starting to overlap it ("sensor") and, once per such
+        event, the two stopping to overlap ("sensor_leave"), each at its exact time."""
         if kind not in KINDS:
             raise EngineError(f"kind must be one of {', '.join(KINDS)}, not {kind!r}")
         verts = [(float(x), float(y)) for x, y in vertices]
@@ -268,8 +269,8 @@ class World:
         return float(self._lib.m2c_world_time(self._w))
 
     def on_collision(self, callback: Callable[["World", Event], None], body: int | None = None) -> None:
-        """callback(world, event) for every reported event (collision, sensor, rest, wake,
-        separate), or only those of `body`, in order, at the event's time (the world's time is
+        """callback(world, event) for every reported event (collision, sensor, sensor_leave,
+        rest, wake, separate), or only those of `body`, in order, at the event's time (the world's time is
         then the event's; the callback may change the world: remove, set_velocity, ...)."""
         if body is None:
             self._handlers.every.append(callback)

@@ -64,17 +64,16 @@ def test_sensor_reports_and_never_responds(engine) -> None:
 
 
 def test_sensor_passes_through_until_met_again(engine) -> None:
-    """A kept sensor: entered once on the way in; a second pass (after the wall) is reported
-    again; no response either time."""
+    """A kept sensor: entered and left on the way in; a second pass (after the wall) is
+    reported again; no response either time."""
     w = engine.World()
     zone = w.add_polygon([(-0.5, -2.0), (0.5, -2.0), (0.5, 2.0), (-0.5, 2.0)], kind="static",
                          position=(3.0, 0.0), sensor=True)
     ball = w.add_circle((0.0, 0.0), 0.25, velocity=(1.0, 0.0))
     w.add_segment((6.0, -1.0), (6.0, 1.0))
-    events = [(e.kind, e.time) for e in w.step_to(10.0)]
-    assert events[0] == ("sensor", 2.25)
-    assert events[1] == ("collision", 5.75)
-    assert events[2][0] == "sensor" and events[2][1] == pytest.approx(5.75 + (5.75 - 3.75), rel=1e-12)
+    events = [(e.kind, e.time) for e in w.step_to(12.0)]
+    assert [k for k, _ in events] == ["sensor", "sensor_leave", "collision", "sensor", "sensor_leave"]
+    assert [t for _, t in events] == pytest.approx([2.25, 3.75, 5.75, 7.75, 9.25], rel=1e-12)
 
 
 def test_callbacks_per_body_per_pair_and_type(engine) -> None:
