@@ -4,9 +4,9 @@
     python bench/roots_ab.py BASE --instructions [--reps R] [--count N] [--families f,g,...]
     python bench/roots_ab.py HEAD --warm K      # (working tree = HEAD) warm solves over cold ones
 
-BASE is a git revision (its runtime/c/max2code_roots.c and .h) or a path to a runtime .c
-file; B is the working tree's runtime.  Both are built with gcc -O2 into one harness
-(bench/roots_ab.c) and timed on bench/roots.py's polynomials, call by call, alternating.
+BASE is a git revision (its runtime/c folder: max2code_roots.c, .h and the parts in roots/)
+or a path to a runtime .c file; B is the working tree's runtime.  Both are built with gcc -O2
+into one harness (bench/roots_ab.c) and timed on bench/roots.py's polynomials, call by call, alternating.
 
 Why a tool of its own: on a shared machine (a VM here) the benchmark's absolute times move by
 up to 1.7x between two runs of the same code, which is more than most changes to the solver.
@@ -84,7 +84,8 @@ def _defines(tag: str) -> list[str]:
 
 def base_sources(base: str, into: Path) -> Path:
     """The baseline's runtime source in `into`: a file path as given (with the working tree's
-    header unless one is beside it), else a git revision's runtime/c files."""
+    header and parts, runtime/c/roots/, unless they are beside it), else a git revision's
+    runtime/c folder (whole: the file and the parts it includes, in either layout)."""
     path = Path(base)
     if path.suffix == ".c" and path.is_file():
         src = into / "max2code_roots.c"
@@ -92,14 +93,19 @@ def base_sources(base: str, into: Path) -> Path:
         header = path.parent / "max2code_roots.h"
         shutil.copyfile(header if header.is_file() else C_DIR / "max2code_roots.h",
                         into / "max2code_roots.h")
+        parts = path.parent / "roots"
+        parts = parts if parts.is_dir() else C_DIR / "roots"
+        if parts.is_dir():
+            shutil.copytree(parts, into / "roots")
         return src
-    for name in ("max2code_roots.c", "max2code_roots.h"):
-        r = subprocess.run(["git", "-C", str(ROOT), "show", f"{base}:runtime/c/{name}"],
-                           capture_output=True)
-        if r.returncode != 0:
-            sys.exit(f"roots_ab: {base!r} is neither a runtime .c file nor a git revision with "
-                     f"runtime/c/{name}: {r.stderr.decode(errors='replace').strip()}")
-        (into / name).write_bytes(r.stdout)
+    r = subprocess.run(["git", "-C", str(ROOT), "archive", "--format=tar", base, "runtime/c"],
+                       capture_output=True)
+    if r.returncode == 0:
+        r = subprocess.run(["tar", "-x", "-C", str(into), "--strip-components=2"],
+                           input=r.stdout, capture_output=True)
+    if r.returncode != 0 or not (into / "max2code_roots.c").is_file():
+        sys.exit(f"roots_ab: {base!r} is neither a runtime .c file nor a git revision with "
+                 f"runtime/c/max2code_roots.c: {r.stderr.decode(errors='replace').strip()}")
     return into / "max2code_roots.c"
 
 

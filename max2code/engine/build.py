@@ -49,6 +49,7 @@ def _inputs() -> list[Path]:
     files = [src / "Makefile", *sorted((src / "include").glob("*.h")),
              *sorted((src / "src").glob("*.[ch]")), *sorted((src / "equations").glob("*.mxm")),
              *sorted(runtime_dir("c").glob("*.[ch]")),
+             *sorted(runtime_dir("c").glob("roots/*.inc")),  # the parts max2code_roots.c includes
              *(ROOT / "equations" / name for name in ENGINE_EQUATIONS)]
     return files
 

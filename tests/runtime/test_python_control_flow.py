@@ -398,9 +398,10 @@ def test_bernstein_kernels_bit_for_bit(bernstein_driver: Path,
 def _c_table(name: str) -> list[list[float]]:
     """A static double[][] initialiser of the C runtime, its entries (integers and `1.0 / N`)
     evaluated as C's constant expressions round: the integer converted exactly, one division."""
-    src = (C_DIR / "max2code_roots.c").read_text()
+    src = "".join(path.read_text() for path in [C_DIR / "max2code_roots.c",
+                                                *sorted(C_DIR.glob("roots/*.inc"))])
     found = re.search(rf"\b{name}\[MAXN \+ 1\]\[MAXN \+ 1\] = \{{", src)
-    assert found is not None, f"{name} not found in max2code_roots.c"
+    assert found is not None, f"{name} not found in the C runtime's sources"
     body = src[found.end():src.index("};", found.end())]
     rows = []
     for row in re.findall(r"\{([^{}]*)\}", body):

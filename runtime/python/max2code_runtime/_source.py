@@ -47,9 +47,16 @@ double m2c_first_root_packed(const double c[], int degree, double tmax, int meth
     for k in range(1, MAX_COEFFS + 1))
 
 
+def source_files(src: Path) -> list[Path]:
+    """The C runtime's sources in the folder src: the file compiled, its header and the parts
+    it includes (roots/*.inc, one translation unit)."""
+    return [src / "max2code_roots.c", src / "max2code_roots.h", *sorted(src.glob("roots/*.inc"))]
+
+
 def source_digest(src: Path) -> str:
     h = hashlib.sha256()
-    for name in ("max2code_roots.c", "max2code_roots.h"):
-        h.update((src / name).read_bytes())
+    for path in source_files(src):
+        h.update(path.relative_to(src).as_posix().encode() + b"\0")
+        h.update(path.read_bytes())
     h.update((CDEF + BINDING_C).encode())
     return h.hexdigest()
