@@ -24,6 +24,7 @@ here, and labels are escaped where they are written (they are data, never markup
 from __future__ import annotations
 
 import math
+from functools import cached_property
 import re
 from dataclasses import dataclass, field
 from typing import Union
@@ -229,9 +230,13 @@ class Pose:
         _set(self, "y", _finite("pose y", self.y))
         _set(self, "angle", _finite("pose angle", self.angle))
 
+    @cached_property
+    def _turn(self) -> tuple[float, float]:
+        return math.cos(self.angle), math.sin(self.angle)
+
     def apply(self, p: Point) -> Point:
         """Body coordinates to world coordinates."""
-        c, s = math.cos(self.angle), math.sin(self.angle)
+        c, s = self._turn
         return (self.x + c * p[0] - s * p[1], self.y + s * p[0] + c * p[1])
 
 
@@ -299,13 +304,19 @@ class View:
                 raise RenderModelError(f"{name} must be a whole number of pixels in 1..16384, not {v!r}")
         _colour("background", self.background)
 
-    @property
+    @cached_property
     def scale(self) -> float:
-        """Pixels per world unit."""
+        """Pixels per world unit. (Cached, as is _placing: a frozen view's fields never change,
+        and an animation asks for them a few thousand times a frame.)"""
         return min(self.width / (self.xmax - self.xmin), self.height / (self.ymax - self.ymin))
+
+    @cached_property
+    def _placing(self) -> tuple[float, float, float, float, float]:
+        """to_pixel's numbers: scale, the world centre, the picture's centre."""
+        return (self.scale, (self.xmin + self.xmax) / 2, (self.ymin + self.ymax) / 2,
+                self.width / 2, self.height / 2)
 
     def to_pixel(self, p: Point) -> Point:
         """World to pixel coordinates (origin top-left, y down; pixel centres at +0.5)."""
-        s = self.scale
-        cx, cy = (self.xmin + self.xmax) / 2, (self.ymin + self.ymax) / 2
-        return (self.width / 2 + (p[0] - cx) * s, self.height / 2 - (p[1] - cy) * s)
+        s, cx, cy, px, py = self._placing
+        return (px + (p[0] - cx) * s, py - (p[1] - cy) * s)
