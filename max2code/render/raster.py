@@ -31,6 +31,7 @@ import skia
 from PIL import Image, ImageDraw, ImageFont
 
 from .model import Body, Capsule, Circle, Contact, Frame, Point, Polygon, RenderModelError, Segment, View
+from .glyphs import GlyphCache
 from .text import printable, time_stamp
 
 CONTACT_COLOUR = "#d62728"
@@ -415,8 +416,15 @@ def _box(view: View, left: float, top: float, right: float, bottom: float) -> Bo
             max(math.floor(left) - 2, 0), min(math.ceil(right) + 2, view.width))
 
 
+@lru_cache(maxsize=16)
+def glyph_cache(size: int) -> GlyphCache:
+    """The glyphs of font(size), rendered once each (render.glyphs)."""
+    return GlyphCache(font(size))
+
+
 def _text_items(bodies: Sequence[Body], frame: Frame, view: View) -> list[tuple]:
-    """What draw_text writes: (anchor point, text, colour, anchor, white box behind it or None)."""
+    """What draw_text writes: (anchor point, text, colour, anchor, white box behind it or None,
+    the text's mask put together from cached glyphs or None: Pillow renders it)."""
     size = text_size(view)
     label_font = font(size)
     items = []
@@ -425,23 +433,29 @@ def _text_items(bodies: Sequence[Body], frame: Frame, view: View) -> list[tuple]
             x, y = view.to_pixel((pose.x, pose.y))
             if -size <= x <= view.width + size and -size <= y <= view.height + size:
                 items.append(((x, y), printable(body.style.label), contrast(body.style.fill),
-                              "mm", None))
+                              "mm", None, None))
     if view.show_time:
         text = time_stamp(frame.time)
-        left, top, right, bottom = label_font.getbbox(text, anchor="la")
+        # (a new string every frame, at a whole pixel: from the cached glyphs where it can be)
+        mask = glyph_cache(size).text_mask(text)
+        left, top, right, bottom = mask.box if mask is not None else label_font.getbbox(text, anchor="la")
         items.append(((6, 6), text, TEXT_COLOUR, "la",
-                      (6 + left - 3, 6 + top - 3, 6 + right + 3, 6 + bottom + 3)))
+                      (6 + left - 3, 6 + top - 3, 6 + right + 3, 6 + bottom + 3), mask))
     return items
 
 
 def _draw_items(draw: ImageDraw.ImageDraw, items: list[tuple], size: int,
                 offset: tuple[int, int] = (0, 0)) -> None:
     label_font = font(size)
-    for (x, y), text, colour, anchor, box in items:
+    for (x, y), text, colour, anchor, box, mask in items:
         if box is not None:
             draw.rectangle((box[0] - offset[0], box[1] - offset[1], box[2] - offset[0],
                             box[3] - offset[1]), fill="#ffffff")
-        draw.text((x - offset[0], y - offset[1]), text, fill=colour, font=label_font, anchor=anchor)
+        if mask is not None:   # (x, y whole: ImageDraw.text blends its mask so, at this place)
+            draw.bitmap((x + mask.left - offset[0], y + mask.top - offset[1]),
+                        Image.fromarray(mask.mask, "L"), fill=colour)
+        else:
+            draw.text((x - offset[0], y - offset[1]), text, fill=colour, font=label_font, anchor=anchor)
 
 
 def draw_text(image: Image.Image, bodies: Sequence[Body], frame: Frame, view: View) -> None:
@@ -456,7 +470,7 @@ def _draw_text_boxed(pixels: np.ndarray, bodies: Sequence[Body], frame: Frame, v
     label_font = font(size)
     boxes = []
     for item in _text_items(bodies, frame, view):
-        (x, y), text, _, anchor, back = item
+        (x, y), text, _, anchor, back, _ = item
         if back is not None:   # (the text lies inside its box: no second measuring)
             left, top, right, bottom = back[0] - x, back[1] - y, back[2] - x, back[3] - y
         else:
