@@ -1210,7 +1210,7 @@ int solver_soft_response(m2c_world *w, int i, int j, const event *ev, double clo
         K->m.vy = s->v[3 * ids[m] + 1];
         K->m.w = s->v[3 * ids[m] + 2];
     }
-    double acc = contact_gap_accel(w, i, j, ev);
+    double acc = contact_gap_accel(w, i, j, ev, NULL);
     double want = acc < 0 ? -0.5 * acc * s->h : 0.0;
     double J = 0.0;
     if (sep < want && q.mn > 0) {

@@ -185,8 +185,9 @@ int predict_check_generated(m2c_world *w);
 /* The earliest contact of bodies i (dynamic) and j at a time in (now, now + tmax]; 1 and
  * *c if there is one before *the current best* (c->t on entry), else 0. */
 int predict_pair(m2c_world *w, int i, int j, contact *c);
-/* The second time derivative of the event's gap now (relative acceleration and rotation). */
-double contact_gap_accel(m2c_world *w, int i, int j, const event *ev);
+/* The second time derivative of the event's gap now (relative acceleration and rotation);
+ * *rotates (if not NULL): whether rotation moves either feature. */
+double contact_gap_accel(m2c_world *w, int i, int j, const event *ev, int *rotates);
 
 /* response.c */
 int respond(m2c_world *w, int i, int j, const event *ev);

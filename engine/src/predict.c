@@ -926,7 +926,7 @@ static void points_on_edges(feat *f, contact *best, int swapped)
  * parts the pair, the same contact is found again at the same instant, forever), and a soft
  * contact of the contact solver, which parts at -accel h / 2 (contact_solver.c) for the
  * same reason. One helper for both: they computed it twice, by hand and from the model. */
-double contact_gap_accel(m2c_world *w, int i, int j, const event *ev)
+double contact_gap_accel(m2c_world *w, int i, int j, const event *ev, int *rotates)
 {
     int swapped = ev->feature == F_LP;
     feat f;
@@ -944,6 +944,8 @@ double contact_gap_accel(m2c_world *w, int i, int j, const event *ev)
     f.R = f.A->radius + f.B->radius;
     set_point(w, f.B, &f.b, f.vb, f.pb);
     f.rot_b = ev->feature == F_PP ? f.b.w != 0.0 && (f.pb[0] != 0.0 || f.pb[1] != 0.0) : f.b.w != 0.0;
+    if (rotates)
+        *rotates = f.rot_a || f.rot_b;
     double p[PL_NPARAMS + 1], c[MAXC] = {0};
     if (ev->feature == F_PP) {
         /* the gap is |P - Q|^2 - R^2 = d^2 - R^2: c2 = d d'' + d'^2 with d = R, d' = c1 / 2R */

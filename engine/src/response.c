@@ -243,14 +243,15 @@ int respond(m2c_world *w, int i, int j, const event *ev)
     double an = (b.ax - a.ax) * n[0] + (b.ay - a.ay) * n[1];
     int press = awake_b && an < 0;
     if ((A->m.w != 0.0 || B->m.w != 0.0) && !(closing > 0)) { /* no approach: J = 0 above */
-        double curve = contact_gap_accel(w, i, j, ev);
-        if (curve < 0 && (awake_b || !(an < 0))) {
+        int rotates; /* (only rotation's part presses here: a spinning ball's centre adds none) */
+        double curve = contact_gap_accel(w, i, j, ev, &rotates);
+        if (rotates && curve < 0 && (awake_b || !(an < 0))) {
             an = fmin(an, curve);
             press = 1;
         }
     }
     if (soft && k > 1e-12 * (ima + imb)) { /* part fast enough not to meet again before a tick */
-        double acc = contact_gap_accel(w, i, j, ev);
+        double acc = contact_gap_accel(w, i, j, ev, NULL);
         double want = acc < 0 ? -0.5 * acc * solver_step(w) : 0.0;
         double sep = -closing + J * k;
         if (sep < want)
