@@ -140,8 +140,14 @@ def _make(out: Path) -> None:
         raise EngineBuildError(f"building the engine failed ({' '.join(cmd)}):\n{tail}")
 
 
-def _prune(home: Path, keep: Path, limit: int = 4) -> None:
-    """Keep the few builds used last (a checkout being edited makes a new one per change).
+# Builds kept in the cache: one per clone or session working at once, with room for each to
+# make a new one per edit (6 MB each).  With 4, seven clones at work on one machine pruned each
+# other's libraries, and a test's subprocess rebuilt the engine (two minutes under that load).
+KEEP_BUILDS = 12
+
+
+def _prune(home: Path, keep: Path, limit: int = KEEP_BUILDS) -> None:
+    """Keep the builds used last (a checkout being edited makes a new one per change).
     Lock files go only with their builds: a lock whose build is still missing may be held by
     a build in progress, and unlinking it let a third process build the same digest at once."""
     builds = sorted((p for p in home.iterdir() if p.is_dir() and not p.name.startswith(".")),

@@ -94,7 +94,22 @@ def test_prune_keeps_builds_used_last_and_live_locks(cache, monkeypatch, tmp_pat
     (cache / f".lock-{KEY}").write_text("")  # held by a build of KEY in progress: no folder yet
     monkeypatch.setattr(build, "digest", lambda: "b0")
     assert build.library() == cache / "b0" / build.LIBRARY   # the oldest build, used now
-    build._prune(cache, keep=cache / "b5")
+    build._prune(cache, keep=cache / "b5", limit=4)
     left = sorted(p.name for p in cache.iterdir())
     assert left == [f".lock-{KEY}", ".lock-b0", ".lock-b3", ".lock-b4", ".lock-b5",
                     "b0", "b3", "b4", "b5"]
+
+
+def test_a_cache_shared_by_many_clones_keeps_each_ones_build(cache) -> None:
+    """Clones at work on one machine share the cache: the default keeps a dozen builds, so
+    eight clones that each rebuilt once still find their libraries."""
+    cache.mkdir(parents=True)
+    old = time.time() - 3600
+    for k in range(build.KEEP_BUILDS + 3):
+        d = cache / f"b{k}"
+        d.mkdir()
+        os.utime(d, (old + 60 * k, old + 60 * k))
+    build._prune(cache, keep=cache / "b0")
+    left = {p.name for p in cache.iterdir()}
+    assert build.KEEP_BUILDS >= 12   # eight clones, and four of them mid-edit
+    assert left == {"b0"} | {f"b{k}" for k in range(3, build.KEEP_BUILDS + 3)}
