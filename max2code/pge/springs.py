@@ -38,6 +38,7 @@ RTOL, ATOL = 1e-12, 1e-15
 H_MAX = 0.05            # no window longer (s): frames end them sooner anyway
 DEAD_SENSORS = 200      # rebuild the world after this many removed twin sensors
 EPS_T = 1e-12           # an event this close after a window's start is the one that ended the last
+STUCK = 2000            # windows within 1e-6 (1 + |t|) s of one time: a Zeno series, an error
 
 
 def _error(message: str) -> Exception:
@@ -168,6 +169,7 @@ class Springs:
         self.window: Window | None = None
         self.dead = 0
         self.windows = 0
+        self._since = (-math.inf, 0)   # (a time, windows since it)
         self.on_event: Callable[[Spring, str, float, float, Callable | None], None] | None = None
 
     def live(self) -> list[Spring]:
@@ -202,8 +204,22 @@ class Springs:
             if phys.stale:
                 raise _Rebuild()
             self._window(phys, t - phys.t0)
+            self._check_progress(phys.now)
         if phys.stale:
             raise _Rebuild()
+
+    def _check_progress(self, now: float) -> None:
+        """A body pressed on something by its spring bounces in ever shorter series (docs:
+        not modelled): an error naming it rather than a hang."""
+        since, count = self._since
+        if now - since > 1e-6 * (1 + abs(now)):
+            self._since = (now, 0)
+        elif count + 1 > STUCK:
+            raise _error(f"stuck: {STUCK} spring windows within 1e-6 s of t = {since:.9g} (a body "
+                         "pressed against something by a spring: sustained contact under a "
+                         "spring is not modelled)")
+        else:
+            self._since = (since, count + 1)
 
     def _system(self, phys: "Physics", bodies: list) -> System:
         index = {id(o): i for i, o in enumerate(bodies)}
