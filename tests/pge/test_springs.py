@@ -305,3 +305,20 @@ def test_a_body_pressed_on_its_anchor_by_its_spring_is_a_stuck_error_not_a_hang(
         with pytest.raises(pge.PgeError, match=r"^stuck: 2000 spring windows within 1e-6 s"):
             game.physics.advance(2.0)
         assert 0.9 < game.physics.now < 1.0
+
+
+def test_a_removed_spring_pulls_no_more_and_a_removed_end_ends_the_spring() -> None:
+    with world() as game:
+        anchor = pge.circle(0.1, 0.5, 0.01, WHITE).fix()
+        ball = pge.circle(0.6, 0.5, 0.01, WHITE).mass(1.0)
+        s = pge.spring(anchor, ball, 100.0, 0.0, 0.4)
+        game.physics.advance(0.1)
+        (x, y, _), (vx, vy, _) = game.physics.pose(ball), game.physics.velocity(ball)
+        assert x == pytest.approx(0.5 + 0.1 * math.cos(1.0), abs=1e-9)   # pulled in
+        s.rm()
+        game.physics.advance(0.3)
+        assert game.physics.pose(ball)[:2] == pytest.approx((x + 0.2 * vx, y + 0.2 * vy), abs=1e-12)
+        t = pge.spring(anchor, ball, 100.0, 0.0)
+        anchor.rm()
+        game.physics.advance(0.4)
+        assert not game.physics.springs.live() and t.removed is False
