@@ -17,7 +17,8 @@ from typing import Callable, Protocol
 
 from ..engine.shapes import mass_properties, polygon_area
 from ..engine.world import Event, World
-from .springs import Springs, WindowEnd
+from .signals import Rebuild, WindowEnd
+from .springs import Springs
 
 Vec = tuple[float, float]
 TOLERANCE = 1e-9  # lengths in PGE's unit square
@@ -27,12 +28,6 @@ RESTITUTION = 1.0  # PGE's collisions are elastic
 class PgeError(Exception):
     """A PGE call the game made wrongly, or one this module does not support (the message names
     the call)."""
-
-
-class _Rebuild(BaseException):
-    """Raised out of a collision callback when the world went stale there: the step stops at that
-    event's time and resumes in the rebuilt world (BaseException: a game's `except Exception`
-    cannot swallow it)."""
 
 
 @dataclass
@@ -104,7 +99,7 @@ class Physics:
                 else:
                     self.world.step_to(t - self.t0, events=False)
                 return
-            except _Rebuild:
+            except Rebuild:
                 continue
 
     # -- edits ------------------------------------------------------------------------------
@@ -202,7 +197,7 @@ class Physics:
         if self.on_contact is not None:
             self.on_contact(self.bodies[ev.a], self.bodies[ev.b], ev, self.t0 + ev.time)
         if self.stale:
-            raise _Rebuild()
+            raise Rebuild()
         if self.springs.in_window(ev.a) or self.springs.in_window(ev.b):
             raise WindowEnd()  # a sprung body's path changed: a new window from its new state
 

@@ -27,6 +27,7 @@ import numpy as np
 
 from .spring_model import Link, System, window_for
 from .gaps import gap, placed
+from .signals import Rebuild, WindowEnd
 
 if TYPE_CHECKING:
     from .physics import Physics
@@ -77,10 +78,6 @@ def make(physics: "Physics", a, b, k, d, l, name: str) -> Spring:
     s = Spring(a, b, vals["k"], vals["damping"], float(l), name, physics=physics)
     physics.springs.springs.append(s)
     return s
-
-
-class WindowEnd(BaseException):
-    """Raised out of an engine callback to end the current window at that event's time."""
 
 
 @dataclass
@@ -197,16 +194,14 @@ class Springs:
     # -- stepping ---------------------------------------------------------------------------
 
     def advance(self, phys: "Physics", t: float) -> None:
-        """Windows until game time t (phys raises its _Rebuild when a change made it stale)."""
-        from .physics import _Rebuild
-
+        """Windows until game time t (phys raises its Rebuild when a change made it stale)."""
         while phys.world.time < t - phys.t0:
             if phys.stale:
-                raise _Rebuild()
+                raise Rebuild()
             self._window(phys, t - phys.t0)
             self._check_progress(phys.now)
         if phys.stale:
-            raise _Rebuild()
+            raise Rebuild()
 
     def _check_progress(self, now: float) -> None:
         """A body pressed on something by its spring bounces in ever shorter series (docs:
@@ -278,8 +273,6 @@ class Springs:
             raise _error("spring: springs need scipy (pip install 'max2code[springs]')") from None
 
         from ..engine.world import EngineError
-        from .physics import _Rebuild
-
         w = phys.world
         bodies = self.sprung()
         system = self._system(phys, bodies)
@@ -326,7 +319,7 @@ class Springs:
             w.step_to(target, events=False)
         except WindowEnd:
             pass
-        except _Rebuild:
+        except Rebuild:
             self._finish(phys, EngineError)
             raise
         self._finish(phys, EngineError)
