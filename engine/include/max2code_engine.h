@@ -49,7 +49,8 @@ enum {
     M2C_EVENT_REST = 2,        /* a came to rest on b (the rest rule; time = the analytic limit) */
     M2C_EVENT_WAKE = 3,        /* a, asleep, was woken (hit by b) */
     M2C_EVENT_TIMER = 4,       /* a timer set with m2c_world_add_timer fired (a = its id) */
-    M2C_EVENT_SENSOR = 5,      /* a started to overlap sensor b (or b a sensor a): no response */
+    M2C_EVENT_SENSOR = 5,      /* a started to overlap sensor b (or b a sensor a): no response;
+                                  a body added overlapping a sensor enters it then */
     M2C_EVENT_SEPARATE = 6,    /* a, resting or sliding on b (the rest rule), left it; only
                                   with M2C_FLAG_SEPARATE on a or b (a bounce is its own end) */
     M2C_EVENT_SENSOR_LEAVE = 7 /* a and sensor b (or b and sensor a) stopped overlapping: once

@@ -356,6 +356,7 @@ int m2c_world_set_flags(m2c_world *w, int i, int flags)
     if (flags & ~(M2C_FLAG_SENSOR | M2C_FLAG_PRESOLVE | M2C_FLAG_SEPARATE))
         return fail(w, "set_flags", "unknown flag");
     w->b[i].flags = flags;
+    w->any_sensor |= (flags & M2C_FLAG_SENSOR) != 0;
     return 0;
 }
 

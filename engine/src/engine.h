@@ -119,6 +119,7 @@ struct m2c_world {
     int prepared;
     int broken;                 /* the generated headers do not match (see err) */
     int any_kinds;              /* m2c_world_first_contact: predict pairs of any kinds */
+    int any_sensor;             /* a body was ever added as a sensor (add_body checks overlaps) */
     long long same;             /* events in a row at one identical time (a guard) */
     long long step_events;      /* events of the step under way, its resumed calls included */
     double step_until;          /* the time that step goes to */
@@ -244,6 +245,7 @@ int ghost_add(m2c_world *w, int i, int j);
 void ghost_remove_at(m2c_world *w, int k);
 void ghost_forget(m2c_world *w, int i);              /* every pair of a removed body */
 void ghost_leave_sensors(m2c_world *w, int i);      /* moved: its sensor pairs end now */
+void ghost_enter_sensors(m2c_world *w, int i);      /* added: the sensors it overlaps, now */
 
 /* world.c */
 void world_predict(m2c_world *w, int i);

@@ -56,3 +56,23 @@ void ghost_leave_sensors(m2c_world *w, int i)
         ghost_remove_at(w, k);
     }
 }
+
+/* Body i was just added: a sensor it overlaps (or, a sensor itself, a body it overlaps) is
+ * entered now -- prediction finds only crossings, never a pair that starts inside. */
+void ghost_enter_sensors(m2c_world *w, int i)
+{
+    const body *B = &w->b[i];
+    for (int k = 0; k < w->n; k++) {
+        const body *K = &w->b[k];
+        if (k == i || K->kind == KIND_REMOVED || !((B->flags | K->flags) & M2C_FLAG_SENSOR)
+            || !pair_filtered(B, K) || (B->kind != M2C_DYNAMIC && K->kind != M2C_DYNAMIC))
+            continue;
+        snap a = motion_at(&B->m, w->now), b = motion_at(&K->m, w->now);
+        double dx = a.x - b.x, dy = a.y - b.y, reach = B->bound + K->bound;
+        if (dx * dx + dy * dy > reach * reach || shape_signed_gap(w, i, k, w->now) >= -w->cfg.tolerance)
+            continue;
+        m2c_event e = {w->now, M2C_EVENT_SENSOR, i, k, 0, 0, 0, 0, 0, 0};
+        if (world_emit(w, &e) == 0)
+            ghost_add(w, i, k);
+    }
+}

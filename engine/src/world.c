@@ -294,6 +294,9 @@ int m2c_world_add_body(m2c_world *w, const m2c_body_def *d)
     b->bound = rho + d->radius;
     if (d->kind == M2C_KINEMATIC)
         w->kinematic[w->nkin++] = i;
+    w->any_sensor |= (d->flags & M2C_FLAG_SENSOR) != 0;
+    if (w->any_sensor)
+        ghost_enter_sensors(w, i); /* one that starts inside a sensor enters it now */
     if (w->prepared) {
         if (d->kind == M2C_DYNAMIC && b->bound <= w->bound_max) {
             grid_insert(w, i);
