@@ -15,6 +15,7 @@ import pytest
 from . import exact_roots as ex
 from . import test_fuzz_runtimes as tf
 from . import test_rust_runtime as rust
+from .spy import patch_solver
 from .test_python_control_flow import _counting, _num
 
 Vector = tuple[tuple[float, ...], float]
@@ -164,7 +165,7 @@ def python_returns(name: str, vecs: Sequence[Vector],
     def spy(*args: object) -> object:
         seen.append(inner(*args))
         return seen[-1]
-    monkeypatch.setattr(solver, name, spy)
+    patch_solver(monkeypatch, name, spy)
     monkeypatch.setattr(rt, "_C", None)
     out = []
     for c, tmax in vecs:

@@ -82,7 +82,7 @@ NEWTON: list[Vector] = [
 
 def test_the_vectors_overshoot(monkeypatch: pytest.MonkeyPatch) -> None:
     assert {len(c) - 1 for c, _ in CERTIFIED} >= {4, 5, 6, 8}
-    for (c, tmax), guesses in zip(VECTORS, paths.python_returns("_speculate_first_root", VECTORS,
+    for (c, tmax), guesses in zip(VECTORS, paths.python_returns("speculate_first_root", VECTORS,
                                                                  monkeypatch)):
         guess = guesses[0]
         truth = ex.first_root(c, tmax)

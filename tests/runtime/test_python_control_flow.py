@@ -35,6 +35,7 @@ import pytest
 from conftest import require
 
 from . import cases, fuzz
+from .spy import patch_solver
 
 ROOT = Path(__file__).resolve().parents[2]
 C_DIR = ROOT / "runtime" / "c"
@@ -142,12 +143,12 @@ def _counting(solver: Any, monkeypatch: pytest.MonkeyPatch) -> list[int]:
         def counted(*args: Any) -> Any:
             counts[which(args)] += 1
             return inner(*args)
-        monkeypatch.setattr(solver, name, counted)
+        patch_solver(monkeypatch, name, counted)
 
-    wrap("_value_and_slope", lambda args: 1 if args[5] else 0)  # once per Newton step
-    wrap("_point_at", lambda args: 2)
-    wrap("_derivative_method", lambda args: 3)
-    wrap("_bernstein_test", lambda args: 4)
+    wrap("value_and_slope", lambda args: 1 if args[5] else 0)  # once per Newton step
+    wrap("point_at", lambda args: 2)
+    wrap("derivative_method", lambda args: 3)
+    wrap("bernstein_test", lambda args: 4)
     return counts
 
 
@@ -165,11 +166,11 @@ def _outcomes(solver: Any, monkeypatch: pytest.MonkeyPatch) -> Counter[str]:
             r = inner(*args)
             seen[outcome(r)] += 1
             return r
-        monkeypatch.setattr(solver, name, observed)
+        patch_solver(monkeypatch, name, observed)
 
-    wrap("_speculate_first_root", lambda r: "no guess root" if r.root is None else "guess root")
-    wrap("_speculate_first_root", lambda r: "touch" if r.touch > 0 else "no touch")
-    wrap("_bernstein_clear", lambda r: "cleared by halving" if r else "not cleared by halving")
+    wrap("speculate_first_root", lambda r: "no guess root" if r.root is None else "guess root")
+    wrap("speculate_first_root", lambda r: "touch" if r.touch > 0 else "no touch")
+    wrap("bernstein_clear", lambda r: "cleared by halving" if r else "not cleared by halving")
     return seen
 
 
@@ -181,13 +182,13 @@ def test_pure_python_takes_c_path(counts_driver: Path, monkeypatch: pytest.Monke
     counts = _counting(solver, monkeypatch)
     outcomes = _outcomes(solver, monkeypatch)
     guessed = [False]  # the solve's guess gave a root (its certificate may still fail)
-    speculate = solver._speculate_first_root
+    speculate = solver.speculate_first_root
 
     def speculating(*args: Any) -> Any:
         r = speculate(*args)
         guessed[0] |= r.root is not None
         return r
-    monkeypatch.setattr(solver, "_speculate_first_root", speculating)
+    patch_solver(monkeypatch, "speculate_first_root", speculating)
     lines, mine, guesses = [], [], []
     for c, tmax in _inputs():
         for method, number, eps in CALLS:
@@ -227,7 +228,7 @@ def test_pure_python_takes_c_path(counts_driver: Path, monkeypatch: pytest.Monke
 
 def test_failed_first_test_not_repeated(monkeypatch: pytest.MonkeyPatch) -> None:
     """Where step 0b's exclusion test (cleared_at_once) has failed on [0, tmax] and the window
-    is still tmax (T = failed_w), _isolate_first_root's first test would be the same one on
+    is still tmax (T = failed_w), isolate_first_root's first test would be the same one on
     the same bits: C skips it and goes on to the guess (max2code_roots.h, step 0).  C
     does not count these tests, and a repeat fails again, so answers and the events compared
     above are the same either way (a port without the skip passed that test): here no
@@ -240,8 +241,8 @@ def test_failed_first_test_not_repeated(monkeypatch: pytest.MonkeyPatch) -> None
     monkeypatch.setattr(rt, "_C", None)
     events: list[tuple[str, tuple[str, ...]]] = []
     in_0b, skips = [False], [0]
-    bounds, at_once, isolate, bernstein = (solver._bounds_positive, solver.cleared_at_once,
-                                           solver._isolate_first_root, solver._bernstein_test)
+    bounds, at_once, isolate, bernstein = (solver.bounds_positive, solver.cleared_at_once,
+                                           solver.isolate_first_root, solver.bernstein_test)
 
     def recorded(qt: Sequence[float], tol: Sequence[float], n: int, w: float, d: int) -> Any:
         events.append(("0b" if in_0b[0] else "test", (
@@ -263,10 +264,10 @@ def test_failed_first_test_not_repeated(monkeypatch: pytest.MonkeyPatch) -> None
     def bernstein_test(*args: Any) -> Any:
         events.append(("bernstein", ()))
         return bernstein(*args)
-    monkeypatch.setattr(solver, "_bounds_positive", recorded)
-    monkeypatch.setattr(solver, "cleared_at_once", step_0b)
-    monkeypatch.setattr(solver, "_isolate_first_root", isolating)
-    monkeypatch.setattr(solver, "_bernstein_test", bernstein_test)
+    patch_solver(monkeypatch, "bounds_positive", recorded)
+    patch_solver(monkeypatch, "cleared_at_once", step_0b)
+    patch_solver(monkeypatch, "isolate_first_root", isolating)
+    patch_solver(monkeypatch, "bernstein_test", bernstein_test)
     repeated, solves = [], 0
     for c, tmax in _inputs():
         for method, _, eps in CALLS:
@@ -303,37 +304,37 @@ def _bernstein_calls(monkeypatch: pytest.MonkeyPatch) -> list[tuple[Any, int, fl
 
     monkeypatch.setattr(rt, "_C", None)
     calls: list[tuple[Any, int, float]] = []
-    inner = solver._bernstein_test
+    inner = solver.bernstein_test
 
     def recorded(*args: Any) -> Any:
         calls.append((args[0], args[1], args[2]))
         calls.append((args[0], args[1], args[2] * 0.75))
         return inner(*args)
-    monkeypatch.setattr(solver, "_bernstein_test", recorded)
+    patch_solver(monkeypatch, "bernstein_test", recorded)
     for c, tmax in _inputs():
         for method, _, eps in CALLS:
             rt.first_root_status(list(c), tmax, method, eps)
-    monkeypatch.setattr(solver, "_bernstein_test", inner)
+    patch_solver(monkeypatch, "bernstein_test", inner)
     return calls
 
 
 def _kernel_line(solver: Any, pt: Any, n: int, w: float, seen: Counter[str],
                  steps: list[int]) -> list[str]:
     """What bernstein_driver.c prints for the Point, computed by the pure-Python kernels; seen
-    counts the ends reached, steps[0] the Laguerre and Newton-on-p' steps (solver._laguerre_terms
-    calls), steps[1] the rounding bounds at a critical point (solver._horner_abs calls)."""
-    first = solver._bernstein_test(pt, n, w, True)
+    counts the ends reached, steps[0] the Laguerre and Newton-on-p' steps (solver.laguerre_terms
+    calls), steps[1] the rounding bounds at a critical point (solver.horner_abs calls)."""
+    first = solver.bernstein_test(pt, n, w, True)
     out = [str(first.answer), _num(first.pend)]
     seen[f"answer {first.answer}"] += 1
     if first.q is not None:
-        cleared = solver._bernstein_clear(first.q, n, 0.0)
-        cleared_at = solver._bernstein_clear(first.q, n, 0.3)
+        cleared = solver.bernstein_clear(first.q, n, 0.0)
+        cleared_at = solver.bernstein_clear(first.q, n, 0.3)
         seen["cleared by halving" if cleared else "not cleared by halving"] += 1
         seen["cleared, split at 0.3" if cleared_at else "not cleared, split at 0.3"] += 1
         out += [_num(v) for v in first.q.b]
         out += [_num(first.q.err), str(int(first.q.even)), str(int(cleared)), str(int(cleared_at))]
     steps[:] = [0, 0]
-    r, touch, dip, over = solver._speculate_first_root(pt.pt, n, pt.x + w)
+    r, touch, dip, over = solver.speculate_first_root(pt.pt, n, pt.x + w)
     seen["no guess root" if r is None else "guess root"] += 1
     seen["touch" if touch > 0 else "no touch"] += 1
     seen["dip" if dip != 0 else "no dip"] += 1
@@ -343,7 +344,7 @@ def _kernel_line(solver: Any, pt: Any, n: int, w: float, seen: Counter[str],
     out += ["0", _num(0.0)] if r is None else ["2" if over > 0 else "1", _num(r)]
     out += [_num(touch), _num(dip), _num(over)]
     out.append(str(3 * n * steps[0] + n * steps[1]))  # C's count: 3 n a step, n a bound
-    second = solver._bernstein_test(pt, n, w, False)
+    second = solver.bernstein_test(pt, n, w, False)
     return out + [str(second.answer), _num(second.pend)]
 
 
@@ -365,7 +366,7 @@ def test_bernstein_kernels_bit_for_bit(bernstein_driver: Path,
 
     calls = _bernstein_calls(monkeypatch)
     steps = [0, 0]
-    terms, bound = solver._laguerre_terms, solver._horner_abs
+    terms, bound = solver.laguerre_terms, solver.horner_abs
 
     def counted(*args: Any) -> Any:
         steps[0] += 1
@@ -374,8 +375,8 @@ def test_bernstein_kernels_bit_for_bit(bernstein_driver: Path,
     def bounded(*args: Any) -> Any:
         steps[1] += 1
         return bound(*args)
-    monkeypatch.setattr(solver, "_laguerre_terms", counted)
-    monkeypatch.setattr(solver, "_horner_abs", bounded)
+    patch_solver(monkeypatch, "laguerre_terms", counted)
+    patch_solver(monkeypatch, "horner_abs", bounded)
     lines, mine = [], []
     seen: Counter[str] = Counter()
     for pt, n, w in calls:

@@ -222,15 +222,15 @@ def test_python_matches_c_algorithm_on_kahan_discriminant() -> None:
 def test_fma_emulation_is_correctly_rounded() -> None:
     """The pure-Python fma (exact rationals, one rounding) against cases where a*b + c
     rounded twice is wrong."""
-    from max2code_runtime.solver import _fma_exact
+    from max2code_runtime.solver import fma_exact
 
     a = 1.0 + 2.0**-30
-    assert _fma_exact(a, a, -1.0) == 2.0**-29 + 2.0**-60  # a*a rounds the 2^-60 away
-    assert _fma_exact(2.0**1023, 2.0, -(2.0**1023)) == 2.0**1023  # a*b alone overflows
-    assert _fma_exact(1e308, 10.0, -1e308) == math.inf
-    assert _fma_exact(1e308, 10.0, 0.0) == math.inf
-    assert _fma_exact(2.0**-1074, 0.5, 0.0) == 0.0  # ties to even
-    assert _fma_exact(2.0**-1074, 1.5, 0.0) == 2.0**-1073
+    assert fma_exact(a, a, -1.0) == 2.0**-29 + 2.0**-60  # a*a rounds the 2^-60 away
+    assert fma_exact(2.0**1023, 2.0, -(2.0**1023)) == 2.0**1023  # a*b alone overflows
+    assert fma_exact(1e308, 10.0, -1e308) == math.inf
+    assert fma_exact(1e308, 10.0, 0.0) == math.inf
+    assert fma_exact(2.0**-1074, 0.5, 0.0) == 0.0  # ties to even
+    assert fma_exact(2.0**-1074, 1.5, 0.0) == 2.0**-1073
 
 
 def test_first_roots_batch(backend: str) -> None:

@@ -54,7 +54,7 @@ NEAR_PAIR: list[Vector] = [
 
 
 def test_certificate_refuses_near_pair(monkeypatch: pytest.MonkeyPatch) -> None:
-    got = paths.python_returns("_touch_critical", TOUCHES + NEAR_PAIR, monkeypatch)
+    got = paths.python_returns("touch_critical", TOUCHES + NEAR_PAIR, monkeypatch)
     for (c, tmax), calls in zip(TOUCHES, got):
         assert len(calls) == 1 and isinstance(calls[0], float) and calls[0] > 0, (c, calls)
     for (c, tmax), calls in zip(NEAR_PAIR, got[len(TOUCHES):]):

@@ -10,7 +10,7 @@ Two backends, one algorithm (runtime/c/max2code_roots.h documents it):
 
 * ``"c"``: the C runtime itself through cffi (``max2code_runtime._roots_c``, built by
   ``python -m max2code_runtime.build`` -- scripts/setup does it), used whenever it imports;
-* ``"python"``: ``solver.py``, a line-by-line port of the C solver in pure Python, the fallback
+* ``"python"``: ``solver/``, a line-by-line port of the C solver in pure Python, the fallback
   (or forced with MAX2CODE_PURE_PYTHON=1).
 
 Both give bit-identical answers for the interval methods (the tests compare them).  Methods:
@@ -98,9 +98,9 @@ def _solve_normalised(c: list[float], n: int, emax: int, tu: float, method: str,
     if method == "interval-nograze":
         skin = -1.0
     else:
-        skin = 0.0 if eps == 0 else solver._ldexp(eps, -E)
+        skin = 0.0 if eps == 0 else solver.ldexp(eps, -E)
     if n == 1:
-        r = solver._div(-c[0], c[1])
+        r = solver.div(-c[0], c[1])
         return (r, False) if 0 < r <= tu else None
     if n == 2:
         return solver.first_root_quadratic(c, tu, skin)
@@ -116,7 +116,7 @@ def _solve_normalised(c: list[float], n: int, emax: int, tu: float, method: str,
     t, g, scanned = found
     if skin != 0:
         return t, g
-    tail = [solver._ldexp(sign * v, -E) for v in dropped]  # scaled as c
+    tail = [solver.ldexp(sign * v, -E) for v in dropped]  # scaled as c
     if scanned and not tail:
         return solver.late_scanned(c, n, (t, g))
     return solver.never_late(c, n, tail, (t, g))
@@ -131,7 +131,7 @@ def _solve_python(cc: list[float], tmax: float, method: str, eps: float) -> tupl
     # Descartes on the input: no sign change (zeros skipped), c_0 != 0: no root in (0, inf).
     # (C counts the changes in the pass that reads the exponents, and reuses that pass's
     # spread when reduce drops nothing; the numbers are the same as computed here.)
-    if early and solver._sign_changes(c, degree) == 0:
+    if early and solver.sign_changes(c, degree) == 0:
         return 0, math.nan, False
     # Step 0a': AM-GM, with tmax = inf
     if early and degree >= 3 and tmax == math.inf and solver.outweighed(c, degree):
