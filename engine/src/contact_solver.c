@@ -44,6 +44,7 @@
 #define SLEEP_TIME 0.25       /* seconds slower than v_sleep before an island may sleep */
 #define CERT_RESIDUAL 1e-6    /* certificate: unbalanced force / weight (and torque / (weight rho)) */
 #define CERT_ITERATIONS 4000
+#define CERT_WAIT_BODIES 25   /* a failed certificate waits 0.125 s more per this many bodies */
 #define WORK_BUDGET 40000     /* PGS contact updates per tick (iterations = budget / contacts) */
 #define MIN_ITERATIONS 10
 #define MAX_ITERATIONS 400
@@ -1040,8 +1041,12 @@ void solver_tick(m2c_world *w)
             island_sleep(w, root, members, nb);
             m = -1; /* the list changed: start over (islands already asleep are gone) */
         } else {
+            /* try again later, the later the larger the island: an attempt costs up to
+             * 2 x CERT_ITERATIONS sweeps over its contacts (a frozen 200-disc pile that
+             * cannot be held spent a fifth of its time here at one try per 0.125 s) */
+            double wait = 0.5 * SLEEP_TIME * (1.0 + nb / (double)CERT_WAIT_BODIES);
             for (int q = 0; q < nb; q++)
-                s->calm[members[q]] = 0.5 * SLEEP_TIME; /* try again a little later */
+                s->calm[members[q]] = SLEEP_TIME - wait;
             if (all > nb) { /* the sleepers it leans on cannot take the load: they move too */
                 int extra[64], ne = 0;
                 for (int q = nb; q < all && ne < 64; q++)
