@@ -78,6 +78,9 @@ def test_make(tree: Path, env: dict[str, str]) -> None:
     check_time(run([*margs, "run"], folder, env))
     depfile = (folder / "build" / "circles.h.d").read_text()
     assert "../equations/circles.mxm" in depfile and "../equations/motion.mac" in depfile
+    # the runtime's parts (roots/*.inc, included by max2code_roots.c) are its prerequisites
+    parts = (folder / "build" / "max2code_roots.d").read_text()
+    assert "roots/never_late.inc" in parts and "roots/prepare.inc" in parts, parts
     assert "Nothing to be done" in run([*margs, "all"], folder, env)
     for touched in ("circles.mxm", "motion.mac"):
         touch(tree / "equations" / touched)
