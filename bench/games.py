@@ -20,7 +20,6 @@ from __future__ import annotations
 
 import argparse
 import importlib.util
-import json
 import math
 import platform
 import random
@@ -246,10 +245,9 @@ def pymunk_platformer(seconds: float) -> dict:
     it, coins and the goal are sensors, and the lift is a kinematic body on the same
     timetable."""
     import pymunk
+    from max2code.engine import loop
 
     pf = load_example("platformer")
-    script = [(float(e["t"]), e["type"], e["key"])
-              for e in map(json.loads, pf.SCRIPT.read_text().splitlines()) if e]
     space = pymunk.Space()
     space.gravity = (0, -pf.G)
     PLAYER, GROUND, ONEWAY, SENSOR = 1, 2, 3, 4
@@ -310,23 +308,22 @@ def pymunk_platformer(seconds: float) -> dict:
             and arb.contact_point_set.normal.y * (1 if arb.shapes[0] is ps else -1) < -0.7))
         return any(below)
 
-    phases = [(v, s) for v, s in pf.LIFT_PHASES]
-    cycle = sum(s for _, s in phases)
+    cycle = sum(s for _, s in pf.LIFT_PHASES)
 
     def lift_speed(t: float) -> float:
         t %= cycle
-        for v, s in phases:
+        for v, s in pf.LIFT_PHASES:
             if t < s:
                 return v
             t -= s
         return 0.0
 
-    queue = list(script)
+    queue = loop.read_keys(str(pf.SCRIPT))   # (the reader ours_platformer uses)
 
     def step(k: int):
         t = k / FPS
         while queue and queue[0][0] <= t:
-            _, kind, key = queue.pop(0)
+            _, (kind, key) = queue.pop(0)
             held = state["held"]
             if key in ("K_LEFT", "K_RIGHT"):
                 if kind == "KEYDOWN" and key not in held:
