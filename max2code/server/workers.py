@@ -119,13 +119,15 @@ def stop_workers(workers: list[Worker]) -> None:
             w.process.join()
 
 
-async def _readable(loop: asyncio.AbstractEventLoop, sock: socket.socket) -> None:
+async def _socket_ready(loop: asyncio.AbstractEventLoop, sock: socket.socket, writing: bool = False) -> None:
+    """Until sock is readable (or writable): the loop's own watch on a non-blocking socket."""
+    add, remove = (loop.add_writer, loop.remove_writer) if writing else (loop.add_reader, loop.remove_reader)
     fut = loop.create_future()
-    loop.add_reader(sock, lambda: fut.done() or fut.set_result(None))
+    add(sock, lambda: fut.done() or fut.set_result(None))
     try:
         await fut
     finally:
-        loop.remove_reader(sock)
+        remove(sock)
 
 
 async def _peek_head(loop: asyncio.AbstractEventLoop, conn: socket.socket) -> bytes | None:
@@ -136,7 +138,7 @@ async def _peek_head(loop: asyncio.AbstractEventLoop, conn: socket.socket) -> by
             head = conn.recv(PEEK_BYTES, socket.MSG_PEEK)
         except BlockingIOError:
             try:
-                await asyncio.wait_for(_readable(loop, conn), end - loop.time())
+                await asyncio.wait_for(_socket_ready(loop, conn), end - loop.time())
             except asyncio.TimeoutError:
                 return None
             continue
@@ -156,12 +158,7 @@ async def _send_fd(loop: asyncio.AbstractEventLoop, channel: socket.socket, fd: 
             socket.send_fds(channel, [ADOPT], [fd])
             return
         except BlockingIOError:
-            fut = loop.create_future()
-            loop.add_writer(channel, lambda: fut.done() or fut.set_result(None))
-            try:
-                await fut
-            finally:
-                loop.remove_writer(channel)
+            await _socket_ready(loop, channel, writing=True)
 
 
 async def _hand_off(loop: asyncio.AbstractEventLoop, conn: socket.socket, workers: list[Worker]) -> None:
