@@ -225,8 +225,7 @@ pub(crate) fn never_late(c: &[f64], n: usize, tail: &[f64], hit: (f64, bool)) ->
 /// C `band_walk`: never_late's steps from a root r that does not stand (d = r 2^-50, hs p's
 /// band side at r - d for a crossing, at r for a touch).
 #[inline(never)]
-fn band_walk(c: &[f64], n: usize, tail: &[f64], r: f64, d: f64, hs: i32, g: bool) -> (f64, bool) {
-    let mut hs = hs;
+fn band_walk(c: &[f64], n: usize, tail: &[f64], r: f64, d: f64, mut hs: i32, g: bool) -> (f64, bool) {
     let (mut hi, mut lo, mut step) = (if g { r } else { r - d }, 0.0, 2.0 * d);
     loop {
         let x = r - step;
