@@ -23,6 +23,9 @@ class Client:
         self.n = 0
         self.enc = "json"      # (hello is JSON; later frames as hello asked)
         self.frames: list[str | bytes] = []   # every frame received, as it came
+        # every body's segment as it stood after message n: a page that holds n messages is
+        # compared with what the server said up to n, not with a message it has yet to get
+        self.history: dict[int, dict[int, tuple[list, float]]] = {}
 
     def decode(self, frame: str | bytes) -> dict:
         """A server frame: JSON text, or MessagePack binary on a connection that asked for it
@@ -52,6 +55,7 @@ class Client:
         c.bodies = {b["id"]: b for b in c.world["bodies"]}
         for seg in c.world["seg"]:
             c.segs[seg[0]] = (seg, c.world["t"])
+        c.history[c.n] = dict(c.segs)
         return c
 
     async def send(self, message: dict) -> None:
@@ -70,6 +74,7 @@ class Client:
                 self.bodies[b["id"]] = b
             for seg in m["seg"]:
                 self.segs[seg[0]] = (seg, m["t"])
+            self.history[self.n] = dict(self.segs)
 
     async def receive(self, seconds: float) -> list[dict]:
         """Every message within `seconds`, applied."""
@@ -96,6 +101,7 @@ class Client:
                 return m
         raise AssertionError("no such message")
 
-    def pose(self, body: int, t: float) -> tuple[float, float, float]:
-        seg, t0 = self.segs[body]
+    def pose(self, body: int, t: float, n: int | None = None) -> tuple[float, float, float]:
+        """The body's pose at time t, from the segments held after message n (default: now)."""
+        seg, t0 = (self.segs if n is None else self.history[n])[body]
         return wire.pose(seg, t, t0)
