@@ -142,10 +142,13 @@ def bytes_table(quick: bool, tolerance: float | None, rate: float | None = None)
         ev_z, snap_z = deflate_sizes(sent), deflate_sizes(snaps)
         decoded = [m for m in map(json.loads, sent) if m["type"] == "ev"]
         events = sum(len(m["ev"]) for m in decoded)
-        segs = sum(len(m["seg"]) for m in decoded)
+        both = [m["seg"] + m.get("fall", []) for m in decoded]   # (protocol 4: seg and fall)
+        segs = sum(map(len, both))
         # where the bytes go: the envelope (type, n, t, rm, add), the event lists, the segments
         parts = {"ev": sum(len(protocol.encode(m["ev"])) + 6 for m in decoded),
-                 "seg": sum(len(protocol.encode(m["seg"])) + 7 for m in decoded)}
+                 "seg": sum(len(protocol.encode(m["seg"])) + 7 + (len(protocol.encode(m["fall"])) + 8
+                                                                  if "fall" in m else 0)
+                            for m in decoded)}
         parts["envelope"] = ev_bytes - parts["ev"] - parts["seg"]
         snap_mp = sum(len(msgpack.packb(json.loads(t))) for t in snaps)
         ev_mp, page_mp = sum(map(len, room.packed)), sum(map(len, room.packed_page))
@@ -161,7 +164,7 @@ def bytes_table(quick: bool, tolerance: float | None, rate: float | None = None)
                      "page_Bps_deflate": deflate_sizes(room.page) / until,
                      "page_ratio_deflate": snap_z / max(deflate_sizes(room.page), 1),
                      "bytes_per_message": ev_bytes / max(len(sent), 1),
-                     "parts": parts, "segment_numbers": sum(len(g) - 1 for m in decoded for g in m["seg"]),
+                     "parts": parts, "segment_numbers": sum(len(g) - 1 for gs in both for g in gs),
                      "snapshot_numbers": sum(3 * len(json.loads(t)["p"]) for t in snaps),
                      "msgpack_Bps": ev_mp / until, "snapshot_msgpack_Bps": snap_mp / until,
                      "ratio_msgpack": snap_mp / max(ev_mp, 1), "ratio_msgpack_json_snapshots": snap_bytes / max(ev_mp, 1),

@@ -1,4 +1,4 @@
-"""The wire protocol of `max2code serve` (docs/server.md): JSON text frames, version 3, or
+"""The wire protocol of `max2code serve` (docs/server.md): JSON text frames, version 4, or
 MessagePack binary frames when hello asks for them (`enc: "msgpack"`).
 
 Why JSON: the client is a static page with no build step and no library, and a browser parses
@@ -28,7 +28,8 @@ from dataclasses import dataclass
 
 import msgpack
 
-VERSION = 3   # 2: bodies removed (rm) and added (add); 3: events once per (kind, a, b) with a count
+VERSION = 4   # 2: bodies removed (rm) and added (add); 3: events once per (kind, a, b) with a count;
+#               4: segments falling with the world's g in `fall`, without it
 NUMBER_DIGITS = 10
 MAX_MESSAGE = 1024          # bytes of one client frame (our own limit: an error frame, then close)
 HARD_MAX_MESSAGE = 65536    # the WebSocket library's limit (close 1009 without reading it)

@@ -87,6 +87,8 @@ class Room:
         # reference point (rotation moves points that far out by angle x reach)
         self.tolerance = 0.0
         self.zero = wire.Zero.of(self._view())
+        # the world's gravity as sent: segments that fall with it leave it off (wire.split)
+        self.fall = [protocol.number(v) for v in getattr(self.world, "gravity", (0.0, 0.0))]
         self.held: list[tuple[float, ...]] = [wire.motion(wire.segment(i, m, 0.0, self.zero), 0.0)
                                               for i, m in enumerate(motions)]
         self.due: dict[int, float] = {}
@@ -240,12 +242,18 @@ class Room:
             self.held[seg[0]] = wire.motion(seg, t)
         self.seq += 1
         self.last_sent = now
-        message = {"type": "ev", "n": self.seq, "t": t, "ev": ev, "seg": segs}
+        message = {"type": "ev", "n": self.seq, "t": t, "ev": ev, **self._segments(segs)}
         if removed:
             message["rm"] = removed
         if added:
             message["add"] = [wire.body(self.world, i) for i in added]
         self._broadcast(message)
+
+    def _segments(self, segs: list[list]) -> dict:
+        """A message's `seg`, and its `fall` (segments accelerating at the room's g, sent
+        without it: wire.split) when there are any."""
+        explicit, fall = wire.split(segs, self.fall)
+        return {"seg": explicit, "fall": fall} if fall else {"seg": explicit}
 
     def next_wake(self) -> float:
         """The next queued event, or the end of a change's wait (and of the rate's interval
@@ -290,7 +298,9 @@ class Room:
         message = {"type": "world", "v": protocol.VERSION, "room": self.name, "n": self.seq,
                    "t": t, "you": list(client.controls), "view": self._view(),
                    "bodies": [wire.body(self.world, i) for i in live],
-                   "seg": [wire.segment(i, motions[i], t, self.zero) for i in live]}
+                   **self._segments([wire.segment(i, motions[i], t, self.zero) for i in live])}
+        if self.fall != [0, 0]:
+            message["g"] = self.fall
         if self.failed:
             message["failed"] = self.failed
         self.clients.append(client)

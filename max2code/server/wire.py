@@ -7,7 +7,13 @@ Shapes and styles are max2code.render's (engine.frames.render_body), so the page
 
 with s = t' - t, and trailing zeros left off (a body at rest is [id, x, y, angle], a body
 that neither turns nor accelerates [id, x, y, angle, vx, vy]). Every segment of one message is
-given at the message's time, so no segment carries a time of its own. Numbers have
+given at the message's time, so no segment carries a time of its own.
+
+A body falling with the room's gravity g (the `world` message's `g`) has its segment in the
+message's `fall` list instead, without the acceleration: `[id, x, y, angle, vx, vy, omega]`,
+trailing zeros left off, meaning (ax, ay) = g. Why (protocol version 4): in a falling scene
+most segments end in g's two numbers, some 10 of their 65 bytes; `split` and `expanded` are
+the two directions, and a client that reads both lists holds exactly the segments as before. Numbers have
 protocol.NUMBER_DIGITS significant digits, and magnitudes below Zero's (1e-12 of the view's
 width, or 1e-12 radians) are sent as 0.
 """
@@ -86,6 +92,38 @@ def segment(i: int, m: Motion, t: float, zero: Zero = Zero()) -> list:
     while len(values) > 3 and values[-1] == 0:
         values.pop()
     return [i] + values
+
+
+def split(segs: list[list], g: tuple) -> tuple[list[list], list[list]]:
+    """Segments (as `segment` makes them) into the message's `seg` and `fall` lists: those
+    whose acceleration is g exactly (as sent) go to `fall` without it. g is the room's gravity
+    as sent (numbers); with g = (0, 0) nothing is split off (trailing zeros are left off already)."""
+    g = list(g)
+    if g == [0, 0]:
+        return segs, []
+    explicit, fall = [], []
+    for seg in segs:
+        full = (list(seg) + [0] * 9)[:9]
+        if full[7:9] != g:
+            explicit.append(seg)
+            continue
+        values = full[1:7]
+        while len(values) > 3 and values[-1] == 0:
+            values.pop()
+        fall.append([seg[0]] + values)
+    return explicit, fall
+
+
+def expanded(message: dict, g: tuple) -> list[list]:
+    """A message's segments as `segment` made them: its `seg`, then its `fall` given g's
+    acceleration back (g: the `world` message's `g`, default (0, 0))."""
+    out = list(message.get("seg", []))
+    for seg in message.get("fall", []):
+        values = (list(seg[1:]) + [0] * 6)[:6] + list(g)
+        while len(values) > 3 and values[-1] == 0:   # (as segment leaves them off: g = (1, 0))
+            values.pop()
+        out.append([seg[0]] + values)
+    return out
 
 
 def pose(seg: list, t: float, t_seg: float) -> tuple[float, float, float]:

@@ -21,6 +21,7 @@ class Client:
         self.bodies: dict[int, dict] = {}
         self.messages: list[dict] = []
         self.n = 0
+        self.g: tuple = (0, 0)   # the world's gravity: what a `fall` segment accelerates at
         self.enc = "json"      # (hello is JSON; later frames as hello asked)
         self.frames: list[str | bytes] = []   # every frame received, as it came
         # every body's segment as it stood after message n: a page that holds n messages is
@@ -49,13 +50,24 @@ class Client:
             hello["enc"] = enc
         await c.send(hello)
         c.enc = enc or "json"
-        c.world = c.decode(await ws.recv())
-        assert c.world["type"] == "world", c.world
-        c.n = c.world["n"]
-        c.bodies = {b["id"]: b for b in c.world["bodies"]}
-        for seg in c.world["seg"]:
-            c.segs[seg[0]] = (seg, c.world["t"])
-        c.history[c.n] = dict(c.segs)
+        c.start(c.decode(await ws.recv()))
+        return c
+
+    def start(self, world: dict) -> None:
+        """Hold the world message's bodies and segments (what join does with it)."""
+        assert world["type"] == "world", world
+        self.world = world
+        self.n = world["n"]
+        self.bodies = {b["id"]: b for b in world["bodies"]}
+        self.g = tuple(world.get("g", (0, 0)))
+        self.segs = {seg[0]: (seg, world["t"]) for seg in wire.expanded(world, self.g)}
+        self.history[self.n] = dict(self.segs)
+
+    @classmethod
+    def fed(cls, text: str) -> "Client":
+        """A client fed in-process (no socket), from a world message's JSON text."""
+        c = cls(None)
+        c.start(json.loads(text))
         return c
 
     async def send(self, message: dict) -> None:
@@ -72,7 +84,7 @@ class Client:
                 del self.bodies[i], self.segs[i]
             for b in m.get("add", []):
                 self.bodies[b["id"]] = b
-            for seg in m["seg"]:
+            for seg in wire.expanded(m, self.g):
                 self.segs[seg[0]] = (seg, m["t"])
             self.history[self.n] = dict(self.segs)
 

@@ -109,11 +109,11 @@ def open_page(browser, server):
     return page, errors
 
 
-def probe(page, server, bodies):
-    """Freeze the page's drawing at its server time T, once it and the watcher hold the same
-    messages, and return per body: the canvas pixel where the server's segments put the body
-    at T, and that pixel's colour in the page's canvas."""
-    t = page.evaluate("m2c.freeze(m2c.serverNow())")
+def probe(page, server, bodies, ahead: float = 0.0):
+    """Freeze the page's drawing at its server time T (`ahead` seconds after now), once it and
+    the watcher hold the same messages, and return per body: the canvas pixel where the
+    server's segments put the body at T, and that pixel's colour in the page's canvas."""
+    t = page.evaluate(f"m2c.freeze(m2c.serverNow() + {ahead!r})")
     n = page.evaluate("m2c.state.n")
     server.catch_up(n)
     # (the world goes on: the watcher may already hold a later message than the page did)
@@ -127,7 +127,8 @@ def probe(page, server, bodies):
         # the body's angle): a pixel only the body's fill covers
         r = page.evaluate(f"m2c.state.bodies[{b}].shape.r") / 2
         px, py = page.evaluate(f"m2c.toPixel({x - r * math.cos(a)!r}, {y - r * math.sin(a)!r})")
-        out[b] = ((px, py), image.getpixel((int(px), int(py))), image, (x, y))
+        on = 0 <= px < image.width and 0 <= py < image.height    # (None: off the canvas)
+        out[b] = ((px, py), image.getpixel((int(px), int(py))) if on else None, image, (x, y))
     page.evaluate("m2c.thaw()")
     return t, out
 
@@ -181,6 +182,60 @@ def test_two_browsers_share_one_world(browser, server):
     # player2 went left, player1 down: both moved in both pages' world
     assert found[4][3][1] < -0.05 and found[5][3][0] < 0.95
     assert errors_a == errors_b == []
+
+
+BOUNCERS = """name = "bouncers"
+gravity = [0.0, -9.81]
+view = [-0.5, -0.2, 4.5, 3.0]
+
+[[bodies]]
+name = "floor"
+kind = "static"
+shape = "segment"
+points = [[-0.5, 0], [4.5, 0]]
+restitution = 1.0
+""" + "".join(f"""
+[[bodies]]
+name = "ball{k}"
+shape = "circle"
+position = [{0.8 * k}, {1.0 + 0.35 * k}]
+radius = 0.15
+restitution = 1.0
+""" for k in range(5))
+
+
+def test_page_draws_falling_bodies_where_the_server_says(browser, tmp_path):
+    """Five balls bouncing for ever under gravity: their segments travel in protocol 4's
+    `fall` list (acceleration left off), and the page gives them the world's g back. Its poses
+    0.25 s past its last message (where g's part, g s^2 / 2, is 0.31 m, twice a ball's radius)
+    are the server's; and each ball's fill is drawn where the server's segments put it."""
+    scene = tmp_path / "bouncers.toml"
+    scene.write_text(BOUNCERS)
+    served = Served(scene)
+    try:
+        page, errors = open_page(browser, served)
+        assert page.evaluate("m2c.state.g") == [0, -9.81]
+        page.wait_for_timeout(300)
+        balls = page.evaluate("""Object.values(m2c.state.bodies)
+            .filter((b) => b.kind === 'dynamic').map((b) => [b.id, b.fill])""")
+        assert len(balls) == 5
+        ids = [i for i, _ in balls]
+        n, t, poses = page.evaluate(f"""(() => {{ const t = m2c.serverNow() + 0.25;
+            return [m2c.state.n, t, {ids}.map((id) => m2c.poseAt(id, t))]; }})()""")
+        served.catch_up(n)
+        held = served.watcher.history[n]
+        assert sum(len(seg) == 9 and seg[7:] == [0, -9.81] for seg, _ in held.values()) == 5
+        for i, pose in zip(ids, poses):
+            assert pose == pytest.approx(served.watcher.pose(i, t, n), abs=1e-9), i
+        falls = sum(len(m.get("fall", [])) for m in served.watcher.messages if m["type"] == "ev")
+        assert falls > 0 and all(m.get("seg", []) == [] for m in served.watcher.messages
+                                 if m["type"] == "ev")
+        t, found = probe(page, served, ids)
+        wrong = [(i, found[i][1], fill) for i, fill in balls if found[i][1] != hex_rgb(fill)]
+        assert not wrong, (t, wrong)
+        assert errors == []
+    finally:
+        served.stop()
 
 
 BREAKOUT = "/work/shared/corpus/pge-python/examples/breakout-breakout.py"

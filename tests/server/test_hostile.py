@@ -16,7 +16,7 @@ from max2code.server.protocol import ProtocolError
 
 from .client import Client
 
-HELLO = {"type": "hello", "v": 3, "seq": 0}
+HELLO = {"type": "hello", "v": 4, "seq": 0}
 BAD_FIRST = {
     "not json": "{nope",
     "json array": "[1, 2]",
@@ -29,7 +29,7 @@ BAD_FIRST = {
     "bad room": json.dumps({**HELLO, "room": "../../etc"}),
     "play not bool": json.dumps({**HELLO, "play": "yes"}),
     "events not bool": json.dumps({**HELLO, "events": 0}),
-    "NaN": '{"type": "hello", "v": 3, "seq": NaN}',
+    "NaN": '{"type": "hello", "v": 4, "seq": NaN}',
     "deep nesting": "[" * 500 + "]" * 500,
     "oversized": json.dumps({**HELLO, "name": "x" * 2000}),
 }

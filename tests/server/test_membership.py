@@ -31,12 +31,7 @@ class Clock:
 
 def joined(text: str) -> Client:
     """A protocol client fed in-process (no socket): client.py's state from a world message."""
-    c = Client(None)
-    c.world = json.loads(text)
-    c.n = c.world["n"]
-    c.bodies = {b["id"]: b for b in c.world["bodies"]}
-    c.segs = {s[0]: (s, c.world["t"]) for s in c.world["seg"]}
-    return c
+    return Client.fed(text)
 
 
 def check_poses(c: Client, world, t: float) -> None:
@@ -65,7 +60,7 @@ def test_after_every_message_the_client_holds_the_alive_set(tolerance):
             seen_add += len(m.get("add", []))
             for b in m.get("add", []):
                 assert b["id"] not in gone and {"shape", "fill", "name"} <= set(b)
-                assert b["id"] in {s[0] for s in m["seg"]}   # an added body comes with its segment
+                assert b["id"] in {s[0] for s in wire.expanded(m, c.g)}   # an added body comes with its segment
         inbox.clear()
         alive = bricks.alive(room.world)
         assert set(c.bodies) == alive == set(c.segs), clock.t

@@ -26,7 +26,7 @@ def test_join_gets_the_world_and_segments_give_the_engines_poses(arena):
     async def go():
         c = await Client.join(arena.url)
         w = c.world
-        assert w["v"] == protocol.VERSION == 3 and w["you"] == [4] and len(w["bodies"]) == 12
+        assert w["v"] == protocol.VERSION == 4 and w["you"] == [4] and len(w["bodies"]) == 12
         assert w["bodies"][4]["name"] == "player1" and w["bodies"][4]["fill"] == "#c44e52"
         assert w["bodies"][4]["shape"] == {"c": [0, 0], "r": 0.12}
         assert w["bodies"][8]["shape"]["p"][0] == [-0.08, -0.08]      # puck3, a box
@@ -58,16 +58,16 @@ def test_every_event_message_matches_the_engine_at_its_time(arena):
     events = [m for m in c.messages if m["type"] == "ev"]
     assert len(events) >= 3
     reference = build_world(load(ARENA))
-    state = {s[0]: (s, c.world["t"]) for s in c.world["seg"]}
+    state = {s[0]: (s, c.world["t"]) for s in wire.expanded(c.world, c.g)}
     for m in events:
-        for s in m["seg"]:
+        for s in wire.expanded(m, c.g):
             state[s[0]] = (s, m["t"])
         reference.step_to(m["t"])
         for body, (seg, t0) in state.items():
             assert wire.pose(seg, m["t"], t0) == pytest.approx(reference.pose(body, m["t"]), abs=1e-7)
         # each message names the bodies its events changed, and no others
         named = {e[1] for e in m["ev"]} | {e[2] for e in m["ev"] if e[2] >= 0}
-        assert {s[0] for s in m["seg"]} <= named
+        assert {s[0] for s in wire.expanded(m, c.g)} <= named
 
 
 def test_a_client_may_ask_for_no_event_lists(arena):
@@ -125,7 +125,7 @@ def test_input_moves_only_your_body(arena):
     refused, refused_c, moved, speed = run(go())
     assert "not yours" in refused["reason"] and refused["seq"] == 1
     assert "not yours" in refused_c["reason"]
-    seg = next(s for s in moved["seg"] if s[0] == 4)
+    seg = next(s for s in wire.expanded(moved, (0, 0)) if s[0] == 4)   # (arena: no gravity)
     assert seg[4:6] == [0, speed]           # vx 0, vy = the input speed (no gravity here)
 
 

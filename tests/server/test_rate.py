@@ -29,11 +29,7 @@ def replay(name: str, until: float, rate: float) -> tuple[Room, Client, list[tup
     room = Room("r", load(SCENES / f"{name}.toml"), (), clock=lambda: clock[0], tolerance=0.0, rate=rate)
     inbox: list[str] = []
     _, text = room.join(inbox.append, "a")
-    c = Client(None)
-    c.world = json.loads(text)
-    c.n = c.world["n"]
-    c.bodies = {b["id"]: b for b in c.world["bodies"]}
-    c.segs = {s[0]: (s, c.world["t"]) for s in c.world["seg"]}
+    c = Client.fed(text)
     view = c.world["view"]
     scale = max(view[2] - view[0], view[3] - view[1])
     out = []
@@ -41,7 +37,7 @@ def replay(name: str, until: float, rate: float) -> tuple[Room, Client, list[tup
         clock[0] = t
         room.advance(t)
         for m in map(json.loads, inbox):
-            for seg in m["seg"]:    # never a segment clients already hold
+            for seg in wire.expanded(m, c.g):    # never a segment clients already hold
                 held, t0 = c.segs[seg[0]]
                 assert seg != wire.segment(seg[0], wire.motion(held, t0), m["t"]), (m["n"], seg)
             c.apply(m)

@@ -1,10 +1,10 @@
-// max2code serve: the thin client (protocol version 3, docs/server.md). No build step, no library.
+// max2code serve: the thin client (protocol version 4, docs/server.md). No build step, no library.
 // It holds every body's motion segment and draws any frame from it at the display's own rate;
 // the server sends a segment again only when an event changes it. Drawing follows
 // max2code.render (render/raster.py, render/svg.py): same shapes, colours, time stamp.
 "use strict";
 
-const PROTOCOL = 3;
+const PROTOCOL = 4;
 const KEYS = {ArrowLeft: "left", ArrowRight: "right", ArrowUp: "up", ArrowDown: "down",
               a: "left", d: "right", w: "up", s: "down"};
 const canvas = document.getElementById("view");
@@ -13,7 +13,7 @@ const statusLine = document.getElementById("status");
 const params = new URLSearchParams(location.search);
 
 const state = {
-  joined: false, closed: null, room: params.get("room") || "main", bodies: {}, segs: {},
+  joined: false, closed: null, room: params.get("room") || "main", bodies: {}, segs: {}, g: [0, 0],
   you: [], view: null, n: 0, seq: 0, offset: null, rtt: null, samples: [], late: null,
   lateMax: 0, received: 0, bytes: 0, refused: [], frozen: null, lastDrawn: null,
 };
@@ -29,11 +29,19 @@ function send(message) {
   ws.send(JSON.stringify(message));
 }
 
-function setSegment(seg, t) {
-  // [id, x, y, angle, vx, vy, omega, ax, ay] from time t; trailing zeros left off
+function setSegment(seg, t, g) {
+  // [id, x, y, angle, vx, vy, omega, ax, ay] from time t; trailing zeros left off; g given:
+  // a `fall` segment [id, x, y, angle, vx, vy, omega] whose acceleration is the world's g
   const v = [0, 0, 0, 0, 0, 0, 0, 0];
-  for (let k = 1; k < seg.length && k <= 8; k++) v[k - 1] = seg[k];
+  const n = g ? 6 : 8;
+  for (let k = 1; k < seg.length && k <= n; k++) v[k - 1] = seg[k];
+  if (g) { v[6] = g[0]; v[7] = g[1]; }
   state.segs[seg[0]] = {t: t, v: v};
+}
+
+function setSegments(m) {
+  for (const seg of m.seg) setSegment(seg, m.t, null);
+  for (const seg of m.fall || []) setSegment(seg, m.t, state.g);
 }
 
 function poseAt(id, t) {
@@ -53,7 +61,8 @@ function onMessage(text) {
     state.bodies = {}; state.segs = {}; state.you = m.you; state.view = m.view;
     for (const b of m.bodies) state.bodies[b.id] = b;
     state.n = m.n;
-    for (const seg of m.seg) setSegment(seg, m.t);
+    state.g = m.g || [0, 0];
+    setSegments(m);
     if (state.offset === null) state.offset = m.t - clientNow();
     state.joined = true;
   } else if (m.type === "ev") {
@@ -62,7 +71,7 @@ function onMessage(text) {
     // removals first (the bodies are dropped), then additions with their segments in seg
     for (const id of m.rm || []) { delete state.bodies[id]; delete state.segs[id]; }
     for (const b of m.add || []) state.bodies[b.id] = b;
-    for (const seg of m.seg) setSegment(seg, m.t);
+    setSegments(m);
     // how late the event reached us (drawn from its exact time on regardless)
     state.late = serverNow() - m.t;
     state.lateMax = Math.max(state.lateMax, state.late);
