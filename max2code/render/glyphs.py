@@ -8,14 +8,20 @@ glyph's mask cannot depend on where it lies (the text starts on a whole pixel, t
 its characters are whole pixels and no pair of them is kerned), each glyph is rendered once and
 a string's mask is put together from them; anything else returns None and is Pillow's to draw.
 tests/render/test_glyphs.py compares the two, mask and box, over many strings and font sizes.
+
+Pillow then blends the colour through the mask (ImageDraw.bitmap), pixel by pixel a function of
+the coverage and of the pixel below only: on a box of one colour (the time stamp's white box),
+that is a table of 256 entries, which Pillow itself fills once (ink_table), and the text's
+pixels are one lookup (numpy) where the crop, ImageDraw and the blend took 60 us a frame.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
-from PIL import ImageFont
+from PIL import Image, ImageDraw, ImageFont
 
 
 @dataclass(frozen=True)
@@ -100,3 +106,15 @@ class GlyphCache:
                 region = mask[y:y + g.mask.shape[0], x:x + g.mask.shape[1]]
                 region[...] = _over(region, g.mask)
         return TextMask(mask, left, top)
+
+
+@lru_cache(maxsize=64)
+def ink_table(colour: str, under: str) -> np.ndarray:
+    """What ImageDraw.bitmap in `colour` makes of an opaque RGBA pixel of colour `under` at each
+    coverage 0..255 (256 x 4 bytes), drawn by Pillow itself, so a lookup is its pixels exactly."""
+    picture = Image.new("RGBA", (256, 1), under)
+    ramp = Image.fromarray(np.arange(256, dtype=np.uint8)[None, :], "L")
+    ImageDraw.Draw(picture).bitmap((0, 0), ramp, fill=colour)
+    table = np.asarray(picture)[0].copy()
+    table.setflags(write=False)
+    return table

@@ -31,7 +31,7 @@ import skia
 from PIL import Image, ImageDraw, ImageFont
 
 from .model import Body, Capsule, Circle, Contact, Frame, Point, Polygon, RenderModelError, Segment, View
-from .glyphs import GlyphCache
+from .glyphs import GlyphCache, TextMask, ink_table
 from .text import printable, time_stamp
 
 CONTACT_COLOUR = "#d62728"
@@ -478,11 +478,34 @@ def _draw_text_boxed(pixels: np.ndarray, bodies: Sequence[Body], frame: Frame, v
         j0, j1, i0, i1 = box = _box(view, x + left, y + top, x + right, y + bottom)
         if j0 >= j1 or i0 >= i1:
             continue
+        if back is not None and item[5] is not None:
+            _paint_boxed(pixels, (x, y), item[2], back, item[5])
+            boxes.append(box)
+            continue
         crop = Image.fromarray(pixels[j0:j1, i0:i1], "RGBA")
         _draw_items(ImageDraw.Draw(crop), [item], size, (i0, j0))
         pixels[j0:j1, i0:i1] = np.asarray(crop)
         boxes.append(box)
     return boxes
+
+
+def _clip(pixels: np.ndarray, i0: int, j0: int, i1: int, j1: int) -> tuple[slice, slice, slice, slice]:
+    """Pixels columns i0:i1, rows j0:j1 (which may reach past the picture) as (rows, columns)
+    of the picture, and the same pixels' (rows, columns) in an array whose corner is (i0, j0)."""
+    h, w = pixels.shape[:2]
+    a, b, c, d = max(j0, 0), min(j1, h), max(i0, 0), min(i1, w)
+    return slice(a, max(b, a)), slice(c, max(d, c)), slice(a - j0, max(b, a) - j0), slice(c - i0, max(d, c) - i0)
+
+
+def _paint_boxed(pixels: np.ndarray, at: tuple[int, int], colour: str, back: tuple, mask: TextMask) -> None:
+    """_draw_items' white box `back` and the text of `mask` at `at` in `colour` over it, in
+    numpy: Pillow's rectangle covers its corners inclusive, and its blend onto the white is
+    a lookup (glyphs.ink_table)."""
+    rows, cols, _, _ = _clip(pixels, back[0], back[1], back[2] + 1, back[3] + 1)
+    pixels[rows, cols] = 255
+    x, y = at[0] + mask.left, at[1] + mask.top
+    rows, cols, mrows, mcols = _clip(pixels, x, y, x + mask.mask.shape[1], y + mask.mask.shape[0])
+    pixels[rows, cols] = ink_table(colour, "#ffffff")[mask.mask[mrows, mcols]]
 
 
 def _draw_contacts(canvas: Canvas, frame: Frame) -> None:
