@@ -19,6 +19,8 @@ from PIL import Image
 
 COLOURS = 256
 MOST_KEYS = 64   # the scene's own colours kept exactly; the rest of the palette is blends
+Box = tuple[int, int, int, int]   # pixels: left, top, right, bottom (Pillow's order)
+KNOWN = np.uint16(0x100)   # Mapper.table: this colour's entry is known
 
 
 def _rgb(colour: str) -> tuple[int, int, int]:
@@ -80,7 +82,8 @@ class Mapper:
     def __init__(self, entries: np.ndarray) -> None:
         self.entries = entries
         self.flat = entries.astype(np.uint8).tobytes()   # (putpalette takes bytes as they are)
-        # entry + 1; 0: not looked up yet. (Written whole now, 32 MB in 6 ms: left to the OS's
+        # KNOWN | entry; 0: not looked up yet (the entry is then the low byte, one cast).
+        # (Written whole now, 32 MB in 6 ms: left to the OS's
         # lazy zero pages, each new colour's first write faulted a page in, 12 us a colour,
         # 97 ms of a 3 s billiards GIF.)
         self.table = np.full(1 << 24, 0, dtype=np.uint16)
@@ -89,22 +92,27 @@ class Mapper:
         # frame is then mostly known colours, not 300,000 pixels for np.unique to sort)
         self._learn(np.unique(_packed(entries)))
 
-    def _learn(self, colours: np.ndarray) -> None:
+    def _learn(self, colours: np.ndarray) -> np.ndarray:
         """Nearest entries of new colours: |c - e|^2 = |c|^2 - 2 c.e + |e|^2, and |c|^2 is the
         same for every entry (a product of matrices). Exact in float32, twice as fast as in
         float64: every term and partial sum is a whole number below 2^24 (3 x 2 x 255^2)."""
         rgb = _unpacked(colours).astype(np.float32)
         entries = self.entries.astype(np.float32)
         d = (entries * entries).sum(axis=1)[None, :] - 2.0 * (rgb @ entries.T)
-        self.table[colours] = np.argmin(d, axis=1) + 1
+        found = np.argmin(d, axis=1).astype(np.uint16) | KNOWN
+        self.table[colours] = found
+        return found
 
     def _entries(self, keys: np.ndarray) -> np.ndarray:
-        """The palette entries of colours given as _packed numbers."""
+        """The palette entries of colours given as _packed numbers. (New colours are learnt
+        and put in place: the lookup is not done again.)"""
         index = self.table[keys]
         if not index.all():
-            self._learn(np.unique(keys[index == 0]))
-            index = self.table[keys]
-        return (index - 1).astype(np.uint8)
+            flat = index.reshape(-1)   # (a view: table[keys] is a new array)
+            unknown = np.flatnonzero(flat == 0)
+            colours, inverse = np.unique(keys.reshape(-1)[unknown], return_inverse=True)
+            flat[unknown] = self._learn(colours)[inverse]
+        return index.astype(np.uint8)
 
     def mapped(self, image: Image.Image | np.ndarray,
                changed: list[tuple[int, int, int, int]] | np.ndarray | None = None) -> Image.Image:
@@ -112,35 +120,58 @@ class Mapper:
         `changed`: where `image` may differ from the previous one mapped, as boxes (rows j0:j1,
         columns i0:i1; FrameDrawer.changed) or as a mask of square tiles (FrameDrawer.
         changed_tiles); None: map every pixel."""
+        self.update(image, changed)
+        return self.image()
+
+    def update(self, image: Image.Image | np.ndarray,
+               changed: list[tuple[int, int, int, int]] | np.ndarray | None = None) -> Box | None:
+        """Map `image` as mapped() does, into `index`; returns where its entries differ from the
+        previous image's, as a box (left, top, right, bottom) around them (the whole picture
+        for the first), None where none does. (A GIF frame is then that box only: Pillow
+        found it by comparing the whole of both pictures, a fifth of writing a frame.)"""
         pixels = np.asarray(image)
-        if changed is None or self.index is None or self.index.shape != pixels.shape[:2]:
+        before = self.index
+        if changed is None or before is None or before.shape != pixels.shape[:2]:
             self.index = self._entries(_packed(pixels))
-        elif isinstance(changed, np.ndarray):
-            self._map_tiles(pixels, changed)
-        else:
-            self._map_boxes(pixels, changed)
-        out = Image.fromarray(self.index.copy(), "P")   # (a 'P' image would share the array)
+            if before is None or before.shape != self.index.shape:
+                return (0, 0, self.index.shape[1], self.index.shape[0])
+            return _around(*np.nonzero(before != self.index))
+        if isinstance(changed, np.ndarray):
+            return self._map_tiles(pixels, changed)
+        return self._map_boxes(pixels, changed)
+
+    def image(self, box: Box | None = None) -> Image.Image:
+        """The last image's entries (within `box`: left, top, right, bottom) as a 'P' image on
+        the palette, a copy."""
+        index = self.index if box is None else self.index[box[1]:box[3], box[0]:box[2]]
+        out = Image.fromarray(index.copy(), "P")   # (a 'P' image would share the array)
         out.putpalette(self.flat, "RGB")
         return out
 
-    def _map_boxes(self, pixels: np.ndarray, changed: list[tuple[int, int, int, int]]) -> None:
+    def _map_boxes(self, pixels: np.ndarray, changed: list[tuple[int, int, int, int]]) -> Box | None:
         # (all boxes in one lookup: per box, the lookup's dozen numpy calls cost more
         # than its pixels when a frame has a hundred small boxes)
         boxes = [(slice(j0, j1), slice(i0, i1)) for j0, j1, i0, i1 in changed if j0 < j1 and i0 < i1]
         if not boxes:
-            return
+            return None
         words = _words(pixels)
         keys = (np.concatenate([words[b].ravel() for b in boxes]) & np.uint32(0xFFFFFF)
                 if words is not None else
                 np.concatenate([_packed(pixels[b]).ravel() for b in boxes]))
         entries = self._entries(keys)
         at = 0
-        for rows, cols in boxes:
-            region = self.index[rows, cols]
-            region[...] = entries[at:at + region.size].reshape(region.shape)
+        rows, cols = [], []
+        for b in boxes:
+            region = self.index[b]
+            new = entries[at:at + region.size].reshape(region.shape)
+            r, c = np.nonzero(region != new)
+            rows.append(r + b[0].start)
+            cols.append(c + b[1].start)
+            region[...] = new
             at += region.size
+        return _around(np.concatenate(rows), np.concatenate(cols))
 
-    def _map_tiles(self, pixels: np.ndarray, mask: np.ndarray) -> None:
+    def _map_tiles(self, pixels: np.ndarray, mask: np.ndarray) -> Box | None:
         """The tiles of `mask` (tile rows x tile columns; the picture cut into squares of
         height / tile rows pixels, the last row and column of tiles possibly cut short), in
         one gather and one scatter where the tiles fit the picture, else as boxes."""
@@ -148,13 +179,40 @@ class Mapper:
         size = -(-h // mask.shape[0])
         words = _words(pixels)
         if words is None or h % size or w % size or w != mask.shape[1] * size:
-            self._map_boxes(pixels, [(r * size, min(r * size + size, h), c * size,
-                                      min(c * size + size, w)) for r, c in np.argwhere(mask).tolist()])
-            return
+            return self._map_boxes(pixels, [(r * size, min(r * size + size, h), c * size,
+                                             min(c * size + size, w)) for r, c in np.argwhere(mask).tolist()])
         if not mask.any():
-            return
-        keys = _tiles_of(words, size)[mask] & np.uint32(0xFFFFFF)
-        _tiles_of(self.index, size)[mask] = self._entries(keys.ravel()).reshape(keys.shape)
+            return None
+        keys = _tiles_of(words, size)[mask]   # (a copy: masked in place)
+        keys &= np.uint32(0xFFFFFF)
+        tiles = _tiles_of(self.index, size)
+        new = self._entries(keys.ravel()).reshape(keys.shape)
+        differ = (tiles[mask] != new).view(np.uint8)
+        tiles[mask] = new
+        return _changed_box(differ, np.argwhere(mask), size)
+
+
+def _changed_box(differ: np.ndarray, at: np.ndarray, size: int) -> Box | None:
+    """The box around the pixels flagged (1) in `differ`, tiles x size x size bytes whose
+    tiles lie at rows, columns `at` (in tiles). Where size is 8 a tile's row is read as one
+    64-bit number, and its columns as the bytes of the rows OR-ed together: numpy's any() over
+    axes of 8 and nonzero() over every pixel took as long as mapping the pixels."""
+    if size == 8 and differ.flags.c_contiguous:
+        rows = differ.view(np.uint64)[..., 0]                       # tiles x 8
+        cols = np.bitwise_or.reduce(rows, axis=1).view(np.uint8).reshape(-1, 8)
+        t, r = np.nonzero(rows)
+        u, c = np.nonzero(cols)
+    else:
+        t, r = np.nonzero(differ.any(axis=2))
+        u, c = np.nonzero(differ.any(axis=1))
+    return _around(at[t, 0] * size + r, at[u, 1] * size + c)
+
+
+def _around(rows: np.ndarray, cols: np.ndarray) -> Box | None:
+    """The box (left, top, right, bottom) around pixels at `rows`, `cols`; None for none."""
+    if not rows.size:
+        return None
+    return (int(cols.min()), int(rows.min()), int(cols.max()) + 1, int(rows.max()) + 1)
 
 
 def _tiles_of(a: np.ndarray, size: int) -> np.ndarray:

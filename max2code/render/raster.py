@@ -375,9 +375,9 @@ def draw_contacts(canvas: Canvas, contacts: Sequence[Contact], size: float) -> N
     cells: dict[tuple[int, int], tuple[skia.Path, skia.Path]] = {}
     outer, inner = size + CONTACT_WIDTH / 2, max(size - CONTACT_WIDTH / 2, 0.0)
     length = CONTACT_REACH * size
+    pad = outer + 1
     for x, y, turn in _distinct_contacts(contacts, canvas.view):
-        box = canvas.box(x - reach, y - reach, x + reach + 1, y + reach + 1)
-        if box is None:
+        if canvas.box(x - reach, y - reach, x + reach + 1, y + reach + 1) is None:
             continue
         cell = (int(x // (2 * reach)), int(y // (2 * reach)))
         if cell not in cells:
@@ -386,9 +386,18 @@ def draw_contacts(canvas: Canvas, contacts: Sequence[Contact], size: float) -> N
         rings.addCircle(x, y, outer)
         if inner > 0:
             rings.addCircle(x, y, inner, skia.PathDirection.kCCW)
+        x0, y0, x1, y1 = x - pad, y - pad, x + pad, y + pad
         if turn is not None:
-            lines.moveTo(x, y).lineTo(x + length * math.cos(turn), y + length * math.sin(turn))
-        canvas.painted.add(box)
+            ex, ey = x + length * math.cos(turn), y + length * math.sin(turn)
+            lines.moveTo(x, y).lineTo(ex, ey)
+            # (the box painted: the ring's and the line's, a pixel of soft edge around them;
+            # the square of the line's reach every way had 2-3 times their area to restore
+            # and to map to a GIF's palette again)
+            x0, y0 = min(x0, ex - CONTACT_WIDTH / 2 - 1), min(y0, ey - CONTACT_WIDTH / 2 - 1)
+            x1, y1 = max(x1, ex + CONTACT_WIDTH / 2 + 1), max(y1, ey + CONTACT_WIDTH / 2 + 1)
+        box = canvas.box(x0, y0, x1 + 1, y1 + 1)
+        if box is not None:
+            canvas.painted.add(box)
     for rings, lines in cells.values():
         canvas.skia.drawPath(rings, _paint(CONTACT_COLOUR, None))
         if not lines.isEmpty():

@@ -2,8 +2,8 @@
 
 Every file is written to a temporary name beside it and renamed (output.replaced_atomically), so
 an interrupted or failed run leaves the previous file as it was. Frames may come from a generator:
-MP4 and PNG folders are written as they come; a GIF is held in memory (Pillow writes it whole),
-as palette images, about width x height bytes per frame. A simulation's animations are drawn by
+MP4, PNG folders and GIFs are written as they come (a GIF frame by frame, each the box where it
+differs from the one before: render.gifstream). A simulation's animations are drawn by
 one raster.FrameDrawer (the same pixels as frame_image, faster), and a GIF's
 frames share one palette (render.palette).
 
@@ -148,10 +148,12 @@ def gif_of(path: str | os.PathLike, frames: Iterable[F], draw: Callable[[F], obj
     each frame: frames that the timing drops are never drawn. One palette for all (render.palette): the colours
     `keys` exactly, and the blends in GIF_PALETTE_SAMPLES kept frames drawn ahead (draw must
     depend on its frame only). changed(): where the last drawing may differ from the one
-    before, as boxes or a tile mask (palette.Mapper.mapped; None: anywhere), so only those
-    are mapped to the palette again."""
+    before, as boxes or a tile mask (palette.Mapper.update; None: anywhere), so only those
+    are mapped to the palette again, and the frame written is the box where its entries
+    changed (render.gifstream: the bytes Pillow's own writer makes of the whole frames)."""
     drawing_modules()
     from . import palette
+    from .gifstream import GifStream
     fps = check_fps(fps)
     frames = list(frames)   # (Frame objects are small; their pictures are not kept)
     step, delays = gif_timing(len(frames), fps)
@@ -162,14 +164,14 @@ def gif_of(path: str | os.PathLike, frames: Iterable[F], draw: Callable[[F], obj
                     for i in range(GIF_PALETTE_SAMPLES)})
     # (.copy(): FrameDrawer.pixels reuses its buffer)
     mapper = palette.Mapper(palette.choose(keys, [draw(kept[i]).copy() for i in picks]))
-    images = []
-    for i, frame in enumerate(kept):
-        pixels = draw(frame)
-        images.append(mapper.mapped(pixels, changed() if i else None))
-    with replaced_atomically(os.fspath(path)) as tmp:
-        images[0].save(tmp, format="GIF", save_all=True, append_images=images[1:], duration=delays,
-                       loop=0, disposal=1, optimize=False)
-    return len(images)
+    with replaced_atomically(os.fspath(path)) as tmp, open(tmp, "wb") as out:
+        gif = GifStream(out)
+        for i, frame in enumerate(kept):
+            box = mapper.update(draw(frame), changed() if i else None)
+            gif.add(mapper.image(box) if box is not None else None,
+                    box[:2] if box is not None else None, delays[i])
+        gif.close()
+    return len(kept)
 
 
 def write_mp4(path: str | os.PathLike, bodies: Sequence[Body], frames: Iterable[Frame], view: View,
