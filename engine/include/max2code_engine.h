@@ -12,6 +12,8 @@
  *     1 vertex            a circle (radius > 0)
  *     2 vertices          a segment (radius 0: a thin two-sided wall) or a capsule (radius > 0)
  *     3 or more vertices  a convex polygon, anticlockwise (radius > 0 rounds its corners)
+ * A compound body has several such shapes (parts: circles, segments, capsules, convex
+ * polygons, each with its own radius) on one rigid body: m2c_body_def.parts.
  * Static bodies never move; kinematic bodies follow their prescribed motion forever (the
  * paper's orbiting paddles); both have infinite mass. Dynamic bodies respond to impulses.
  *
@@ -67,6 +69,14 @@ enum {
                                   (or something resting on it leaves it) */
 };
 
+/* One convex part of a compound body (m2c_body_def.parts): its vertices in the body frame and
+ * its rounding radius, as a single-shape body's (1: circle, 2: segment/capsule, >= 3 polygon). */
+typedef struct {
+    int nvertices;
+    const double *vertices;    /* 2 * nvertices numbers */
+    double radius;
+} m2c_part;
+
 typedef struct {
     int kind;                  /* M2C_STATIC, M2C_KINEMATIC or M2C_DYNAMIC */
     double x, y, angle;        /* reference point and angle at the world's current time */
@@ -83,6 +93,11 @@ typedef struct {
     unsigned int mask;         /* the categories it collides with (default all): a pair collides
                                   when each one's category meets the other's mask */
     int flags;                 /* M2C_FLAG_* (default 0) */
+    int nparts;                /* a compound body: nparts >= 1 parts (then nvertices 0, vertices
+                                  NULL and radius 0: the shape is the parts'); default 0. Its
+                                  contacts are its parts' (the earliest part pair's); mass and
+                                  inertia are the whole body's, about its reference point */
+    const m2c_part *parts;
     int internal;              /* set by m2c_default_body_def(): a def not made by it is refused */
 } m2c_body_def;
 
@@ -193,8 +208,9 @@ M2C_API int m2c_world_set_kind(m2c_world *w, int body, int kind);
 /* An impulse (jx, jy) applied at the world point (px, py) to a dynamic body. */
 M2C_API int m2c_world_apply_impulse(m2c_world *w, int body, double jx, double jy, double px,
                                     double py);
-/* The body's vertices in its own frame (2 * count numbers, count = its number of vertices;
- * they change when m2c_world_set_mass moves the reference point): the count, or -1. */
+/* The body's vertices in its own frame (2 * count numbers, count = its number of vertices --
+ * a compound body's parts' one after another, in the parts' order; they change when
+ * m2c_world_set_mass moves the reference point): the count, or -1. */
 M2C_API int m2c_world_vertices(const m2c_world *w, int body, double *out, int capacity);
 
 /* A body's flags (M2C_FLAG_*), from now on. */

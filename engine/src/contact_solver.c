@@ -405,11 +405,14 @@ static void add_one(m2c_world *w, int i, int j, const double n[2], const double 
     push_contact(w, &c);
 }
 
-/* Contacts between bodies i and j (both orders of vertex against edge; vertex against vertex). */
-static void gen_pair(m2c_world *w, int i, int j, double margin)
+/* Contacts between a part of body i and a part of body j (both orders of vertex against edge;
+ * vertex against vertex): the parts as bodies (part_view), o0 and o1 their first vertices'
+ * body-level indices (the contacts' keys name body-level vertices and edges). */
+static void gen_parts(m2c_world *w, int i, int j, const body *P0, const body *P1, int o0, int o1,
+                      double margin)
 {
-    const body *B[2] = {&w->b[i], &w->b[j]};
-    int id[2] = {i, j};
+    const body *B[2] = {P0, P1};
+    int id[2] = {i, j}, off[2] = {o0, o1};
     snap sn[2] = {motion_at(&B[0]->m, w->now), motion_at(&B[1]->m, w->now)};
     double R = B[0]->radius + B[1]->radius;
     /* quick reject on the bounding circles */
@@ -448,7 +451,8 @@ static void gen_pair(m2c_world *w, int i, int j, double margin)
                 double p[2] = {X[0] - out[0] * P->radius, X[1] - out[1] * P->radius};
                 /* normal from i towards j */
                 double n[2] = {side == 0 ? d[0] : out[0], side == 0 ? d[1] : out[1]};
-                unsigned key = (unsigned)(side << 30) | (unsigned)(v << 15) | (unsigned)u;
+                unsigned key = (unsigned)(side << 30) | (unsigned)((v + off[side]) << 15)
+                               | (unsigned)(u + off[1 - side]);
                 add_one(w, id[0], id[1], n, p, gap, key);
             }
         }
@@ -493,9 +497,26 @@ static void gen_pair(m2c_world *w, int i, int j, double margin)
                 if (covered)
                     continue;
                 double p[2] = {X[0] + n[0] * B[0]->radius, X[1] + n[1] * B[0]->radius};
-                unsigned key = (3u << 30) | (unsigned)(v << 15) | (unsigned)u;
+                unsigned key = (3u << 30) | (unsigned)((v + o0) << 15) | (unsigned)(u + o1);
                 add_one(w, i, j, n, p, gap, key);
             }
+        }
+    }
+}
+
+/* Contacts between bodies i and j: every pair of their parts. */
+static void gen_pair(m2c_world *w, int i, int j, double margin)
+{
+    const body *A = &w->b[i], *B = &w->b[j];
+    if (A->nparts == 1 && B->nparts == 1) {
+        gen_parts(w, i, j, A, B, 0, 0, margin);
+        return;
+    }
+    for (int p = 0; p < A->nparts; p++) {
+        body u = part_view(w, A, p);
+        for (int q = 0; q < B->nparts; q++) {
+            body v = part_view(w, B, q);
+            gen_parts(w, i, j, &u, &v, u.vert - A->vert, v.vert - B->vert, margin);
         }
     }
 }

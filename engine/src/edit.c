@@ -253,12 +253,10 @@ int m2c_world_set_mass(m2c_world *w, int i, double mass, double inertia, double 
     }
     if (cx != 0 || cy != 0) {
         /* the reference point moves to the centre, the vertices the other way */
-        double rho = 0;
         for (int k = 0; k < b->nvert; k++) {
             double *p = &w->verts[2 * (b->vert + k)];
             p[0] -= cx;
             p[1] -= cy;
-            rho = fmax(rho, hypot(p[0], p[1]));
         }
         double off[2] = {cx, cy}, r[2];
         snap s = motion_at(&b->m, w->now);
@@ -268,8 +266,7 @@ int m2c_world_set_mass(m2c_world *w, int i, double mass, double inertia, double 
         /* a turning body's points keep their velocities: v + w x r */
         b->m.vx -= b->m.w * r[1];
         b->m.vy += b->m.w * r[0];
-        b->rho = rho;
-        b->bound = rho + b->radius;
+        body_reach(w, b);
         if (b->kind == M2C_DYNAMIC && w->prepared) {
             grid_remove(w, i);
             grid_insert(w, i);

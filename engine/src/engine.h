@@ -50,6 +50,14 @@ typedef struct {
     int dx, dy;                 /* cell crossing: the step to the next cell */
 } event;
 
+/* One convex part of a body's shape: vertices w->verts[2 (vert + k)], k < nvert (absolute
+ * indices), rounded by radius. A single-shape body has one part; a compound body several,
+ * their vertices one after another from the body's first vertex. */
+typedef struct {
+    int vert, nvert;
+    double radius;
+} part;
+
 enum { AWAKE = 0, RESTING = 1, ASLEEP = 2, SOLVING = 3 };
 /* SOLVING: in sustained contact, moved by the contact solver (contact_solver.c) */
 
@@ -64,7 +72,11 @@ typedef struct {
     double restitution, radius, friction;
     double bound;               /* max |offset| + radius: a circle about the reference point */
     double rho;                 /* max |offset| (what rotation moves) */
-    int nvert, vert;            /* vertices: w->verts[2 (vert + k)], k < nvert */
+    int nvert, vert;            /* vertices: w->verts[2 (vert + k)], k < nvert (all parts) */
+    int part, nparts;           /* its parts: w->parts[part + k], k < nparts (1: one shape;
+                                   radius is then the shape's, else the first part's). Contact
+                                   features name vertices and edges by body-level index (from
+                                   vert), whichever part they are in */
     int group;
     unsigned int category, mask; /* collision filter (max2code_engine.h) */
     int flags;                  /* M2C_FLAG_* */
@@ -110,6 +122,8 @@ struct m2c_world {
     double *verts;              /* body-frame vertices, 2 per vertex */
     double *edges;              /* per vertex k: unit direction and length of edge k -> k+1 */
     int nverts, capverts;
+    part *parts;                /* every body's parts (engine.h: part) */
+    int nparts, capparts;
     int *heap, *heap_pos;       /* indexed heap of dynamic bodies */
     int heap_n;
     int *kinematic;             /* kinematic bodies: every dynamic body checks them */
@@ -246,6 +260,16 @@ void ghost_remove_at(m2c_world *w, int k);
 void ghost_forget(m2c_world *w, int i);              /* every pair of a removed body */
 void ghost_leave_sensors(m2c_world *w, int i);      /* moved: its sensor pairs end now */
 void ghost_enter_sensors(m2c_world *w, int i);      /* added: the sensors it overlaps, now */
+
+/* geometry.c: a body's parts */
+/* Part k of body b as a body of its own: the same motion, kind and state, with the part's
+ * vertices and radius (the shape code written for one shape runs on it unchanged). */
+body part_view(const m2c_world *w, const body *b, int k);
+/* The part of body b holding its vertex v (a body-level index), and that part's radius. */
+int vertex_part(const m2c_world *w, const body *b, int v);
+double vertex_radius(const m2c_world *w, const body *b, int v);
+/* rho (max |offset|) and bound (max |offset| + the part's radius) of a body from its parts. */
+void body_reach(const m2c_world *w, body *b);
 
 /* world.c */
 void world_predict(m2c_world *w, int i);

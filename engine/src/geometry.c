@@ -14,6 +14,46 @@ int pair_filtered(const body *a, const body *b)
     return (a->category & b->mask) != 0 && (b->category & a->mask) != 0;
 }
 
+body part_view(const m2c_world *w, const body *b, int k)
+{
+    body v = *b;
+    const part *p = &w->parts[b->part + k];
+    v.vert = p->vert;
+    v.nvert = p->nvert;
+    v.radius = p->radius;
+    v.part = b->part + k;
+    v.nparts = 1;
+    return v;
+}
+
+int vertex_part(const m2c_world *w, const body *b, int v)
+{
+    int k = 0;
+    while (k + 1 < b->nparts && w->parts[b->part + k + 1].vert <= b->vert + v)
+        k++;
+    return k;
+}
+
+double vertex_radius(const m2c_world *w, const body *b, int v)
+{
+    return b->nparts == 1 ? b->radius : w->parts[b->part + vertex_part(w, b, v)].radius;
+}
+
+void body_reach(const m2c_world *w, body *b)
+{
+    double rho = 0, bound = 0;
+    for (int k = 0; k < b->nparts; k++) {
+        const part *p = &w->parts[b->part + k];
+        for (int v = 0; v < p->nvert; v++) {
+            double r = hypot(w->verts[2 * (p->vert + v)], w->verts[2 * (p->vert + v) + 1]);
+            rho = fmax(rho, r);
+            bound = fmax(bound, r + p->radius);
+        }
+    }
+    b->rho = rho;
+    b->bound = bound;
+}
+
 /* Shapes as world-frame vertex lists: n points, anticlockwise when n >= 3, and a radius. */
 typedef struct {
     double *v;
@@ -31,16 +71,17 @@ static double *scratch(const m2c_world *w)
     return malloc(sizeof(double) * 2 * (size_t)most);
 }
 
-/* Body i's shape at time t (>= its reference time), its vertices into buf. */
-static int shape_at(const m2c_world *w, int i, double t, shape *out, double *buf)
+/* Part p of body i's shape at time t (>= its reference time), its vertices into buf. */
+static int shape_at(const m2c_world *w, int i, int p, double t, shape *out, double *buf)
 {
     const body *b = &w->b[i];
+    const part *q = &w->parts[b->part + p];
     out->v = buf;
     snap s = motion_at(&b->m, t < b->m.t ? b->m.t : t);
-    for (int k = 0; k < b->nvert; k++)
-        world_point(&s, &w->verts[2 * (b->vert + k)], &out->v[2 * k]);
-    out->n = b->nvert;
-    out->r = b->radius;
+    for (int k = 0; k < q->nvert; k++)
+        world_point(&s, &w->verts[2 * (q->vert + k)], &out->v[2 * k]);
+    out->n = q->nvert;
+    out->r = q->radius;
     return 0;
 }
 
@@ -118,21 +159,39 @@ static double core_distance(const shape *A, const shape *B)
     return best;
 }
 
-double shape_gap(const m2c_world *w, int i, int j)
+/* The least of f over the part pairs of bodies i and j at time t (a compound's gap is its
+ * nearest parts'); -INFINITY when out of memory. */
+static double least_over_parts(const m2c_world *w, int i, int j, double t,
+                               double (*f)(const shape *, const shape *))
 {
     shape A, B;
     double *va = malloc(sizeof(double) * 2 * (size_t)w->b[i].nvert);
     double *vb = malloc(sizeof(double) * 2 * (size_t)w->b[j].nvert);
-    double gap = -INFINITY; /* out of memory: refuse rather than guess */
+    double gap = -INFINITY;
     if (va && vb) {
-        shape_at(w, i, w->now, &A, va);
-        shape_at(w, j, w->now, &B, vb);
-        double d = core_distance(&A, &B);
-        gap = d < 0 ? -(A.r + B.r) - 1.0 : d - A.r - B.r;
+        gap = INFINITY;
+        for (int p = 0; p < w->b[i].nparts; p++) {
+            shape_at(w, i, p, t, &A, va);
+            for (int q = 0; q < w->b[j].nparts; q++) {
+                shape_at(w, j, q, t, &B, vb);
+                gap = fmin(gap, f(&A, &B));
+            }
+        }
     }
     free(va);
     free(vb);
     return gap;
+}
+
+static double parts_gap(const shape *A, const shape *B)
+{
+    double d = core_distance(A, B);
+    return d < 0 ? -(A->r + B->r) - 1.0 : d - A->r - B->r;
+}
+
+double shape_gap(const m2c_world *w, int i, int j)
+{
+    return least_over_parts(w, i, j, w->now, parts_gap); /* out of memory: refuse */
 }
 
 /* The largest separation of two cores along the edge normals of either (both senses): the
@@ -161,23 +220,17 @@ static double axis_separation(const shape *A, const shape *B)
     return best;
 }
 
+static double parts_signed_gap(const shape *A, const shape *B)
+{
+    double d = core_distance(A, B);
+    if (d < 0) /* the cores intersect: their depth (no axis when both are points) */
+        d = fmin(0.0, axis_separation(A, B));
+    return d - A->r - B->r;
+}
+
 double shape_signed_gap(const m2c_world *w, int i, int j, double t)
 {
-    shape A, B;
-    double *va = malloc(sizeof(double) * 2 * (size_t)w->b[i].nvert);
-    double *vb = malloc(sizeof(double) * 2 * (size_t)w->b[j].nvert);
-    double gap = -INFINITY; /* out of memory: overlapping (a sensor's leave waits) */
-    if (va && vb) {
-        shape_at(w, i, t, &A, va);
-        shape_at(w, j, t, &B, vb);
-        double d = core_distance(&A, &B);
-        if (d < 0) /* the cores intersect: their depth (no axis when both are points) */
-            d = fmin(0.0, axis_separation(&A, &B));
-        gap = d - A.r - B.r;
-    }
-    free(va);
-    free(vb);
-    return gap;
+    return least_over_parts(w, i, j, t, parts_signed_gap); /* out of memory: overlapping */
 }
 
 /* ------------------------------------------------------------------------------------------ */
@@ -214,10 +267,14 @@ int m2c_world_query_point(m2c_world *w, double t, double x, double y, unsigned i
         shape s;
         if (!selectable(&w->b[i], mask))
             continue;
-        shape_at(w, i, t, &s, buf);
-        shape p = {c, 1, 0.0};
-        double d = core_distance(&s, &p);
-        if (d <= s.r || inside_shape(&s, c)) {
+        int in = 0;
+        for (int k = 0; k < w->b[i].nparts && !in; k++) {
+            shape_at(w, i, k, t, &s, buf);
+            shape p = {c, 1, 0.0};
+            double d = core_distance(&s, &p);
+            in = d <= s.r || inside_shape(&s, c);
+        }
+        if (in) {
             if (count < capacity)
                 out[count] = i;
             count++;
@@ -251,8 +308,12 @@ int m2c_world_query_box(m2c_world *w, double t, double x0, double y0, double x1,
         shape s;
         if (!selectable(&w->b[i], mask))
             continue;
-        shape_at(w, i, t, &s, buf);
-        if (core_distance(&s, &box) <= s.r) {
+        int in = 0;
+        for (int k = 0; k < w->b[i].nparts && !in; k++) {
+            shape_at(w, i, k, t, &s, buf);
+            in = core_distance(&s, &box) <= s.r;
+        }
+        if (in) {
             if (count < capacity)
                 out[count] = i;
             count++;
@@ -277,6 +338,51 @@ static double ray_disc(const double p[2], const double d[2], const double c[2], 
     return s <= 1 ? s : INFINITY;
 }
 
+/* The first entry of the ray p + f d (f in [0, *best)) into shape s: 1 when it improved *best
+ * (and bn, the surface normal there), else 0. */
+static int ray_shape(const shape *s, const double p[2], const double d[2], double *best,
+                     double bn[2])
+{
+    int improved = 0;
+    if (s->r > 0)
+        for (int k = 0; k < s->n; k++) {
+            double c[2] = {s->v[2 * k], s->v[2 * k + 1]};
+            double f = ray_disc(p, d, c, s->r);
+            if (f < *best) {
+                double h[2] = {p[0] + f * d[0] - c[0], p[1] + f * d[1] - c[1]};
+                double hl = hypot(h[0], h[1]);
+                *best = f;
+                improved = 1;
+                bn[0] = h[0] / hl;
+                bn[1] = h[1] / hl;
+            }
+        }
+    for (int k = 0; k < nedges_of(s); k++) {
+        double q[2], e[2], len = edge_of(s, k, q, e);
+        for (int side = 1; side >= (s->n >= 3 ? 1 : -1); side -= 2) {
+            double n[2] = {side * e[1], -side * e[0]}; /* outward (right of an anticlockwise edge) */
+            double dn = d[0] * n[0] + d[1] * n[1];
+            if (!(dn < 0))
+                continue;
+            double h = (p[0] - q[0]) * n[0] + (p[1] - q[1]) * n[1] - s->r; /* height above the face */
+            if (h < 0)
+                continue;
+            double f = h / -dn;
+            if (!(f <= 1) || !(f < *best))
+                continue;
+            double at[2] = {p[0] + f * d[0] - q[0], p[1] + f * d[1] - q[1]};
+            double along = at[0] * e[0] + at[1] * e[1];
+            if (along < 0 || along > len)
+                continue;
+            *best = f;
+            improved = 1;
+            bn[0] = n[0];
+            bn[1] = n[1];
+        }
+    }
+    return improved;
+}
+
 int m2c_world_cast_ray(m2c_world *w, double t, double x0, double y0, double x1, double y1,
                        unsigned int mask, double *fraction, int *body, double normal[2])
 {
@@ -293,46 +399,19 @@ int m2c_world_cast_ray(m2c_world *w, double t, double x0, double y0, double x1, 
         shape s;
         if (!selectable(&w->b[i], mask))
             continue;
-        shape_at(w, i, t, &s, buf);
         shape start = {p, 1, 0.0};
-        double d0 = core_distance(&s, &start);
-        if (d0 < s.r || (d0 < 0)) /* the ray starts inside it: not a hit (as Box2D) */
+        int inside = 0;
+        for (int k = 0; k < w->b[i].nparts && !inside; k++) {
+            shape_at(w, i, k, t, &s, buf);
+            double d0 = core_distance(&s, &start);
+            inside = d0 < s.r || d0 < 0; /* the ray starts inside it: not a hit (as Box2D) */
+        }
+        if (inside)
             continue;
-        if (s.r > 0)
-            for (int k = 0; k < s.n; k++) {
-                double c[2] = {s.v[2 * k], s.v[2 * k + 1]};
-                double f = ray_disc(p, d, c, s.r);
-                if (f < best) {
-                    double h[2] = {p[0] + f * d[0] - c[0], p[1] + f * d[1] - c[1]};
-                    double hl = hypot(h[0], h[1]);
-                    best = f;
-                    hit = i;
-                    bn[0] = h[0] / hl;
-                    bn[1] = h[1] / hl;
-                }
-            }
-        for (int k = 0; k < nedges_of(&s); k++) {
-            double q[2], e[2], len = edge_of(&s, k, q, e);
-            for (int side = 1; side >= (s.n >= 3 ? 1 : -1); side -= 2) {
-                double n[2] = {side * e[1], -side * e[0]}; /* outward (right of an anticlockwise edge) */
-                double dn = d[0] * n[0] + d[1] * n[1];
-                if (!(dn < 0))
-                    continue;
-                double h = (p[0] - q[0]) * n[0] + (p[1] - q[1]) * n[1] - s.r; /* height above the face */
-                if (h < 0)
-                    continue;
-                double f = h / -dn;
-                if (!(f <= 1) || !(f < best))
-                    continue;
-                double at[2] = {p[0] + f * d[0] - q[0], p[1] + f * d[1] - q[1]};
-                double along = at[0] * e[0] + at[1] * e[1];
-                if (along < 0 || along > len)
-                    continue;
-                best = f;
+        for (int part = 0; part < w->b[i].nparts; part++) {
+            shape_at(w, i, part, t, &s, buf);
+            if (ray_shape(&s, p, d, &best, bn))
                 hit = i;
-                bn[0] = n[0];
-                bn[1] = n[1];
-            }
         }
     }
     free(buf);

@@ -78,8 +78,8 @@ void grid_move(m2c_world *w, int i, int dx, int dy)
     link(w, i);
 }
 
-/* Distance from (x, y) to body b's shape (its vertices and edges, radius included). */
-static double shape_distance(const m2c_world *w, const body *b, double x, double y)
+/* Distance from (x, y) to one part's shape (its vertices and edges, radius included). */
+static double part_distance(const m2c_world *w, const body *b, double x, double y)
 {
     snap s = motion_at(&b->m, w->now);
     double best = INFINITY;
@@ -103,6 +103,19 @@ static double shape_distance(const m2c_world *w, const body *b, double x, double
         }
     }
     return best - b->radius;
+}
+
+/* Distance from (x, y) to body b's shape: its nearest part's. */
+static double shape_distance(const m2c_world *w, const body *b, double x, double y)
+{
+    if (b->nparts == 1)
+        return part_distance(w, b, x, y);
+    double best = INFINITY;
+    for (int k = 0; k < b->nparts; k++) {
+        body v = part_view(w, b, k);
+        best = fmin(best, part_distance(w, &v, x, y));
+    }
+    return best;
 }
 
 static void extend(double box[4], double x, double y, double r)
@@ -129,7 +142,7 @@ int grid_build(m2c_world *w)
             for (int k = 0; k < b->nvert; k++) {
                 double p[2];
                 world_point(&s, &w->verts[2 * (b->vert + k)], p);
-                extend(box, p[0], p[1], b->radius);
+                extend(box, p[0], p[1], vertex_radius(w, b, k));
             }
         } else {
             extend(box, s.x, s.y, b->bound);
@@ -210,7 +223,7 @@ int grid_build(m2c_world *w)
             for (int k = 0; k < b->nvert; k++) {
                 double p[2];
                 world_point(&s, &w->verts[2 * (b->vert + k)], p);
-                extend(bb, p[0], p[1], b->radius + reach + size);
+                extend(bb, p[0], p[1], vertex_radius(w, b, k) + reach + size);
             }
             int x0, y0, x1, y1;
             grid_cell_of(g, bb[0], bb[1], &x0, &y0);

@@ -122,6 +122,9 @@ typedef struct {
     int leaves;             /* a sensor's ghost: a crossing out (the gap rising through 0 on the
                                feature) is an event too -- how the pair may stop overlapping */
     double rx, ry;          /* A's reference point minus B's, at the snapshots' time */
+    int oa, ob;             /* the pair's first and second body's parts (not swapped with A
+                               and B): their first vertices' body-level indices (a contact
+                               names body-level vertices and edges) */
     double solver_h;        /* a pair the contact solver holds: the time to its next tick
                                (touching now is its business while the gap stays within the
                                tolerance until then); else 0 */
@@ -847,8 +850,8 @@ static void try_feature(feat *f, contact *best, int swapped, int fa, int fb)
         best->rate = rate;
         best->improved = 1;
         best->feature = f->kind == F_PP ? F_PP : swapped ? F_LP : F_PL;
-        best->fa = fa;
-        best->fb = fb;
+        best->fa = fa + f->oa;
+        best->fb = fb + f->ob;
         best->side = f->side;
         best->up = rate < 0;
     }
@@ -932,13 +935,17 @@ double contact_gap_accel(m2c_world *w, int i, int j, const event *ev, int *rotat
     feat f;
     memset(&f, 0, sizeof f);
     f.w = w;
-    f.A = &w->b[swapped ? j : i];
-    f.B = &w->b[swapped ? i : j];
+    /* the features' parts as bodies, the indices theirs */
+    const body *A = &w->b[swapped ? j : i], *B = &w->b[swapped ? i : j];
+    int va = swapped ? ev->fb : ev->fa, vb = swapped ? ev->fa : ev->fb;
+    body pa = part_view(w, A, vertex_part(w, A, va)), pb = part_view(w, B, vertex_part(w, B, vb));
+    f.A = &pa;
+    f.B = &pb;
     f.a = motion_at(&f.A->m, w->now);
     f.b = motion_at(&f.B->m, w->now);
     relative_position(f.A, f.B, w->now, &f.rx, &f.ry);
-    f.va = swapped ? ev->fb : ev->fa;
-    f.vb = swapped ? ev->fa : ev->fb;
+    f.va = va - (pa.vert - A->vert);
+    f.vb = vb - (pb.vert - B->vert);
     set_point(w, f.A, &f.a, f.va, f.pa);
     f.rot_a = f.a.w != 0.0 && (f.pa[0] != 0.0 || f.pa[1] != 0.0);
     f.R = f.A->radius + f.B->radius;
@@ -967,6 +974,42 @@ double contact_gap_accel(m2c_world *w, int i, int j, const event *ev, int *rotat
     fill_pl(&f, p, 0.0);
     SLOT[2].pl.coef(p, c);
     return 2 * c[2];
+}
+
+/* The features of a pair of shapes (single-shape bodies, or one part of each: f->A, f->B). */
+static void predict_parts(feat *f, contact *c)
+{
+    const m2c_world *w = f->w;
+    /* points against points: only rounded shapes (sharp corners meet through the edges) */
+    if (f->A->radius + f->B->radius > 0) {
+        f->kind = F_PP;
+        f->R = f->A->radius + f->B->radius;
+        f->side = 1;
+        for (int va = 0; va < f->A->nvert; va++) {
+            set_point(w, f->A, &f->a, va, f->pa);
+            f->va = va;
+            f->rot_a = f->a.w != 0.0 && (f->pa[0] != 0.0 || f->pa[1] != 0.0);
+            for (int vb = 0; vb < f->B->nvert; vb++) {
+                set_point(w, f->B, &f->b, vb, f->pb);
+                f->vb = vb;
+                f->rot_b = f->b.w != 0.0 && (f->pb[0] != 0.0 || f->pb[1] != 0.0);
+                try_feature(f, c, 0, va, vb);
+            }
+        }
+    }
+    if (f->B->nvert > 1)
+        points_on_edges(f, c, 0);
+    if (f->A->nvert > 1) {
+        /* the edges of A against the points of B: the same equation with the roles swapped */
+        feat g = *f;
+        g.A = f->B;
+        g.B = f->A;
+        g.a = f->b;
+        g.b = f->a;
+        g.rx = -f->rx;
+        g.ry = -f->ry;
+        points_on_edges(&g, c, 1);
+    }
 }
 
 int predict_pair(m2c_world *w, int i, int j, contact *c)
@@ -1024,35 +1067,22 @@ int predict_pair(m2c_world *w, int i, int j, contact *c)
                 return 0;
         }
     }
-    /* points against points: only rounded shapes (sharp corners meet through the edges) */
-    if (A->radius + B->radius > 0) {
-        f.kind = F_PP;
-        f.R = A->radius + B->radius;
-        f.side = 1;
-        for (int va = 0; va < A->nvert; va++) {
-            set_point(w, A, &f.a, va, f.pa);
-            f.va = va;
-            f.rot_a = f.a.w != 0.0 && (f.pa[0] != 0.0 || f.pa[1] != 0.0);
-            for (int vb = 0; vb < B->nvert; vb++) {
-                set_point(w, B, &f.b, vb, f.pb);
-                f.vb = vb;
-                f.rot_b = f.b.w != 0.0 && (f.pb[0] != 0.0 || f.pb[1] != 0.0);
-                try_feature(&f, c, 0, va, vb);
-            }
-        }
+    if (A->nparts == 1 && B->nparts == 1) {
+        f.oa = f.ob = 0;
+        predict_parts(&f, c);
+        return c->improved;
     }
-    if (B->nvert > 1)
-        points_on_edges(&f, c, 0);
-    if (A->nvert > 1) {
-        /* the edges of A against the points of B: the same equation with the roles swapped */
-        feat g = f;
-        g.A = B;
-        g.B = A;
-        g.a = f.b;
-        g.b = f.a;
-        g.rx = -f.rx;
-        g.ry = -f.ry;
-        points_on_edges(&g, c, 1);
+    /* a compound: every pair of parts, the earliest contact of any (each part as a body) */
+    for (int p = 0; p < A->nparts; p++) {
+        body pa = part_view(w, A, p);
+        for (int q = 0; q < B->nparts; q++) {
+            body pb = part_view(w, B, q);
+            f.A = &pa;
+            f.B = &pb;
+            f.oa = pa.vert - A->vert;
+            f.ob = pb.vert - B->vert;
+            predict_parts(&f, c);
+        }
     }
     return c->improved;
 }

@@ -39,8 +39,9 @@ void contact_geometry(const m2c_world *w, int i, int j, const event *ev, double 
             n[0] = u > 0 ? ux / u : 1.0;
             n[1] = u > 0 ? uy / u : 0.0;
         }
-        p[0] = P[0] + n[0] * A->radius;
-        p[1] = P[1] + n[1] * A->radius;
+        double ra = vertex_radius(w, A, ev->fa);
+        p[0] = P[0] + n[0] * ra;
+        p[1] = P[1] + n[1] * ra;
         return;
     }
     /* a point of one body on an edge of the other: the edge's normal on the point's side */
@@ -50,8 +51,9 @@ void contact_geometry(const m2c_world *w, int i, int j, const event *ev, double 
     world_point(sv, &w->verts[2 * (V->vert + vert)], P);
     world_vector(se, &w->edges[3 * (E->vert + edge)], D);
     double nl[2] = {ev->side * D[1], -ev->side * D[0]}; /* from the edge towards the point */
-    p[0] = P[0] - nl[0] * V->radius;
-    p[1] = P[1] - nl[1] * V->radius;
+    double rv = vertex_radius(w, V, vert);
+    p[0] = P[0] - nl[0] * rv;
+    p[1] = P[1] - nl[1] * rv;
     if (ev->feature == F_PL) {
         n[0] = -nl[0];
         n[1] = -nl[1];

@@ -95,10 +95,9 @@ double wake_speed(const m2c_world *w, const body *b)
     return v > 0 ? 10 * v : 0.0;
 }
 
-/* Gap between circle k and body j's shape now, and the unit normal from j towards k. */
-static double circle_gap(const m2c_world *w, int k, int j, double n[2])
+/* Gap between circle K and one part J of a shape now, and the unit normal from J towards K. */
+static double circle_part_gap(const m2c_world *w, const body *K, const body *J, double n[2])
 {
-    const body *K = &w->b[k], *J = &w->b[j];
     snap a = motion_at(&K->m, w->now), b = motion_at(&J->m, w->now);
     double c[2];
     world_point(&a, &w->verts[2 * K->vert], c);
@@ -132,6 +131,26 @@ static double circle_gap(const m2c_world *w, int k, int j, double n[2])
         }
     }
     return best - K->radius - J->radius;
+}
+
+/* Gap between circle k and body j's shape now (its nearest part), and the unit normal from j
+ * towards k. */
+static double circle_gap(const m2c_world *w, int k, int j, double n[2])
+{
+    const body *K = &w->b[k], *J = &w->b[j];
+    if (J->nparts == 1)
+        return circle_part_gap(w, K, J, n);
+    double best = INFINITY;
+    for (int p = 0; p < J->nparts; p++) {
+        body v = part_view(w, J, p);
+        double m[2], g = circle_part_gap(w, K, &v, m);
+        if (g < best) {
+            best = g;
+            n[0] = m[0];
+            n[1] = m[1];
+        }
+    }
+    return best;
 }
 
 /* The velocity closest to v with no part into any support it approaches at most as fast as
@@ -176,11 +195,11 @@ static int project_velocity(body *K, const double (*nrm)[2], int count, double v
     return 1;
 }
 
-/* Distance between the shapes of bodies k and j now (any shapes; touching ~ 0): the least
- * distance of a vertex of one to a vertex or edge of the other, minus the radii. */
-static double body_gap(const m2c_world *w, int k, int j)
+/* Distance between two shapes (parts) now (touching ~ 0): the least distance of a vertex of
+ * one to a vertex or edge of the other, minus the radii. */
+static double part_gap(const m2c_world *w, const body *K, const body *J)
 {
-    const body *B[2] = {&w->b[k], &w->b[j]};
+    const body *B[2] = {K, J};
     snap s[2] = {motion_at(&B[0]->m, w->now), motion_at(&B[1]->m, w->now)};
     double best = INFINITY;
     for (int side = 0; side < 2; side++) {
@@ -211,6 +230,23 @@ static double body_gap(const m2c_world *w, int k, int j)
         }
     }
     return best - B[0]->radius - B[1]->radius;
+}
+
+/* Distance between the shapes of bodies k and j now: their nearest parts'. */
+static double body_gap(const m2c_world *w, int k, int j)
+{
+    const body *K = &w->b[k], *J = &w->b[j];
+    if (K->nparts == 1 && J->nparts == 1)
+        return part_gap(w, K, J);
+    double best = INFINITY;
+    for (int p = 0; p < K->nparts; p++) {
+        body u = part_view(w, K, p);
+        for (int q = 0; q < J->nparts; q++) {
+            body v = part_view(w, J, q);
+            best = fmin(best, part_gap(w, &u, &v));
+        }
+    }
+    return best;
 }
 
 /* Is the direction `up` in the cone of the normals? */

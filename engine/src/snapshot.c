@@ -14,11 +14,11 @@
 #include "engine.h"
 
 #define MAGIC 0x4d324357u /* "M2CW" */
-#define VERSION 2u /* 2: the contact solver's state */
+#define VERSION 3u /* 2: the contact solver's state; 3: bodies' parts (compound bodies) */
 
 typedef struct {
     uint32_t magic, version, body_size, event_size, timer_size, world_size;
-    int32_t n, nverts, nkin, heap_n, ntimers, nghosts, npending, ncells, nfixed;
+    int32_t n, nverts, nparts, nkin, heap_n, ntimers, nghosts, npending, ncells, nfixed;
 } header;
 
 typedef struct {
@@ -47,7 +47,7 @@ long long m2c_world_save(const m2c_world *w, void *buf, long long capacity)
 {
     int nc = ncells(w);
     header h = {MAGIC, VERSION, sizeof(body), sizeof(m2c_event), sizeof(timer), sizeof(m2c_world),
-                w->n, w->nverts, w->nkin, w->heap_n, w->ntimers, w->nghosts, w->npending, nc,
+                w->n, w->nverts, w->nparts, w->nkin, w->heap_n, w->ntimers, w->nghosts, w->npending, nc,
                 nc ? w->g.fixed_start[nc] : 0};
     writer out = {buf, 0, capacity > 0 ? (size_t)capacity : 0};
     put(&out, &h, sizeof h);
@@ -55,6 +55,7 @@ long long m2c_world_save(const m2c_world *w, void *buf, long long capacity)
     put(&out, w->b, sizeof(body) * (size_t)w->n);
     put(&out, w->verts, sizeof(double) * 2 * (size_t)w->nverts);
     put(&out, w->edges, sizeof(double) * 3 * (size_t)w->nverts);
+    put(&out, w->parts, sizeof(part) * (size_t)w->nparts);
     put(&out, w->kinematic, sizeof(int) * (size_t)w->nkin);
     put(&out, w->heap, sizeof(int) * (size_t)w->heap_n);
     put(&out, w->heap_pos, sizeof(int) * (size_t)w->n);
@@ -117,11 +118,23 @@ static int in_range(int v, int lo, int hi) /* lo <= v < hi */
 /* Every index the loaded world will follow, checked. */
 static int consistent(const m2c_world *w, const header *h)
 {
-    if (w->n > w->cap || w->nverts > w->capverts || w->heap_n > w->n || w->nkin > w->n)
+    if (w->n > w->cap || w->nverts > w->capverts || w->nparts > w->capparts || w->heap_n > w->n
+        || w->nkin > w->n)
         return 0;
     for (int i = 0; i < w->n; i++) {
         const body *b = &w->b[i];
         if (b->nvert < 1 || b->vert < 0 || b->vert > w->nverts - b->nvert)
+            return 0;
+        if (b->nparts < 1 || b->part < 0 || b->part > w->nparts - b->nparts)
+            return 0;
+        int at = b->vert;
+        for (int k = 0; k < b->nparts; k++) { /* the parts tile the body's vertices in order */
+            const part *p = &w->parts[b->part + k];
+            if (p->vert != at || p->nvert < 1 || !(p->radius >= 0))
+                return 0;
+            at += p->nvert;
+        }
+        if (at != b->vert + b->nvert)
             return 0;
         if (!in_range(b->kind, 0, KIND_REMOVED + 1) || !in_range(w->heap_pos[i], -1, w->heap_n))
             return 0;
@@ -166,7 +179,7 @@ m2c_world *m2c_world_load(const void *buf, long long size)
         || h.event_size != sizeof(m2c_event) || h.timer_size != sizeof(timer)
         || h.world_size != sizeof(m2c_world))
         return NULL;
-    if (h.n < 0 || h.nverts < 0 || h.nkin < 0 || h.heap_n < 0 || h.ntimers < 0 || h.nghosts < 0
+    if (h.n < 0 || h.nverts < 0 || h.nparts < 0 || h.nkin < 0 || h.heap_n < 0 || h.ntimers < 0 || h.nghosts < 0
         || h.npending < 0 || h.ncells < 0 || h.nfixed < 0)
         return NULL;
     reader r = {buf, sizeof h, (size_t)size};
@@ -176,6 +189,7 @@ m2c_world *m2c_world_load(const void *buf, long long size)
     /* the pointers are this process's own from here on: none of the saved ones survives */
     w->b = NULL;
     w->verts = w->edges = NULL;
+    w->parts = NULL;
     w->heap = w->heap_pos = w->kinematic = w->stack = w->woken = w->members = NULL;
     w->timers = NULL;
     w->ghosts = NULL;
@@ -190,6 +204,7 @@ m2c_world *m2c_world_load(const void *buf, long long size)
     w->n = h.n;
     w->cap = cap;
     w->nverts = w->capverts = h.nverts;
+    w->nparts = w->capparts = h.nparts;
     w->nkin = h.nkin;
     w->heap_n = h.heap_n;
     w->ntimers = w->captimers = h.ntimers;
@@ -204,6 +219,7 @@ m2c_world *m2c_world_load(const void *buf, long long size)
     }
     ok = ok && (w->verts = take(&r, sizeof(double) * 2 * (size_t)h.nverts)) != NULL;
     ok = ok && (w->edges = take(&r, sizeof(double) * 3 * (size_t)h.nverts)) != NULL;
+    ok = ok && (w->parts = take(&r, sizeof(part) * (size_t)h.nparts)) != NULL;
     int *kin = ok ? take(&r, sizeof(int) * (size_t)h.nkin) : NULL;
     int *heap = kin ? take(&r, sizeof(int) * (size_t)h.heap_n) : NULL;
     ok = ok && kin && heap;

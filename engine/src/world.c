@@ -47,6 +47,7 @@ void m2c_world_free(m2c_world *w)
     free(w->b);
     free(w->verts);
     free(w->edges);
+    free(w->parts);
     free(w->heap);
     free(w->heap_pos);
     free(w->kinematic);
@@ -106,6 +107,41 @@ static double turn(const double *v, int n, int k)
     return (q[0] - p[0]) * (r[1] - q[1]) - (q[1] - p[1]) * (r[0] - q[0]);
 }
 
+/* One convex shape (a single-shape body's or a compound's part): 0, or -1 with the error set
+ * (prefixed by `where`: which part). */
+static int check_shape(m2c_world *w, const char *where, int n, const double *v, double radius)
+{
+    const char *why = NULL;
+    if (n < 1 || !v)
+        why = "a body needs at least one vertex";
+    else if (!finite_all(v, 2 * n))
+        why = "a vertex is not finite";
+    else if (!isfinite(radius))
+        why = "a number of the body is not finite";
+    else if (radius < 0)
+        why = "the radius must not be negative";
+    else if (n == 1 && !(radius > 0))
+        why = "a circle needs a positive radius";
+    for (int k = 0; !why && (k + 1 < n || (n >= 3 && k < n)); k++) {
+        int m = (k + 1) % n;
+        if (v[2 * k] == v[2 * m] && v[2 * k + 1] == v[2 * m + 1])
+            why = "two consecutive vertices coincide";
+    }
+    if (!why && n >= 3) {
+        /* either winding: every turn the same way (clockwise polygons are stored reversed) */
+        double first = turn(v, n, 0);
+        for (int k = 0; k < n && !why; k++) {
+            double c = turn(v, n, k);
+            if (!(first > 0 ? c > 0 : c < 0))
+                why = "a polygon must be convex (no three vertices in a line)";
+        }
+    }
+    if (!why)
+        return 0;
+    snprintf(w->err, sizeof w->err, "%s%s", where, why);
+    return -1;
+}
+
 static int check_def(m2c_world *w, const m2c_body_def *d)
 {
     if (w->broken)
@@ -118,14 +154,13 @@ static int check_def(m2c_world *w, const m2c_body_def *d)
                      d->restitution, d->friction};
     if (!finite_all(nums, (int)(sizeof nums / sizeof nums[0])))
         return fail(w, "a number of the body is not finite");
-    if (d->nvertices < 1 || !d->vertices)
-        return fail(w, "a body needs at least one vertex");
-    if (!finite_all(d->vertices, 2 * d->nvertices))
-        return fail(w, "a vertex is not finite");
-    if (d->radius < 0)
-        return fail(w, "the radius must not be negative");
-    if (d->nvertices == 1 && !(d->radius > 0))
-        return fail(w, "a circle needs a positive radius");
+    if (d->nparts < 0 || (d->nparts > 0 && !d->parts))
+        return fail(w, "a compound body needs its parts (nparts >= 1 and parts)");
+    if (d->nparts == 0 && d->parts)
+        return fail(w, "a compound body needs at least one part (nparts is 0)");
+    if (d->nparts > 0 && (d->nvertices != 0 || d->vertices || d->radius != 0))
+        return fail(w, "a compound body's shape is its parts: leave nvertices, vertices and "
+                       "radius unset");
     if (d->restitution < 0 || d->restitution > 1)
         return fail(w, "restitution must be between 0 and 1");
     if (d->friction < 0)
@@ -135,27 +170,30 @@ static int check_def(m2c_world *w, const m2c_body_def *d)
     if (d->kind == M2C_DYNAMIC && !(d->mass > 0 && d->inertia > 0 && isfinite(d->mass)
                                     && isfinite(d->inertia)))
         return fail(w, "a dynamic body needs a positive mass and moment of inertia");
-    const double *v = d->vertices;
-    for (int k = 0; k + 1 < d->nvertices || (d->nvertices >= 3 && k < d->nvertices); k++) {
-        int m = (k + 1) % d->nvertices;
-        if (v[2 * k] == v[2 * m] && v[2 * k + 1] == v[2 * m + 1])
-            return fail(w, "two consecutive vertices coincide");
-    }
-    if (d->nvertices >= 3) {
-        /* either winding: every turn the same way (clockwise polygons are stored reversed) */
-        int n = d->nvertices;
-        double first = turn(v, n, 0);
-        for (int k = 0; k < n; k++) {
-            double c = turn(v, n, k);
-            if (!(first > 0 ? c > 0 : c < 0))
-                return fail(w, "a polygon must be convex (no three vertices in a line)");
-        }
+    if (d->nparts == 0)
+        return check_shape(w, "", d->nvertices, d->vertices, d->radius);
+    for (int p = 0; p < d->nparts; p++) {
+        char where[48];
+        snprintf(where, sizeof where, "part %d of %d: ", p, d->nparts);
+        const m2c_part *q = &d->parts[p];
+        if (check_shape(w, where, q->nvertices, q->vertices, q->radius) != 0)
+            return -1;
     }
     return 0;
 }
 
-static int grow(m2c_world *w, int nverts)
+static int grow(m2c_world *w, int nverts, int nparts)
 {
+    if (w->nparts + nparts > w->capparts) {
+        int cap = w->capparts ? 2 * w->capparts : 16;
+        while (cap < w->nparts + nparts)
+            cap *= 2;
+        part *p = realloc(w->parts, sizeof(part) * (size_t)cap);
+        if (!p)
+            return -1;
+        w->parts = p;
+        w->capparts = cap;
+    }
     if (w->n == w->cap) {
         int cap = w->cap ? 2 * w->cap : 16;
         body *b = realloc(w->b, sizeof(body) * (size_t)cap);
@@ -224,6 +262,26 @@ static int prepare(m2c_world *w)
     return 0;
 }
 
+/* A shape's vertices (anticlockwise: a clockwise polygon reversed) and its edges from
+ * vertex k to the next, at w->verts / w->edges from index `at`. */
+static void store_shape(m2c_world *w, int at, int n, const double *v)
+{
+    int reversed = n >= 3 && turn(v, n, 0) < 0;
+    for (int k = 0; k < n; k++) {
+        int from = reversed ? n - 1 - k : k;
+        const double *p = &v[2 * from];
+        w->verts[2 * (at + k)] = p[0];
+        w->verts[2 * (at + k) + 1] = p[1];
+        int next = reversed ? (from + n - 1) % n : (from + 1) % n;
+        const double *q = &v[2 * next];
+        double len = hypot(q[0] - p[0], q[1] - p[1]);
+        double *e = &w->edges[3 * (at + k)];
+        e[0] = len > 0 ? (q[0] - p[0]) / len : 0.0;
+        e[1] = len > 0 ? (q[1] - p[1]) / len : 0.0;
+        e[2] = len;
+    }
+}
+
 int m2c_world_add_body(m2c_world *w, const m2c_body_def *d)
 {
     if (!w || !d)
@@ -232,7 +290,13 @@ int m2c_world_add_body(m2c_world *w, const m2c_body_def *d)
         return fail(w, "add_body: no changes inside the pre-solve callback");
     if (check_def(w, d) != 0)
         return -1;
-    if (grow(w, d->nvertices) != 0)
+    /* a single shape is a compound of one part */
+    m2c_part single = {d->nvertices, d->vertices, d->radius};
+    const m2c_part *parts = d->nparts > 0 ? d->parts : &single;
+    int nparts = d->nparts > 0 ? d->nparts : 1, total = 0;
+    for (int k = 0; k < nparts; k++)
+        total += parts[k].nvertices;
+    if (grow(w, total, nparts) != 0)
         return fail(w, "out of memory");
     int i = w->n++;
     body *b = &w->b[i];
@@ -252,9 +316,11 @@ int m2c_world_add_body(m2c_world *w, const m2c_body_def *d)
     }
     b->restitution = d->restitution;
     b->friction = d->friction;
-    b->radius = d->radius;
-    b->nvert = d->nvertices;
+    b->radius = parts[0].radius;
+    b->nvert = total;
     b->vert = w->nverts;
+    b->part = w->nparts;
+    b->nparts = nparts;
     b->group = d->group;
     b->category = d->category;
     b->mask = d->mask;
@@ -273,25 +339,15 @@ int m2c_world_add_body(m2c_world *w, const m2c_body_def *d)
     b->ev.t = INFINITY;
     b->ev.kind = EV_NONE;
     w->heap_pos[i] = -1;
-    double rho = 0;
-    int reversed = d->nvertices >= 3 && turn(d->vertices, d->nvertices, 0) < 0;
-    for (int k = 0; k < d->nvertices; k++) {
-        int from = reversed ? d->nvertices - 1 - k : k;
-        const double *p = &d->vertices[2 * from];
-        w->verts[2 * (b->vert + k)] = p[0];
-        w->verts[2 * (b->vert + k) + 1] = p[1];
-        rho = fmax(rho, hypot(p[0], p[1]));
-        int next = reversed ? (from + d->nvertices - 1) % d->nvertices : (from + 1) % d->nvertices;
-        const double *q = &d->vertices[2 * next];
-        double len = hypot(q[0] - p[0], q[1] - p[1]);
-        double *e = &w->edges[3 * (b->vert + k)];
-        e[0] = len > 0 ? (q[0] - p[0]) / len : 0.0;
-        e[1] = len > 0 ? (q[1] - p[1]) / len : 0.0;
-        e[2] = len;
+    for (int k = 0; k < nparts; k++) {
+        part *q = &w->parts[w->nparts++];
+        q->vert = w->nverts;
+        q->nvert = parts[k].nvertices;
+        q->radius = parts[k].radius;
+        store_shape(w, q->vert, parts[k].nvertices, parts[k].vertices);
+        w->nverts += parts[k].nvertices;
     }
-    w->nverts += d->nvertices;
-    b->rho = rho;
-    b->bound = rho + d->radius;
+    body_reach(w, b);
     if (d->kind == M2C_KINEMATIC)
         w->kinematic[w->nkin++] = i;
     w->any_sensor |= (d->flags & M2C_FLAG_SENSOR) != 0;

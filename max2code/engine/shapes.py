@@ -69,3 +69,21 @@ def mass_properties(vertices: list[Vec], radius: float) -> MassProperties:
                                vertices[(k + 1) % n][1] - vertices[k][1]) for k in range(n))
     rounded = area + perimeter * radius + math.pi * radius * radius
     return MassProperties(rounded, (cx, cy), j / area)
+
+
+def compound_mass_properties(parts: list[tuple[list[Vec], float]]) -> MassProperties:
+    """Several shapes (vertices, radius) of one density on one rigid body: the areas add, the
+    centroid is their area-weighted mean and each part's inertia moves to it by the parallel
+    axis theorem (I = sum of a_k (i_k + |c_k - C|^2)). Parts with no area (a thin segment) add
+    nothing; a compound with no area at all takes its parts' plain mean as the centroid."""
+    props = [mass_properties(list(v), r) for v, r in parts]
+    area = sum(p.area for p in props)
+    if not area > 0:
+        n = len(props)
+        centre = (sum(p.centroid[0] for p in props) / n, sum(p.centroid[1] for p in props) / n)
+        return MassProperties(0.0, centre, 0.0)
+    cx = sum(p.area * p.centroid[0] for p in props) / area
+    cy = sum(p.area * p.centroid[1] for p in props) / area
+    second = sum(p.area * (p.inertia_per_mass + (p.centroid[0] - cx) ** 2 + (p.centroid[1] - cy) ** 2)
+                 for p in props)
+    return MassProperties(area, (cx, cy), second / area)

@@ -9,7 +9,7 @@ from typing import Callable, Iterable, Iterator, Sequence
 from .binding import load
 from .handlers import FLAG_SENSOR, CollisionHandler, Handlers
 from .inputs import Input
-from .shapes import mass_properties, polygon_area
+from .shapes import MassProperties, compound_mass_properties, mass_properties, polygon_area
 
 Vec = tuple[float, float]
 KINDS = {"static": 0, "kinematic": 1, "dynamic": 2}
@@ -43,11 +43,26 @@ class BodyInfo:
     alive: bool = True
     collision_type: int = 0
     sensor: bool = False
+    parts: tuple[tuple[tuple[Vec, ...], float], ...] = ()   # a compound's (vertices, radius)
 
     @property
     def shape(self) -> str:
+        if self.parts:
+            return "compound"
         n = len(self.vertices)
         return "circle" if n == 1 else ("capsule" if self.radius > 0 else "segment") if n == 2 else "polygon"
+
+    @property
+    def shapes(self) -> tuple[tuple[tuple[Vec, ...], float], ...]:
+        """Every convex shape of the body as (vertices, radius) in its frame: a compound's
+        parts, or the one shape."""
+        return self.parts or ((self.vertices, self.radius),)
+
+    def mass_properties(self) -> MassProperties:
+        """Area, centroid and inertia per unit mass of the body's shape (all its parts)."""
+        if self.parts:
+            return compound_mass_properties([(list(v), r) for v, r in self.parts])
+        return mass_properties(list(self.vertices), self.radius)
 
 
 @dataclass(frozen=True)
@@ -82,6 +97,30 @@ class _Timer:
     callback: Callable[["World", Event], None] | None
     data: object = None
     is_input: bool = False
+
+
+def _anticlockwise(vertices: Sequence[Vec]) -> list[Vec]:
+    """The vertices as floats, a clockwise polygon reversed (the core keeps them
+    anticlockwise)."""
+    verts = [(float(x), float(y)) for x, y in vertices]
+    if len(verts) >= 3 and polygon_area(verts) < 0:
+        verts.reverse()
+    return verts
+
+
+def _shape_mass(shapes: list[tuple[list[Vec], float]], compound: bool) -> MassProperties:
+    """The mass properties of a body's shapes; a shape with no area where one is needed (a
+    polygon with its vertices in a line, or none) is the core's error, said here first."""
+    try:
+        return compound_mass_properties(shapes) if compound else mass_properties(*shapes[0])
+    except ZeroDivisionError:
+        for k, (v, _) in enumerate(shapes):
+            if len(v) == 0 or (len(v) >= 3 and polygon_area(v) == 0):
+                where = f"part {k} of {len(shapes)}: " if compound else ""
+                what = ("a body needs at least one vertex" if not v
+                        else "a polygon must be convex (no three vertices in a line)")
+                raise EngineError(where + what) from None
+        raise
 
 
 _NATIVE = frozenset({"_ffi", "_lib", "_w", "_buf", "_count", "_pose", "_poses", "_presolve_c"})
@@ -176,7 +215,8 @@ class World:
                  group: str | None = None, name: str | None = None,
                  color: str | None = None, friction: float = 0.0, category: int = 1,
                  mask: int = 0xFFFFFFFF, data: object = None, collision_type: int = 0,
-                 sensor: bool = False) -> int:
+                 sensor: bool = False,
+                 parts: Sequence[tuple[Sequence[Vec], float]] | None = None) -> int:
         """Add a body; returns its id. `vertices` are offsets from `position` in the body's
         frame (turned by `angle`): one vertex and a radius make a circle, two a segment (a
         capsule with a radius), three or more a convex polygon, in either winding (kept
@@ -187,22 +227,29 @@ class World:
         `category` bits meet the other's `mask`. `data` is yours (`bodies[id].data`, and
         every event's `data`). `collision_type` selects collision handlers; a `sensor` never
         responds: it reports a body starting to overlap it ("sensor") and, once per such
-        event, the two stopping to overlap ("sensor_leave"), each at its exact time."""
+        event, the two stopping to overlap ("sensor_leave"), each at its exact time.
+        `parts` (with `vertices` empty and no radius) makes a compound body: see
+        add_compound."""
         if kind not in KINDS:
             raise EngineError(f"kind must be one of {', '.join(KINDS)}, not {kind!r}")
-        verts = [(float(x), float(y)) for x, y in vertices]
-        if len(verts) >= 3 and polygon_area(verts) < 0:
-            verts.reverse()  # clockwise: the core keeps polygons anticlockwise
+        if parts is not None:
+            if len(vertices) or radius:
+                raise EngineError("a compound body's shape is its parts: give no vertices or radius")
+            if not len(parts):
+                raise EngineError("a compound body needs at least one part")
+            shapes = [(_anticlockwise(v), float(r)) for v, r in parts]
+        else:
+            shapes = [(_anticlockwise(vertices), float(radius))]
         for bits in (category, mask):
             if not (isinstance(bits, int) and 0 <= bits <= 0xFFFFFFFF):
                 raise EngineError(f"category and mask are 32-bit masks, not {bits!r}")
         px, py = float(position[0]), float(position[1])
         m = I = 0.0
         if kind == "dynamic":
-            props = mass_properties(verts, radius)
+            props = _shape_mass(shapes, parts is not None)
             cx, cy = props.centroid
             if cx or cy:
-                verts = [(x - cx, y - cy) for x, y in verts]
+                shapes = [([(x - cx, y - cy) for x, y in v], r) for v, r in shapes]
                 c, s = math.cos(angle), math.sin(angle)
                 px, py = px + c * cx - s * cy, py + s * cx + c * cy
             m = float(mass) if mass is not None else density * props.area
@@ -221,7 +268,7 @@ class World:
         if group is not None:
             gid = self._groups.setdefault(group, len(self._groups))
         d = self._ffi.new("m2c_body_def *", self._lib.m2c_default_body_def())
-        flat = self._ffi.new("double[]", [c for v in verts for c in v])
+        flats = [self._ffi.new("double[]", [c for p in v for c in p]) for v, _ in shapes]
         d.kind = KINDS[kind]
         d.x, d.y, d.angle = px, py, float(angle)
         d.vx, d.vy, d.omega = float(velocity[0]), float(velocity[1]), float(omega)
@@ -229,9 +276,18 @@ class World:
         d.mass, d.inertia = m, I
         d.restitution = float(restitution)
         d.friction = float(friction)
-        d.radius = float(radius)
-        d.nvertices = len(verts)
-        d.vertices = flat
+        if parts is None:
+            d.radius = shapes[0][1]
+            d.nvertices = len(shapes[0][0])
+            d.vertices = flats[0]
+        else:
+            cparts = self._ffi.new("m2c_part[]", len(shapes))
+            for k, ((v, r), flat) in enumerate(zip(shapes, flats)):
+                cparts[k].nvertices = len(v)
+                cparts[k].vertices = flat
+                cparts[k].radius = r
+            d.nparts = len(shapes)
+            d.parts = cparts
         d.group = gid
         d.category, d.mask = category, mask
         d.flags = (FLAG_SENSOR if sensor else 0) | self._handlers.flags_for(len(self.bodies), collision_type)
@@ -239,11 +295,14 @@ class World:
         if i < 0:
             raise EngineError(self.error())
         name = name if name is not None else f"body{i}"
-        self.bodies.append(BodyInfo(i, name, kind, tuple(verts), float(radius),
+        verts = tuple(p for v, _ in shapes for p in v)
+        compound = tuple((tuple(v), r) for v, r in shapes) if parts is not None else ()
+        self.bodies.append(BodyInfo(i, name, kind, verts, shapes[0][1] if parts is None else 0.0,
                                     m if kind == "dynamic" else math.inf,
                                     I if kind == "dynamic" else math.inf,
                                     float(restitution), group, color, float(friction),
-                                    category, mask, data, True, int(collision_type), bool(sensor)))
+                                    category, mask, data, True, int(collision_type), bool(sensor),
+                                    compound))
         self._names[name] = i
         self._density.append(float(density))
         self._gravity.append(own)
@@ -257,6 +316,16 @@ class World:
 
     def add_polygon(self, vertices: Sequence[Vec], **kw) -> int:
         return self.add_body(vertices, **kw)
+
+    def add_compound(self, parts: Sequence[tuple[Sequence[Vec], float]], **kw) -> int:
+        """A compound body: several convex shapes on one rigid body, each (vertices, radius)
+        in the body's frame as add_body's shape ((centre,), r) a circle, (a, b) with r a
+        capsule, three or more vertices a polygon). It moves, turns and responds as one body;
+        a contact is its parts' earliest. Mass, centre of mass and inertia come from the parts
+        (one `density`; the parallel axis theorem) unless `mass`/`inertia` are given; the
+        reference point moves to the centre of mass (`bodies[id].parts` follow). The other
+        keywords are add_body's."""
+        return self.add_body((), parts=parts, **kw)
 
     def body(self, name_or_id: str | int) -> BodyInfo:
         i = self._names[name_or_id] if isinstance(name_or_id, str) else name_or_id
@@ -469,7 +538,7 @@ class World:
         info = self.bodies[body]
         if inertia is None:
             inertia = (info.inertia * mass / info.mass if math.isfinite(info.mass)
-                       else mass * mass_properties(list(info.vertices), info.radius).inertia_per_mass)
+                       else mass * info.mass_properties().inertia_per_mass)
         if not (inertia > 0):
             inertia = mass * 1e-12  # a point mass
         if not (mass > 0 and math.isfinite(mass) and math.isfinite(inertia)):
@@ -493,7 +562,7 @@ class World:
         if kind == info.kind:
             return
         if kind == "dynamic":
-            props = mass_properties(list(info.vertices), info.radius)
+            props = info.mass_properties()
             m, I = self._dormant.get(body, (self._density[body] * props.area, 0.0))
             I = I or m * props.inertia_per_mass or m * 1e-12
             if not (m > 0):
@@ -524,7 +593,11 @@ class World:
         out = self._ffi.new("double[]", 2 * n)
         self._lib.m2c_world_vertices(self._w, body, out, n)
         verts = tuple((out[2 * k], out[2 * k + 1]) for k in range(n))
-        self.bodies[body] = replace(info, vertices=verts, **changes)
+        parts, at = [], 0
+        for v, r in info.parts:
+            parts.append((verts[at:at + len(v)], r))
+            at += len(v)
+        self.bodies[body] = replace(info, vertices=verts, parts=tuple(parts), **changes)
 
     # -- reading ----------------------------------------------------------------------------
 

@@ -1,0 +1,415 @@
+"""Compound bodies: several convex shapes on one rigid body (docs/game-api.md).
+
+Every expectation comes from outside the engine: first contacts from the parts' exact motion
+solved with mpmath (30 digits), mass properties from their closed forms, conservation laws, and
+overlaps from the exact rational geometry of tests/engine/test_no_tunnelling_fuzz.py.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+import pickle
+import subprocess
+from fractions import Fraction as Q
+
+import mpmath
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from max2code.engine.world import EngineError
+
+from .test_no_tunnelling_fuzz import too_close, world_points
+
+mpmath.mp.dps = 30
+
+DUMBBELL = [([(-1.0, 0.0)], 0.25), ([(1.0, 0.0)], 0.25), ([(-1.0, 0.0), (1.0, 0.0)], 0.05)]
+# an L of two boxes: [0, 2] x [0, 1] and [0, 1] x [1, 3]; centre of mass (3/4, 5/4) (areas 2, 2)
+L_SHAPE = [([(0, 0), (2, 0), (2, 1), (0, 1)], 0.0), ([(0, 1), (1, 1), (1, 3), (0, 3)], 0.0)]
+L_CENTRE = (Q(3, 4), Q(5, 4))
+
+
+# -- the oracle: the parts' features moving exactly --------------------------------------------
+
+def features(parts, centre):
+    """(offset from the centre of mass, radius, part) of every vertex of every part: against a
+    flat wall a rounded convex part first touches with one of its vertices' discs."""
+    return [((mpmath.mpf(x) - mpmath.mpf(centre[0].numerator) / centre[0].denominator,
+              mpmath.mpf(y) - mpmath.mpf(centre[1].numerator) / centre[1].denominator), r, k)
+            for k, (verts, r) in enumerate(parts) for x, y in verts]
+
+
+def first_touch(parts, centre, position, angle, velocity, omega, gravity, normal, level,
+                horizon=5.0, steps=20000):
+    """The first time a part reaches the wall {p . normal = level} (the body coming from
+    p . normal > level), the part and the touching point, from the exact motion: a scan for the
+    first sign change, then bisection to 1e-25."""
+    feats = features(parts, centre)
+    c0, s0 = mpmath.cos(angle), mpmath.sin(angle)
+    cx = position[0] + c0 * mpmath.mpf(float(centre[0])) - s0 * mpmath.mpf(float(centre[1]))
+    cy = position[1] + s0 * mpmath.mpf(float(centre[0])) + c0 * mpmath.mpf(float(centre[1]))
+    nx, ny = normal
+
+    def gap(t, f):
+        (ox, oy), r, _ = f
+        a = angle + omega * t
+        x = cx + velocity[0] * t + gravity[0] * t * t / 2 + mpmath.cos(a) * ox - mpmath.sin(a) * oy
+        y = cy + velocity[1] * t + gravity[1] * t * t / 2 + mpmath.sin(a) * ox + mpmath.cos(a) * oy
+        return x * nx + y * ny - level - r, (x - r * nx, y - r * ny)
+
+    def lowest(t):
+        return min(((gap(t, f)[0], f) for f in feats), key=lambda g: g[0])
+
+    assert lowest(mpmath.mpf(0))[0] > 0
+    lo = mpmath.mpf(0)
+    for k in range(1, steps + 1):
+        hi = mpmath.mpf(horizon) * k / steps
+        if lowest(hi)[0] <= 0:
+            break
+        lo = hi
+    else:
+        return None
+    while hi - lo > mpmath.mpf(10) ** -25:
+        mid = (lo + hi) / 2
+        if lowest(mid)[0] <= 0:
+            hi = mid
+        else:
+            lo = mid
+    g, f = lowest(hi)
+    return float(hi), f[2], tuple(float(v) for v in gap(hi, f)[1])
+
+
+def first_collision(w, body):
+    """The body's first collision and, read at its time, the part holding its point."""
+    seen = []
+
+    def record(world, ev):
+        if ev.kind == "collision" and not seen:
+            seen.append((ev, part_at(world, body, ev.point)))
+
+    w.on_collision(record, body)
+    w.step_to(5.0)
+    return seen[0]
+
+
+def part_at(w, body, point) -> int:
+    """The part of `body` whose surface holds `point` (distance within 1e-6), by exact
+    geometry on the engine's reported pose."""
+    pose = w.pose(body)
+    found = []
+    for k, (verts, r) in enumerate(w.bodies[body].shapes):
+        pts = world_points(verts, pose)
+        if too_close(pts, r, world_points([(0.0, 0.0)], (point[0], point[1], 0.0)), 2e-6):
+            found.append(k)
+    assert len(found) >= 1, f"{point} is on no part"
+    return found[0]
+
+
+# -- first contacts against exact oracles ----------------------------------------------------
+
+def test_a_tilted_dumbbell_lands_on_its_lower_ball_at_the_exact_time(engine):
+    """Dropped at rest, tilted by 0.3: the left ball (centre 3 - sin 0.3 high) lands when
+    3 - sin 0.3 - g t^2 / 2 = 0.25."""
+    w = engine.World(gravity=(0, -10))
+    w.add_segment((-10, 0), (10, 0))
+    b = w.add_compound(DUMBBELL, position=(0, 3), angle=0.3)
+    ev, hit = first_collision(w, b)
+    t = math.sqrt(2 * (3 - math.sin(0.3) - 0.25) / 10)
+    assert ev.time == pytest.approx(t, abs=1e-9)
+    assert ev.point == pytest.approx((-math.cos(0.3), 0.0), abs=1e-7)
+    assert hit == 0
+
+
+@pytest.mark.parametrize("omega, angle", [(0.0, 0.2), (2.5, 0.4), (-7.0, 1.0), (40.0, 2.0)])
+def test_a_spinning_l_thrown_at_a_wall_hits_with_the_oracle_part(engine, omega, angle):
+    """An L of two boxes thrown right while turning: the time, the corner and its box are the
+    exact motion's (mpmath), whichever box meets the wall x = 6 first."""
+    w = engine.World()
+    w.add_segment((6, -20), (6, 20))
+    b = w.add_compound(L_SHAPE, position=(0, 0), angle=angle, velocity=(3, 0.5), omega=omega)
+    ev, hit = first_collision(w, b)
+    t, part, point = first_touch(L_SHAPE, L_CENTRE, (0, 0), angle, (3, 0.5), omega, (0, 0),
+                                 (-1, 0), -6)
+    assert ev.time == pytest.approx(t, abs=1e-9)
+    assert ev.point == pytest.approx(point, abs=1e-6)
+    assert hit == part
+
+
+@pytest.mark.parametrize("omega", [3.0, -3.0, 11.0, 0.7])
+def test_a_dumbbell_turning_in_flight_hits_the_wall_with_the_right_ball(engine, omega):
+    """A dumbbell flying right and turning: which ball (or the bar) meets the wall x = 4 first,
+    and when, is the exact motion's."""
+    w = engine.World(gravity=(0, -3))
+    w.add_segment((4, -20), (4, 20))
+    b = w.add_compound(DUMBBELL, position=(0, 0), velocity=(2, 1), omega=omega)
+    ev, hit = first_collision(w, b)
+    centre = (Q(0), Q(0))
+    t, part, point = first_touch(DUMBBELL, centre, (0, 0), 0.0, (2, 1), omega, (0, -3),
+                                 (-1, 0), -4)
+    assert ev.time == pytest.approx(t, abs=1e-9)
+    assert ev.point == pytest.approx(point, abs=1e-6)
+    assert hit == part
+
+
+# -- mass properties --------------------------------------------------------------------------
+
+def test_mass_properties_are_the_closed_forms(engine):
+    """Two discs r at +-L: m = 2 pi r^2 rho, I = m (r^2 / 2 + L^2). The L: 4 rho, centre
+    (3/4, 5/4), I = sum over the boxes of m_k ((w^2 + h^2) / 12 + d_k^2)."""
+    w = engine.World()
+    r, L, rho = 0.3, 1.5, 2.0
+    d = w.add_compound([([(-L, 0.0)], r), ([(L, 0.0)], r)], density=rho)
+    m = 2 * math.pi * r * r * rho
+    assert w.bodies[d].mass == pytest.approx(m, rel=1e-12)
+    assert w.bodies[d].inertia == pytest.approx(m * (r * r / 2 + L * L), rel=1e-12)
+    lb = w.add_compound(L_SHAPE, position=(10, 0), angle=0.5)
+    i_box = 2 * (4 + 1) / 12
+    d1 = (1 - 0.75) ** 2 + (0.5 - 1.25) ** 2
+    d2 = (0.5 - 0.75) ** 2 + (2 - 1.25) ** 2
+    assert w.bodies[lb].mass == pytest.approx(4.0, rel=1e-12)
+    assert w.bodies[lb].inertia == pytest.approx(2 * i_box + 2 * d1 + 2 * d2, rel=1e-12)
+    # the reference point is the centre of mass, turned with the body
+    x, y, a = w.pose(lb)
+    assert (x, y, a) == pytest.approx((10 + 0.75 * math.cos(0.5) - 1.25 * math.sin(0.5),
+                                       0.75 * math.sin(0.5) + 1.25 * math.cos(0.5), 0.5))
+    assert w.bodies[lb].parts[1][0][0] == pytest.approx((-0.75, -0.25))
+    # given mass and inertia win
+    g = w.add_compound(DUMBBELL, position=(-10, 0), mass=3.0, inertia=0.5)
+    assert (w.bodies[g].mass, w.bodies[g].inertia) == (3.0, 0.5)
+
+
+# -- conservation -----------------------------------------------------------------------------
+
+def totals(w, ids):
+    p = [0.0, 0.0]
+    ang = energy = 0.0
+    for i in ids:
+        info = w.bodies[i]
+        x, y, _ = w.pose(i)
+        vx, vy, om = w.velocity(i)
+        p[0] += info.mass * vx
+        p[1] += info.mass * vy
+        ang += info.inertia * om + info.mass * (x * vy - y * vx)
+        energy += 0.5 * info.mass * (vx * vx + vy * vy) + 0.5 * info.inertia * om * om
+    return p, ang, energy
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_two_compounds_collide_elastically_conserving_momentum_and_energy(engine, seed):
+    import random
+    rng = random.Random(seed)
+    w = engine.World()
+    a = w.add_compound(DUMBBELL, position=(-3, rng.uniform(-0.8, 0.8)), velocity=(2, 0),
+                       omega=rng.uniform(-3, 3), angle=rng.uniform(0, 3))
+    b = w.add_compound(L_SHAPE, position=(3, rng.uniform(-1.5, 0.5)), velocity=(-1.5, 0.2),
+                       omega=rng.uniform(-3, 3), angle=rng.uniform(0, 3))
+    before = totals(w, [a, b])
+    events = [e for e in w.step_to(6.0) if e.kind == "collision"]
+    assert events, "they were meant to meet"
+    after = totals(w, [a, b])
+    assert after[0] == pytest.approx(before[0], abs=1e-9)
+    assert after[1] == pytest.approx(before[1], abs=1e-9)
+    assert after[2] == pytest.approx(before[2], rel=1e-9)
+
+
+# -- no part through a static body, in random worlds -----------------------------------------
+
+HALF = 4.0
+WALLS = [((-HALF, -HALF), (HALF, -HALF)), ((HALF, -HALF), (HALF, HALF)),
+         ((HALF, HALF), (-HALF, HALF)), ((-HALF, HALF), (-HALF, -HALF))]
+OBSTACLE = [([(-0.5, -0.2), (0.5, -0.2), (0.5, 0.2), (-0.5, 0.2)], 0.0), ([(0.0, 0.6)], 0.3)]
+
+
+@st.composite
+def compound(draw):
+    """2-3 parts (circles, capsules, convex polygons) around the origin, at most 0.8 across."""
+    parts = []
+    for _ in range(draw(st.integers(2, 3))):
+        ox, oy = draw(st.floats(-0.4, 0.4)), draw(st.floats(-0.4, 0.4))
+        kind = draw(st.sampled_from(["circle", "capsule", "polygon"]))
+        size = draw(st.floats(0.05, 0.25))
+        if kind == "circle":
+            parts.append(([(ox, oy)], size))
+        elif kind == "capsule":
+            parts.append(([(ox - size, oy), (ox + size, oy)], size / 3))
+        else:
+            n = draw(st.integers(3, 6))
+            parts.append(([(ox + size * math.cos(2 * math.pi * k / n),
+                            oy + size * math.sin(2 * math.pi * k / n)) for k in range(n)], 0.0))
+    return parts
+
+
+@st.composite
+def throws(draw):
+    bodies = []
+    for x in (-2.5, 2.5)[:draw(st.integers(1, 2))]:
+        speed = draw(st.sampled_from([1.0, 20.0, 300.0]))
+        heading = draw(st.floats(0, 2 * math.pi))
+        bodies.append(dict(parts=draw(compound()), position=(x, draw(st.floats(-2.5, 2.5))),
+                           angle=draw(st.floats(0, 6.3)),
+                           velocity=(speed * math.cos(heading), speed * math.sin(heading)),
+                           omega=draw(st.sampled_from([0.0, 4.0, -30.0])),
+                           restitution=draw(st.sampled_from([1.0, 0.8]))))
+    gravity = draw(st.sampled_from([(0.0, 0.0), (0.0, -9.81)]))
+    return gravity, bodies
+
+
+@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(world=throws())
+def test_no_part_ever_overlaps_a_static_body(engine, world):
+    """Random compounds thrown in a closed box around a static compound: at every event and at
+    checkpoints, no part of a thrown body overlaps a wall, the obstacle's parts or the other
+    thrown body's parts (exact rational geometry on the reported poses)."""
+    gravity, specs = world
+    w = engine.World(gravity=gravity)
+    statics = [w.add_segment(a, b) for a, b in WALLS]
+    statics.append(w.add_compound(OBSTACLE, kind="static"))
+    ids = [w.add_compound(s.pop("parts"), **s) for s in specs]
+    checks = [0]
+
+    def shapes(i):
+        pose = w.pose(i)
+        return [(world_points(v, pose), r) for v, r in w.bodies[i].shapes]
+
+    def check(i, when):
+        fixed = [sh for s in statics for sh in shapes(s)]
+        others = [sh for j in ids if j != i for sh in shapes(j)]
+        for k, (pts, r) in enumerate(shapes(i)):
+            for q, rq in fixed:
+                assert not too_close(pts, r, q, rq), f"body {i} part {k} in a static body {when}"
+            for q, rq in others:
+                assert not too_close(pts, r, q, rq), f"body {i} part {k} in the other {when}"
+        checks[0] += 1
+
+    def on_event(world_, ev):
+        if checks[0] < 300:
+            for i in (ev.a, ev.b):
+                if i in ids:
+                    check(i, f"at t = {ev.time}")
+
+    w.on_collision(on_event)
+    for t in (0.05, 0.3, 1.0):
+        try:
+            w.step_to(t)
+        except EngineError as exc:   # a named condition is allowed; a wrong place is not
+            assert "stuck" in str(exc) or "events" in str(exc), exc
+            return
+        for i in ids:
+            check(i, f"at t = {t}")
+
+
+# -- snapshots --------------------------------------------------------------------------------
+
+def test_a_snapshot_keeps_the_parts_and_goes_on_bit_for_bit(engine):
+    w = engine.World(gravity=(0, -10))
+    for a, b in WALLS:
+        w.add_segment(a, b)
+    w.add_compound(OBSTACLE, kind="static")
+    w.add_compound(DUMBBELL, position=(-2, 1), velocity=(7, 3), omega=5)
+    w.add_compound(L_SHAPE, position=(1, 1.5), velocity=(-4, 1), omega=-2, restitution=0.9)
+    w.step_to(0.5)
+    twins = [pickle.loads(pickle.dumps(w)), copy.deepcopy(w)]
+    for twin in twins:
+        assert [b.parts for b in twin.bodies] == [b.parts for b in w.bodies]
+    events = w.step_to(3.0)
+    assert len([e for e in events if e.kind == "collision"]) > 10
+    for twin in twins:   # the same future, bit for bit (floats compared with ==)
+        assert twin.step_to(3.0) == events
+        assert twin.poses() == w.poses()
+
+
+# -- errors -----------------------------------------------------------------------------------
+
+def test_bad_compounds_are_refused_by_name(engine):
+    w = engine.World()
+    with pytest.raises(EngineError, match="at least one part"):
+        w.add_compound([])
+    with pytest.raises(EngineError, match="part 1 of 2: a polygon must be convex"):
+        w.add_compound([([(0, 0)], 0.5), ([(0, 0), (2, 0), (0.5, 0.5), (0, 2)], 0.0)])
+    with pytest.raises(EngineError, match="part 0 of 2: a circle needs a positive radius"):
+        w.add_compound([([(0, 0)], 0.0), ([(1, 0)], 0.5)], kind="static")
+    with pytest.raises(EngineError, match="give no vertices"):
+        w.add_body([(0, 0)], radius=1.0, parts=DUMBBELL)
+    assert w.bodies == []
+
+
+# -- the C API --------------------------------------------------------------------------------
+
+C_PROGRAM = r"""
+#include <stdio.h>
+#include <math.h>
+#include "max2code_engine.h"
+
+int main(void)
+{
+    m2c_config cfg = {0};
+    m2c_world *w = m2c_world_new(&cfg);
+    double floor_v[] = {-10, 0, 10, 0};
+    m2c_body_def d = m2c_default_body_def();
+    d.kind = M2C_STATIC;
+    d.nvertices = 2;
+    d.vertices = floor_v;
+    m2c_world_add_body(w, &d);
+
+    /* a dumbbell: two balls on a bar, one rigid body */
+    double left[] = {-1, 0}, right[] = {1, 0}, bar[] = {-1, 0, 1, 0};
+    m2c_part parts[] = {{1, left, 0.25}, {1, right, 0.25}, {2, bar, 0.05}};
+    m2c_body_def db = m2c_default_body_def();
+    db.y = 3;
+    db.angle = 0.3;
+    db.ay = -10;
+    db.nparts = 3;
+    db.parts = parts;
+    int id = m2c_world_add_body(w, &db);
+    m2c_event ev[16];
+    int n = 0;
+    m2c_world_step(w, 2.0, ev, 16, &n);
+    for (int k = 0; k < n; k++)
+        if (ev[k].kind == M2C_EVENT_COLLISION) {
+            printf("hit %d %.17g %.17g %.17g\n", id, ev[k].time, ev[k].px, ev[k].py);
+            break;
+        }
+    double v[12];
+    printf("vertices %d\n", m2c_world_vertices(w, id, v, 6));
+
+    /* misuse: no parts, a non-convex part, a shape given twice */
+    m2c_body_def bad = m2c_default_body_def();
+    bad.parts = parts;
+    printf("empty %d %s\n", m2c_world_add_body(w, &bad), m2c_world_error(w));
+    double dent[] = {0, 0, 2, 0, 0.5, 0.5, 0, 2};
+    m2c_part concave[] = {{1, left, 0.25}, {4, dent, 0}};
+    bad.nparts = 2;
+    bad.parts = concave;
+    printf("concave %d %s\n", m2c_world_add_body(w, &bad), m2c_world_error(w));
+    bad.parts = parts;
+    bad.nvertices = 1;
+    bad.vertices = left;
+    bad.radius = 1;
+    printf("twice %d %s\n", m2c_world_add_body(w, &bad), m2c_world_error(w));
+    m2c_world_free(w);
+    return 0;
+}
+"""
+
+
+def test_the_c_api_builds_compounds_and_names_misuse(engine, tmp_path):
+    from conftest import require
+
+    from max2code.engine.build import engine_dir, library
+    require("cc")
+    lib = library()
+    (tmp_path / "compound.c").write_text(C_PROGRAM)
+    exe = tmp_path / "compound"
+    subprocess.run(["cc", "-std=c11", "-Wall", "-Werror", f"-I{engine_dir() / 'include'}",
+                    str(tmp_path / "compound.c"), "-o", str(exe), str(lib),
+                    f"-Wl,-rpath,{lib.parent}", "-lm"], check=True, capture_output=True)
+    out = subprocess.run([str(exe)], check=True, capture_output=True, text=True).stdout
+    lines = dict(line.split(" ", 1) for line in out.splitlines())
+    _, t, px, py = lines["hit"].split()
+    assert float(t) == pytest.approx(math.sqrt(2 * (3 - math.sin(0.3) - 0.25) / 10), abs=1e-9)
+    assert (float(px), float(py)) == pytest.approx((-math.cos(0.3), 0.0), abs=1e-7)
+    assert lines["vertices"] == "4"
+    assert lines["empty"].startswith("-1 ") and "at least one part" in lines["empty"]
+    assert lines["concave"] == "-1 part 1 of 2: a polygon must be convex (no three vertices in a line)"
+    assert lines["twice"].startswith("-1 ") and "leave nvertices" in lines["twice"]
