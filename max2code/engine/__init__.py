@@ -38,6 +38,8 @@ gravity=, mass= | density=, inertia=, restitution=, friction=, group=, name=, co
   * restitution: a contact uses the product of the two bodies' (default 1: elastic);
   * friction: Coulomb coefficient at impacts, a contact uses sqrt(fa fb) (default 0: none);
   * group: bodies of one group never collide with each other.
+`World.add_compound(parts, ...)`: several convex shapes, each (vertices, radius), on one rigid
+body (mass, centre and inertia from the parts; docs/game-api.md).
 `World.bodies[id]` is a BodyInfo (name, kind, vertices in the engine's frame, radius, mass,
 inertia, restitution, group, color): with `poses()` it is all a renderer needs.
 
