@@ -30,7 +30,8 @@ import numpy as np
 import skia
 from PIL import Image, ImageDraw, ImageFont
 
-from .model import Body, Capsule, Circle, Contact, Frame, Point, Polygon, RenderModelError, Segment, View
+from .model import (Body, Capsule, Circle, Contact, Frame, Point, Polygon, RenderModelError, Segment, Style,
+                    View)
 from .glyphs import GlyphCache, TextMask, ink_table
 from .text import printable, time_stamp
 
@@ -156,10 +157,13 @@ class Canvas:
 
     def box(self, x0: float, y0: float, x1: float, y1: float) -> Box | None:
         """The pixels a pixel-space box touches (rows, columns), clipped to the picture, or None."""
-        i0 = max(int(math.floor(max(x0, -1.0))), 0)
-        j0 = max(int(math.floor(max(y0, -1.0))), 0)
-        i1 = min(int(math.ceil(min(x1, self.view.width + 1.0))), self.view.width)
-        j1 = min(int(math.ceil(min(y1, self.view.height + 1.0))), self.view.height)
+        # (floor and ceil, clipped to the picture: int() is floor from 0 up; a frame asks
+        # this for every body and contact, and min, max and floor took twice as long)
+        w, h = self.view.width, self.view.height
+        i0 = int(x0) if x0 > 0 else 0
+        j0 = int(y0) if y0 > 0 else 0
+        i1 = w if x1 >= w else math.ceil(x1)
+        j1 = h if y1 >= h else math.ceil(y1)
         if i0 >= i1 or j0 >= j1:
             return None
         return (j0, j1, i0, i1)
@@ -186,12 +190,21 @@ ToPixel = Callable[[Point], Point]
 class Outline:
     """One shape placed in pixel space: its outline as a Skia path, its bounding box (x0, y0,
     x1, y1), whether it has an inside (a segment has none), the spoke that shows a circle's
-    turn, and a circle's centre and radius (x, y, r) where it is drawn as one (draw_body)."""
-    path: skia.Path
+    turn, and a circle's centre and radius (x, y, r) where it is drawn as one (draw_body).
+    A disc's path is None, made only where it is drawn as a path (path_of): the ring and fill
+    of most balls are two circles, and the path was a tenth of drawing one."""
+    path: skia.Path | None
     box: tuple[float, float, float, float]
     area: bool = True
     spoke: tuple[Point, Point] | None = None
     disc: tuple[float, float, float] | None = None
+
+
+def path_of(shape: Outline) -> skia.Path:
+    if shape.path is not None:
+        return shape.path
+    x, y, r = shape.disc
+    return skia.Path().addCircle(x, y, r)
 
 
 def _box_around(points: Sequence[Point], r: float) -> tuple[float, float, float, float]:
@@ -262,8 +275,10 @@ def _circle_path(c: Point, r: float, view: View) -> skia.Path:
 def _circle(shape: Circle, px: ToPixel, view: View) -> Outline:
     c, r = px(shape.centre), shape.radius * view.scale
     rim = px((shape.centre[0] + shape.radius, shape.centre[1]))
-    return Outline(_circle_path(c, r, view), _box_around([c], r), spoke=(c, rim),
-                   disc=(c[0], c[1], r) if r <= BIG else None)
+    box = (c[0] - r, c[1] - r, c[0] + r, c[1] + r)
+    if r <= BIG:   # (_circle_path's circle, made where it is needed)
+        return Outline(None, box, spoke=(c, rim), disc=(c[0], c[1], r))
+    return Outline(_circle_path(c, r, view), box, spoke=(c, rim))
 
 
 def _polygon(shape: Polygon, px: ToPixel, view: View) -> Outline:
@@ -301,37 +316,60 @@ def contrast(colour: str | None) -> str:
     return "#000000" if 0.299 * r + 0.587 * g + 0.114 * b > 0.5 else "#ffffff"
 
 
+@dataclass(frozen=True)
+class Look:
+    """How draw_body paints a style on a shape with or without an inside, worked out once per
+    style (look): the stroke's width, the fill's and the line's paints (None: not drawn),
+    whether a disc is drawn as two circles (ring), and the spoke's paint."""
+    width: float
+    fill: skia.Paint | None
+    line: skia.Paint | None
+    ring: skia.Paint | None
+    spoke: skia.Paint
+
+
+@lru_cache(maxsize=1024)
+def look(style: Style, area: bool) -> Look:
+    width = style.stroke_width
+    if not area:  # a segment has no inside: its stroke is the whole picture of it
+        width = max(width, 1.0)
+    line_colour = style.stroke if style.stroke is not None else (None if area else style.fill)
+    fill = _paint(style.fill, None) if area and style.fill is not None else None
+    line = _paint(line_colour, width) if line_colour is not None and width > 0 else None
+    # an opaque ring around an opaque fill: the disc out to the ring's outer edge in the
+    # ring's colour, then the disc inside its inner edge in the fill's (the same regions;
+    # 60 us a ball where the fill and Skia's stroke of the circle took 108: the stroker
+    # builds the ring's outline anew each time)
+    ring = (_paint(line_colour, None) if style.fill is not None and line is not None
+            and _opaque(style.fill) and _opaque(line_colour) else None)
+    return Look(width, fill, line, ring,
+                _paint(style.stroke or contrast(style.fill), max(width, 1.0)))
+
+
 def draw_body(canvas: Canvas, body: Body, pose) -> None:
     """Fill, then stroke, then a circle's spoke; nothing of a body wholly outside the picture."""
     style = body.style
     shape = outline(body.shape, pose.apply, canvas.view)
-    width = style.stroke_width
-    if not shape.area:  # a segment has no inside: its stroke is the whole picture of it
-        width = max(width, 1.0)
+    paint = look(style, shape.area)
+    width = paint.width
     pad = width / 2 + 1
     box = canvas.box(shape.box[0] - pad, shape.box[1] - pad, shape.box[2] + pad, shape.box[3] + pad)
     if box is None:
         return
     sk = canvas.skia
-    line_colour = style.stroke if style.stroke is not None else (None if shape.area else style.fill)
-    if (shape.disc is not None and style.fill is not None and line_colour is not None and width > 0
-            and _opaque(style.fill) and _opaque(line_colour)):
-        # an opaque ring around an opaque fill: the disc out to the ring's outer edge in the
-        # ring's colour, then the disc inside its inner edge in the fill's (the same regions;
-        # 60 us a ball where the fill and Skia's stroke of the circle took 108: the stroker
-        # builds the ring's outline anew each time)
+    if shape.disc is not None and paint.ring is not None:
         x, y, r = shape.disc
-        sk.drawCircle(x, y, r + width / 2, _paint(line_colour, None))
+        sk.drawCircle(x, y, r + width / 2, paint.ring)
         if r > width / 2:
-            sk.drawCircle(x, y, r - width / 2, _paint(style.fill, None))
+            sk.drawCircle(x, y, r - width / 2, paint.fill)
     else:
-        if shape.area and style.fill is not None:
-            sk.drawPath(shape.path, _paint(style.fill, None))
-        if line_colour is not None and width > 0:
-            sk.drawPath(shape.path, _paint(line_colour, width))
+        if paint.fill is not None:
+            sk.drawPath(path_of(shape), paint.fill)
+        if paint.line is not None:
+            sk.drawPath(path_of(shape), paint.line)
     if shape.spoke is not None and style.spoke:   # (it lies inside the circle's box)
         (x0, y0), (x1, y1) = shape.spoke
-        sk.drawLine(x0, y0, x1, y1, _paint(style.stroke or contrast(style.fill), max(width, 1.0)))
+        sk.drawLine(x0, y0, x1, y1, paint.spoke)
     canvas.painted.add(box)
 
 
