@@ -149,7 +149,10 @@ class Canvas:
         if store is None:
             store = np.empty((-(-view.height // TILE) * TILE, -(-view.width // TILE) * TILE, 4),
                              dtype=np.uint8)
-            store[:] = [int(view.background[i:i + 2], 16) for i in (1, 3, 5)] + [255]
+            # (as one 32-bit number a pixel: numpy broadcasting four bytes over the picture
+            # took 1.4 ms, most of a new layer's cost)
+            store.view(np.uint32)[:] = np.frombuffer(bytes(
+                [int(view.background[i:i + 2], 16) for i in (1, 3, 5)] + [255]), dtype=np.uint32)[0]
         self.store = store
         self.pixels = store[:view.height, :view.width]
         self.surface = skia.Surface(store)
