@@ -59,10 +59,7 @@ def choose(keys: Iterable[str], samples: Sequence[Image.Image | np.ndarray]) -> 
     fixed = list(dict.fromkeys(_rgb(c) for c in keys))[:MOST_KEYS]
     entries = list(fixed)
     if samples:
-        seen = np.zeros(1 << 24, dtype=bool)   # (a sort of a million pixels took 60 ms)
-        for sample in samples:
-            seen[_packed(np.asarray(sample))] = True
-        distinct = _unpacked(np.flatnonzero(seen).astype(np.uint32))
+        distinct = _unpacked(_distinct(samples))
         strip = Image.fromarray(distinct.astype(np.uint8)[None, :, :], "RGB")
         cut = strip.quantize(colors=COLOURS - len(fixed), method=Image.Quantize.MEDIANCUT,
                              dither=Image.Dither.NONE)
@@ -71,6 +68,18 @@ def choose(keys: Iterable[str], samples: Sequence[Image.Image | np.ndarray]) -> 
         entries += [tuple(flat[3 * i:3 * i + 3]) for i in used]
     entries += [entries[-1] if entries else (0, 0, 0)] * (COLOURS - len(entries))
     return np.array(entries, dtype=np.uint8)
+
+
+def _distinct(samples: Sequence[Image.Image | np.ndarray]) -> np.ndarray:
+    """The samples' distinct colours, _packed, sorted. Only the first pixel of each run of one
+    colour along a row is sorted: these pictures are flat colours, so a few per cent of the
+    pixels. (A sort of every pixel, a million, took 60 ms; a table of all 2^24 colours
+    marked and scanned, 9 ms; this, 1 ms.)"""
+    starts = []
+    for sample in samples:
+        keys = _packed(np.asarray(sample)).reshape(-1)
+        starts += [keys[:1], keys[1:][keys[1:] != keys[:-1]]]
+    return np.unique(np.concatenate(starts))
 
 
 class Mapper:

@@ -83,3 +83,20 @@ def test_update_boxes_what_changed(size) -> None:
             rows, cols = np.nonzero(now != last)
             assert box == ((cols.min(), rows.min(), cols.max() + 1, rows.max() + 1) if rows.size else None)
         last = now
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_distinct_colours_are_every_pixels(seed) -> None:
+    """palette._distinct (run starts only) against np.unique of every pixel, on pictures of
+    runs of few colours, a run crossing from one row into the next, and a lone last pixel."""
+    rng = np.random.default_rng(seed)
+    pictures = []
+    for _ in range(3):
+        colours = rng.integers(0, 256, (5, 4), dtype=np.uint8)
+        runs = np.repeat(rng.integers(0, 5, 40), rng.integers(1, 30, 40))[:17 * 23]
+        picture = colours[np.resize(runs, 17 * 23)].reshape(17, 23, 4)
+        picture[-1, -1] = rng.integers(0, 256, 4, dtype=np.uint8)
+        pictures.append(picture)
+    want = np.unique(np.concatenate([p[..., :3].reshape(-1, 3) for p in pictures]), axis=0)
+    got = palette._unpacked(palette._distinct(pictures))
+    assert sorted(map(tuple, got.tolist())) == sorted(map(tuple, want.tolist()))
