@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from ..render.model import Body, Contact, Frame, Pose, Style, shape_from_vertices
+from ..render.model import Body, Contact, Frame, Pose, Style, shape_from_parts
 from .world import BodyInfo, Event, World
 
 PALETTE = ("#4c72b0", "#dd8452", "#55a868", "#c44e52", "#8172b3", "#937860", "#da8bc3",
@@ -19,7 +19,7 @@ KINEMATIC = "#e0a030"
 
 
 def render_body(info: BodyInfo) -> Body:
-    shape = shape_from_vertices(info.vertices, info.radius)
+    shape = shape_from_parts(info.shapes)
     if info.kind == "static":
         style = STATIC if info.color is None else Style(fill=info.color, stroke="#3a3a3a",
                                                         stroke_width=2.0, spoke=False)

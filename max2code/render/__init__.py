@@ -5,12 +5,13 @@ beyond the standard library, so the engine can build frames without Pillow insta
 writers import Pillow / imageio only when called (pip install 'max2code[render]').
 """
 
-from .model import (Body, Capsule, Circle, Contact, Frame, Polygon, Pose, RenderModelError,
-                    Segment, Shape, Style, View, colour, shape_from_vertices)
+from .model import (Body, Capsule, Circle, Compound, Contact, Frame, Polygon, Pose,
+                    RenderModelError, Segment, Shape, Style, View, colour, shape_from_parts,
+                    shape_from_vertices)
 from .fit import fit_view, world_extent
 from .write import (RenderUnavailable, save, write_gif, write_mp4, write_png, write_png_dir,
                     write_svg)
 
-__all__ = ["Body", "Capsule", "Circle", "Contact", "Frame", "Polygon", "Pose", "RenderModelError",
+__all__ = ["Body", "Capsule", "Circle", "Compound", "Contact", "Frame", "Polygon", "Pose", "RenderModelError",
            "RenderUnavailable", "Segment", "Shape", "Style", "View", "fit_view", "save",
-           "world_extent", "write_gif", "colour", "shape_from_vertices", "write_mp4", "write_png", "write_png_dir", "write_svg"]
+           "world_extent", "write_gif", "colour", "shape_from_parts", "shape_from_vertices", "write_mp4", "write_png", "write_png_dir", "write_svg"]

@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable, Sequence
 from typing import Any
 
-from .model import Body, Capsule, Circle, Frame, Polygon, Pose, RenderModelError, Segment, Shape, View
+from .model import Body, Capsule, Circle, Compound, Frame, Polygon, Pose, RenderModelError, Segment, Shape, View
 
 
 # The points a shape's extent is taken over and the radius around them, per kind of shape
@@ -19,7 +19,12 @@ EXTENT_POINTS: dict[type, Callable[[Any], tuple[Sequence[tuple[float, float]], f
 
 
 def world_extent(shape: Shape, pose: Pose) -> tuple[float, float, float, float]:
-    """(xmin, ymin, xmax, ymax) of a shape at a pose, exact for every shape kind."""
+    """(xmin, ymin, xmax, ymax) of a shape at a pose, exact for every shape kind (a compound:
+    the box around its parts')."""
+    if isinstance(shape, Compound):
+        boxes = [world_extent(p, pose) for p in shape.parts]
+        return (min(b[0] for b in boxes), min(b[1] for b in boxes),
+                max(b[2] for b in boxes), max(b[3] for b in boxes))
     points = EXTENT_POINTS.get(type(shape))
     if points is None:
         raise RenderModelError(f"unknown shape {type(shape).__name__}")

@@ -138,8 +138,29 @@ class Capsule:
             raise RenderModelError(f"capsule radius must be positive, not {self.radius!r}")
 
 
-Shape = Union[Circle, Polygon, Segment, Capsule]
-SHAPES = (Circle, Polygon, Segment, Capsule)
+PART_SHAPES = (Circle, Polygon, Segment, Capsule)
+
+
+@dataclass(frozen=True)
+class Compound:
+    """Several shapes on one body (the engine's compound bodies): drawn as their union, in one
+    style; each part in body coordinates."""
+
+    parts: tuple[Union[Circle, Polygon, Segment, Capsule], ...]
+
+    def __post_init__(self) -> None:
+        parts = tuple(self.parts) if isinstance(self.parts, (tuple, list)) else ()
+        if not parts:
+            raise RenderModelError("a compound needs at least one part")
+        for k, p in enumerate(parts):
+            if not isinstance(p, PART_SHAPES):
+                raise RenderModelError(f"compound part {k} must be a circle, polygon, segment or "
+                                       f"capsule, not {type(p).__name__}")
+        _set(self, "parts", parts)
+
+
+Shape = Union[Circle, Polygon, Segment, Capsule, Compound]
+SHAPES = (Circle, Polygon, Segment, Capsule, Compound)
 
 
 def shape_from_vertices(vertices: tuple[Point, ...] | list[Point], radius: float = 0.0) -> Shape:
@@ -152,6 +173,13 @@ def shape_from_vertices(vertices: tuple[Point, ...] | list[Point], radius: float
     if len(vs) == 2:
         return Capsule(vs[0], vs[1], radius) if radius > 0 else Segment(vs[0], vs[1])
     return Polygon(vs, radius)
+
+
+def shape_from_parts(parts) -> Shape:
+    """The engine's compound body, its parts each (vertices, radius): one part is that shape,
+    more a Compound."""
+    shapes = tuple(shape_from_vertices(v, r) for v, r in parts)
+    return shapes[0] if len(shapes) == 1 else Compound(shapes)
 
 
 # The basic colour names of HTML and CSS, for scene files written by hand.

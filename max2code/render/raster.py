@@ -30,8 +30,8 @@ import numpy as np
 import skia
 from PIL import Image, ImageDraw, ImageFont
 
-from .model import (Body, Capsule, Circle, Contact, Frame, Point, Polygon, RenderModelError, Segment, Style,
-                    View)
+from .model import (Body, Capsule, Circle, Compound, Contact, Frame, Point, Polygon, RenderModelError,
+                    Segment, Style, View)
 from .glyphs import GlyphCache, TextMask, ink_table
 from .text import printable, time_stamp
 
@@ -299,8 +299,29 @@ def _segment(shape: Segment, px: ToPixel, view: View) -> Outline:
     return Outline(skia.Path().moveTo(*a).lineTo(*b), _box_around([a, b], 0.0), area=False)
 
 
+def _compound(shape: Compound, px: ToPixel, view: View) -> Outline:
+    """The union of the parts' outlines (one fill, one outline around it: Skia's path ops); a
+    thin segment part joins as a line a pixel wide (filled with the body, so it shows with no
+    stroke colour too)."""
+    parts = [OUTLINES[type(p)](p, px, view) for p in shape.parts]
+    path = None
+    for o in parts:
+        area = path_of(o)
+        if not o.area:
+            area = skia.Path()
+            LINE.getFillPath(path_of(o), area)
+        path = area if path is None else (skia.Op(path, area, skia.PathOp.kUnion_PathOp)
+                                          or path.addPath(area))
+    box = (min(o.box[0] for o in parts) - 0.5, min(o.box[1] for o in parts) - 0.5,
+           max(o.box[2] for o in parts) + 0.5, max(o.box[3] for o in parts) + 0.5)
+    return Outline(path, box)
+
+
+LINE = skia.Paint(Style=skia.Paint.kStroke_Style, StrokeWidth=1.0, StrokeCap=skia.Paint.kRound_Cap)
+
+
 OUTLINES: dict[type, Callable[[object, ToPixel, View], Outline]] = {
-    Circle: _circle, Polygon: _polygon, Capsule: _capsule, Segment: _segment}
+    Circle: _circle, Polygon: _polygon, Capsule: _capsule, Segment: _segment, Compound: _compound}
 
 
 def outline(shape: object, pose_apply: ToPixel, view: View) -> Outline:

@@ -13,7 +13,7 @@ import math
 from collections.abc import Callable, Sequence
 from xml.sax.saxutils import escape
 
-from .model import Body, Capsule, Circle, Frame, Point, Polygon, RenderModelError, Segment, View
+from .model import Body, Capsule, Circle, Compound, Frame, Point, Polygon, RenderModelError, Segment, View
 from .raster import CONTACT_COLOUR, TEXT_COLOUR, contrast, text_size, check_frame
 from .text import printable, time_stamp
 
@@ -103,9 +103,14 @@ def _segment(shape: Segment, style, px, s: float, paint: str) -> list[str]:
             f'stroke-linecap="round"/>']
 
 
+def _compound(shape: Compound, style, px, s: float, paint: str) -> list[str]:
+    """Each part in the body's style (their outlines show where the parts meet)."""
+    return [line for part in shape.parts for line in ELEMENTS[type(part)](part, style, px, s, paint)]
+
+
 # One SVG writer per kind of shape (as the rasteriser's OUTLINES).
 ELEMENTS: dict[type, Callable[..., list[str]]] = {
-    Circle: _circle, Polygon: _polygon, Capsule: _capsule, Segment: _segment}
+    Circle: _circle, Polygon: _polygon, Capsule: _capsule, Segment: _segment, Compound: _compound}
 
 
 def _body(i: int, body: Body, pose, view: View) -> list[str]:

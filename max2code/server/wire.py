@@ -24,7 +24,7 @@ from dataclasses import dataclass
 
 from ..engine.frames import render_body
 from ..engine.world import World
-from ..render.model import Capsule, Circle, Polygon, Segment
+from ..render.model import Capsule, Circle, Compound, Polygon, Segment
 from .protocol import number
 
 Motion = tuple[float, ...]   # the core's (t0, x, y, angle, vx, vy, omega, ax, ay)
@@ -54,7 +54,8 @@ class Zero:
 
 
 def shape(shape_) -> dict:
-    """The render model's shape as JSON: circle {c, r}, polygon {p, r}, segment {s}, capsule {s, r}."""
+    """The render model's shape as JSON: circle {c, r}, polygon {p, r}, segment {s}, capsule {s, r},
+    compound {parts: [shape, ...]}."""
     kinds = {
         Circle: lambda s: {"c": [number(v) for v in s.centre], "r": number(s.radius)},
         Polygon: lambda s: {"p": [[number(x), number(y)] for x, y in s.vertices],
@@ -62,6 +63,7 @@ def shape(shape_) -> dict:
         Segment: lambda s: {"s": [[number(x), number(y)] for x, y in (s.a, s.b)]},
         Capsule: lambda s: {"s": [[number(x), number(y)] for x, y in (s.a, s.b)],
                             "r": number(s.radius)},
+        Compound: lambda s: {"parts": [shape(p) for p in s.parts]},
     }
     return kinds[type(shape_)](shape_)
 

@@ -413,3 +413,25 @@ def test_the_c_api_builds_compounds_and_names_misuse(engine, tmp_path):
     assert lines["empty"].startswith("-1 ") and "at least one part" in lines["empty"]
     assert lines["concave"] == "-1 part 1 of 2: a polygon must be convex (no three vertices in a line)"
     assert lines["twice"].startswith("-1 ") and "leave nvertices" in lines["twice"]
+
+
+# -- pictures ---------------------------------------------------------------------------------
+
+def test_a_compound_is_drawn_as_its_parts(engine):
+    """max2code sim's pictures and the browser's wire format get every part, in the body's
+    frame (the reference point at the centre of mass: the L's parts shifted by (3/4, 5/4))."""
+    from max2code.engine.frames import render_body
+    from max2code.render import Circle, Compound, Polygon
+    from max2code.server.wire import shape
+
+    w = engine.World()
+    lb = w.add_compound(L_SHAPE)
+    db = w.add_compound(DUMBBELL, position=(5, 5))
+    drawn = render_body(w.bodies[lb]).shape
+    assert isinstance(drawn, Compound) and all(isinstance(p, Polygon) for p in drawn.parts)
+    assert drawn.parts[1].vertices[2] == (1 - 0.75, 3 - 1.25)
+    dumbbell = render_body(w.bodies[db]).shape
+    assert [type(p).__name__ for p in dumbbell.parts] == ["Circle", "Circle", "Capsule"]
+    assert dumbbell.parts[0] == Circle(0.25, (-1.0, 0.0))
+    sent = shape(dumbbell)
+    assert sent["parts"][0] == {"c": [-1.0, 0.0], "r": 0.25} and sent["parts"][2]["r"] == 0.05

@@ -11,7 +11,8 @@ import math
 import pytest
 
 from conftest import require_module as need
-from max2code.render import Body, Capsule, Circle, Contact, Frame, Polygon, Pose, Segment, Style, View
+from max2code.render import (Body, Capsule, Circle, Compound, Contact, Frame, Polygon, Pose,
+                             RenderModelError, Segment, Style, View)
 
 np = need("numpy")
 need("PIL")
@@ -114,6 +115,32 @@ def test_capsule_is_every_point_within_its_radius_of_the_segment() -> None:
     d = (np.hypot(wx - (a[0] + t * (b - a)[0]), wy - (a[1] + t * (b - a)[1])) - 1.0) * 20
     assert solid(img, d <= -EDGE, (255, 0, 255))
     assert (img[d >= EDGE] == WHITE).all()
+
+
+def test_a_compound_is_the_union_of_its_parts_painted_once() -> None:
+    """Two overlapping discs and a square on one body, half-transparent: every pixel inside
+    any part is the fill blended once over white (the overlap is not painted twice), every
+    pixel outside all parts is untouched, and a thin segment part is drawn as a line."""
+    shape = Compound((Circle(1.5, (-1.0, 0.0)), Circle(1.5, (1.0, 0.0)),
+                      Polygon(((-0.5, 1.0), (0.5, 1.0), (0.5, 3.0), (-0.5, 3.0))),
+                      Segment((0.0, -1.5), (0.0, -3.5))))
+    img = pixels([Body(shape, Style(fill="#0000ff80", stroke=None, spoke=False))],
+                 [Pose(5, 5, 0.4)])
+    wx, wy = centres()
+    c, s = math.cos(0.4), math.sin(0.4)
+    bx, by = c * (wx - 5) + s * (wy - 5), -s * (wx - 5) + c * (wy - 5)   # body coordinates
+    d = np.minimum(np.hypot(bx + 1, by) - 1.5, np.hypot(bx - 1, by) - 1.5)
+    box = np.maximum(np.abs(bx) - 0.5, np.abs(by - 2.0) - 1.0)
+    d = np.minimum(d, box) * 20
+    a = 0x80 / 255
+    assert solid(img, d <= -EDGE, (round(255 * (1 - a)), round(255 * (1 - a)), 255))
+    line = (np.abs(bx) * 20 <= 0.2) & (by < -1.6) & (by > -3.4)
+    assert (img[(d >= EDGE) & ~(np.abs(bx) * 20 < 1.5)] == WHITE).all()
+    assert (img[line] != WHITE).any(axis=-1).all()
+    with pytest.raises(RenderModelError, match="at least one part"):
+        Compound(())
+    with pytest.raises(RenderModelError, match="part 0"):
+        Compound((shape,))
 
 
 def test_alpha_fill_blends_and_later_bodies_are_on_top() -> None:

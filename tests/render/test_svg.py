@@ -9,8 +9,8 @@ from pathlib import Path
 
 import pytest
 
-from max2code.render import (Body, Capsule, Circle, Contact, Frame, Polygon, Pose, Segment, Style, View,
-                             write_svg)
+from max2code.render import (Body, Capsule, Circle, Compound, Contact, Frame, Polygon, Pose, Segment,
+                             Style, View, write_svg)
 from max2code.render.svg import svg_text
 from max2code.render.text import printable
 
@@ -24,6 +24,21 @@ def parse(text: str) -> ET.Element:
 
 def px(x: float, y: float) -> tuple[float, float]:
     return 200 + 40 * x, 200 - 40 * y
+
+
+def test_a_compound_draws_each_part_where_the_pose_puts_it() -> None:
+    """A dumbbell (two circles on a capsule) at (1, 2) turned a quarter: one body group with a
+    circle at each end, their centres at the pose's image of (-1, 0) and (1, 0)."""
+    shape = Compound((Circle(0.5, (-1.0, 0.0)), Circle(0.5, (1.0, 0.0)),
+                      Capsule((-1.0, 0.0), (1.0, 0.0), 0.1)))
+    root = parse(svg_text([Body(shape, Style(fill="#112233"))], Frame(0.0, (Pose(1, 2, math.pi / 2),)), VIEW))
+    groups = root.findall("s:g[@class='body']", NS)
+    assert len(groups) == 1
+    circles = groups[0].findall("s:circle", NS)
+    got = sorted(v for c in circles for v in (float(c.get("cx")), float(c.get("cy"))))
+    assert got == pytest.approx(sorted([*px(1, 1), *px(1, 3)]), abs=1e-3)
+    assert all(float(c.get("r")) == pytest.approx(20) for c in circles)
+    assert len(groups[0].findall("s:path", NS)) == 1         # the capsule
 
 
 def test_shapes_are_where_the_poses_put_them() -> None:

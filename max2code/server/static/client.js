@@ -147,6 +147,10 @@ function contrast(colour) {
 }
 
 function drawBody(b, pose) {
+  if (b.shape.parts) {                          // a compound: each part in the body's style
+    for (const part of b.shape.parts) drawBody(Object.assign({}, b, {shape: part}), pose);
+    return;
+  }
   const c = Math.cos(pose[2]), sn = Math.sin(pose[2]), s = scale(), sh = b.shape;
   const px = (p) => toPixel(pose[0] + c * p[0] - sn * p[1], pose[1] + sn * p[0] + c * p[1]);
   ctx.lineJoin = "round"; ctx.lineCap = "round";
