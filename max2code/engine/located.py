@@ -220,18 +220,32 @@ def parse_toml(text: str) -> Located:
                         f"{sys.get_int_max_str_digits()} digits)") from exc
     positions: dict[Path, tuple[int, int]] = {}
     table: Path = ()
-    counts: dict[tuple[str, ...], int] = {}
+    counts: dict[Path, int] = {}          # an array of tables (its path): elements so far
+    current: dict[tuple[str, ...], int] = {}   # an array of tables (its name): its last element
+
+    def resolve(name: tuple[str, ...]) -> Path:
+        """A header's path: within an array of tables' last element ([[bodies.parts]] is
+        bodies[i].parts, i the last [[bodies]])."""
+        out: Path = ()
+        for k in range(len(name)):
+            out += (name[k],)
+            if k + 1 < len(name) and name[:k + 1] in current:
+                out += (current[name[:k + 1]],)
+        return out
+
     for lineno, line in enumerate(text.splitlines(), 1):
         m = _ARRAY_TABLE.match(line)
         if m:
             name = _keys(m.group(1))
-            counts[name] = counts.get(name, -1) + 1
-            table = name + (counts[name],)
+            where = resolve(name)
+            counts[where] = counts.get(where, -1) + 1
+            current[name] = counts[where]
+            table = where + (counts[where],)
             positions.setdefault(table, (lineno, m.start(1) + 1))
             continue
         m = _TABLE.match(line)
         if m:
-            table = _keys(m.group(1))
+            table = resolve(_keys(m.group(1)))
             positions.setdefault(table, (lineno, m.start(1) + 1))
             continue
         m = _ASSIGN.match(line)

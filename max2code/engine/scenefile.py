@@ -19,13 +19,17 @@
     [[bodies]]
     name = "ball"                    # optional, unique; default body<N>
     kind = "dynamic"                 # dynamic (default) | static | kinematic
-    shape = "circle"                 # circle | segment | polygon | box
+    shape = "circle"                 # circle | segment | polygon | box | compound
     position = [0.0, 1.0]            # required for circle, polygon, box; default [0, 0]
     radius = 0.1                     # circle: required, > 0; others: rounding, >= 0
     offset = [0.0, 0.0]              # circle only: its centre's offset from position
     points = [[-1, 0], [1, 0]]       # segment: its two ends (offsets from position)
     vertices = [[0, 0], [1, 0], [0, 1]]   # polygon: convex, anticlockwise (offsets)
     size = [1.0, 0.5]                # box: width and height, centred on position
+    parts = [{shape = "circle", radius = 0.2, offset = [-1, 0]},   # compound: several shapes
+             {shape = "box", size = [2, 0.1]}]                     # on one rigid body, each
+                                     # with its own keys above (offsets from position; a
+                                     # box part may have an offset too)
     angle = 0.0                      # radians
     velocity = [0.0, 0.0]
     omega = 0.0                      # angular velocity, radians per second, anticlockwise
@@ -56,15 +60,19 @@ from pathlib import Path as FilePath
 from .geometry import gap, transform
 from . import limits
 from .located import Located, TextError, parse_json, parse_toml
-from .shapes import mass_properties
+from .shapes import compound_mass_properties, mass_properties
 
 TOP_KEYS = {"name", "gravity", "tolerance", "until", "fps", "view", "engine", "bodies", "comment"}
 ENGINE_KEYS = {"cell_size", "rest_speed", "collapse_time", "max_events", "contact_step"}
 BODY_KEYS = {"name", "kind", "shape", "position", "radius", "offset", "points", "vertices", "size",
              "angle", "velocity", "omega", "gravity", "mass", "density", "inertia",
-             "restitution", "friction", "group", "color", "comment"}
+             "restitution", "friction", "group", "color", "comment", "parts"}
 SHAPE_KEYS = {"circle": {"radius", "offset"}, "segment": {"points", "radius"},
-              "polygon": {"vertices", "radius"}, "box": {"size", "radius"}}
+              "polygon": {"vertices", "radius"}, "box": {"size", "radius"},
+              "compound": {"parts"}}
+PART_KEYS = {"shape", "radius", "offset", "points", "vertices", "size", "comment"}
+PART_SHAPE_KEYS = {"circle": {"radius", "offset"}, "segment": {"points", "radius"},
+                   "polygon": {"vertices", "radius"}, "box": {"size", "radius", "offset"}}
 KINDS = ("dynamic", "static", "kinematic")
 
 Vec = tuple[float, float]
@@ -89,6 +97,12 @@ class BodySpec:
     group: str | None = None
     color: str | None = None
     friction: float = 0.0
+    parts: tuple[tuple[tuple[Vec, ...], float], ...] = ()   # a compound's (vertices, radius)
+
+    @property
+    def shapes(self) -> tuple[tuple[tuple[Vec, ...], float], ...]:
+        """Every convex shape of the body, (vertices, radius): a compound's parts, or the one."""
+        return self.parts or ((self.vertices, self.radius),)
 
 
 @dataclass(frozen=True)
@@ -274,26 +288,8 @@ def _turns(vertices: list[Vec]) -> int:
     return round(total / (2 * math.pi))
 
 
-def _body(c: Checker, raw: object, index: int, names: set[str],
-          tolerance: float) -> BodySpec | None:
-    path = ("bodies", index)
-    if not isinstance(raw, dict):
-        c.error(path, f"expected a table of body fields, got {raw!r}")
-        return None
-    before = len(c.errors)
-    c.keys(raw, BODY_KEYS, path)
-    name = c.name(raw, path, index, names)
-    kind = c.string(raw, "kind", path, "dynamic", KINDS)
-    if "shape" not in raw:
-        c.error(path, "missing field 'shape' (circle, segment, polygon or box)")
-        return None
-    shape = c.string(raw, "shape", path, None, tuple(SHAPE_KEYS))
-    if shape is None:
-        return None
-    for other, keys in SHAPE_KEYS.items():
-        for key in keys - SHAPE_KEYS[shape]:
-            if key in raw:
-                c.error(path + (key,), f"'{key}' belongs to a {other}, not a {shape}")
+def _shape(c: Checker, raw: dict, path: tuple, shape: str) -> tuple[float, list[Vec]]:
+    """One convex shape's radius and vertices (offsets) from its keys; [] after an error."""
     radius = c.number(raw, "radius", path, 0.0, nonneg=True, required=shape == "circle")
     vertices: list[Vec] = []
     if shape == "circle":
@@ -333,6 +329,76 @@ def _body(c: Checker, raw: object, index: int, names: set[str],
             else:
                 hw, hh = size[0] / 2, size[1] / 2
                 vertices = [(-hw, -hh), (hw, -hh), (hw, hh), (-hw, hh)]
+    return radius, vertices
+
+
+def _parts(c: Checker, raw: dict, path: tuple) -> list[tuple[list[Vec], float]]:
+    """A compound's parts, each a table with a shape's keys (errors at parts[k].key); [] after
+    an error."""
+    parts_raw = raw.get("parts")
+    if parts_raw is None:
+        c.error(path, "missing field 'parts' (the compound's shapes)")
+        return []
+    if not isinstance(parts_raw, list) or not parts_raw:
+        c.error(path + ("parts",), f"expected a non-empty list of parts, got {_shown(parts_raw)}")
+        return []
+    before = len(c.errors)
+    out = []
+    for k, part in enumerate(parts_raw):
+        where = path + ("parts", k)
+        if not isinstance(part, dict):
+            c.error(where, f"expected a table of part fields, got {_shown(part)}")
+            continue
+        c.keys(part, PART_KEYS, where)
+        if "shape" not in part:
+            c.error(where, "missing field 'shape' (circle, segment, polygon or box)")
+            continue
+        shape = c.string(part, "shape", where, None, tuple(PART_SHAPE_KEYS))
+        if shape is None:
+            continue
+        for other, keys in PART_SHAPE_KEYS.items():
+            for key in keys - PART_SHAPE_KEYS[shape]:
+                if key in part:
+                    c.error(where + (key,), f"'{key}' belongs to a {other}, not a {shape}")
+        radius, vertices = _shape(c, part, where, shape)
+        if shape == "box" and vertices:
+            dx, dy = c.vec(part, "offset", where, (0.0, 0.0)) or (0.0, 0.0)
+            vertices = [(x + dx, y + dy) for x, y in vertices]
+        out.append((vertices, float(radius or 0.0)))
+    return out if len(c.errors) == before and all(v for v, _ in out) else []
+
+
+def _body(c: Checker, raw: object, index: int, names: set[str],
+          tolerance: float) -> BodySpec | None:
+    path = ("bodies", index)
+    if not isinstance(raw, dict):
+        c.error(path, f"expected a table of body fields, got {raw!r}")
+        return None
+    before = len(c.errors)
+    c.keys(raw, BODY_KEYS, path)
+    name = c.name(raw, path, index, names)
+    kind = c.string(raw, "kind", path, "dynamic", KINDS)
+    if "shape" not in raw:
+        c.error(path, "missing field 'shape' (circle, segment, polygon, box or compound)")
+        return None
+    shape = c.string(raw, "shape", path, None, tuple(SHAPE_KEYS))
+    if shape is None:
+        return None
+    told: set[str] = set()
+    for other, keys in SHAPE_KEYS.items():
+        for key in keys - SHAPE_KEYS[shape]:
+            if key in raw and key not in told:
+                told.add(key)
+                c.error(path + (key,), f"'{key}' belongs to a {other}, not a {shape}"
+                        if shape != "compound" else
+                        f"'{key}' belongs to a compound's parts (parts[k].{key}), not to it")
+    parts: list[tuple[list[Vec], float]] = []
+    if shape == "compound":
+        parts = _parts(c, raw, path)
+        vertices = [v for vs, _ in parts for v in vs]
+        radius = 0.0
+    else:
+        radius, vertices = _shape(c, raw, path, shape)
     position = c.vec(raw, "position", path, (0.0, 0.0), required=shape != "segment")
     angle = c.number(raw, "angle", path, 0.0)
     velocity = c.vec(raw, "velocity", path, (0.0, 0.0))
@@ -355,12 +421,17 @@ def _body(c: Checker, raw: object, index: int, names: set[str],
         c.error(path + (key,), "a static body does not move (make it kinematic)")
     if kind == "dynamic" and shape == "segment" and not radius and mass is None:
         c.error(path, "a dynamic thin segment has no area: give it a radius (a capsule) or a mass")
+    if (kind == "dynamic" and shape == "compound" and mass is None and parts
+            and all(len(v) == 2 and not r for v, r in parts)):
+        c.error(path, "a dynamic compound of thin segments has no area: give a part a radius "
+                "or the body a mass")
     if len(c.errors) > before or not vertices:
         return None
+    shapes = parts or [(vertices, float(radius or 0.0))]
     if kind == "dynamic":
-        _mass_check(c, raw, path, vertices, float(radius or 0.0), mass, density, inertia)
-    reach = max(max(abs(x), abs(y)) for x, y in transform(
-        vertices, (*(position or (0.0, 0.0)), angle))) + float(radius or 0.0)
+        _mass_check(c, raw, path, shapes, mass, density, inertia)
+    reach = max(max(abs(x), abs(y)) + r for vs, r in shapes for x, y in transform(
+        vs, (*(position or (0.0, 0.0)), angle)))
     problem = limits.span_problem(reach, tolerance)
     if problem:
         c.error(path, problem)
@@ -368,16 +439,18 @@ def _body(c: Checker, raw: object, index: int, names: set[str],
         return None
     return BodySpec(name, kind, shape, tuple(vertices), float(radius or 0.0), position or (0.0, 0.0),
                     angle, velocity or (0.0, 0.0), omega, gravity, mass, density, inertia,
-                    restitution, group, color, friction)
+                    restitution, group, color, friction,
+                    tuple((tuple(v), r) for v, r in parts))
 
 
-def _mass_check(c: Checker, raw: dict, path: tuple, vertices: list[Vec], radius: float,
+def _mass_check(c: Checker, raw: dict, path: tuple, shapes: list[tuple[list[Vec], float]],
                 mass: float | None, density: float, inertia: float | None) -> None:
     """A dynamic body's mass and inertia, as World.add_body derives them, within what the
     engine's arithmetic holds (limits.MASS, limits.INERTIA), located at the key they come from
     (mass, density, inertia, else the body: the default density times the shape's area)."""
     try:
-        props = mass_properties(vertices, radius)
+        props = (mass_properties(*shapes[0]) if len(shapes) == 1 and "parts" not in raw
+                 else compound_mass_properties(shapes))
     except ZeroDivisionError:  # an area that rounds to 0
         c.error(path, "the shape's area rounds to 0 (too thin for its coordinates)")
         return
@@ -495,18 +568,20 @@ def _overlaps(c: Checker, bodies: list[tuple[int, BodySpec]], tolerance: float) 
     collide (a dynamic one, different groups), near pairs only (bounding circles)."""
     shapes = []
     for index, b in bodies:
-        pts = transform(b.vertices, (b.position[0], b.position[1], b.angle))
+        pose = (b.position[0], b.position[1], b.angle)
+        parts = [(transform(vs, pose), r) for vs, r in b.shapes]
+        pts = [p for ps, _ in parts for p in ps]
         cx = sum(p[0] for p in pts) / len(pts)
         cy = sum(p[1] for p in pts) / len(pts)
-        r = max(math.hypot(p[0] - cx, p[1] - cy) for p in pts) + b.radius
-        shapes.append((index, b, pts, cx, cy, r))
+        r = max(math.hypot(p[0] - cx, p[1] - cy) + rp for ps, rp in parts for p in ps)
+        shapes.append((index, b, parts, cx, cy, r))
     found = []
     for ka, kb in near_pairs([(cx, cy, r) for _, _, _, cx, cy, r in shapes],
                              [b.group for _, b, *_ in shapes],
                              [b.kind != "dynamic" for _, b, *_ in shapes]):
         ia, a, pa = shapes[ka][:3]
         ib, b, pb = shapes[kb][:3]
-        g = gap(pa, a.radius, pb, b.radius)
+        g = min(gap(p, rp, q, rq) for p, rp in pa for q, rq in pb)   # (a compound: its parts)
         if g < -tolerance:
             found.append(((ia, a.name), (ib, b.name), -g))
             if len(found) == MAX_OVERLAPS:
@@ -637,8 +712,9 @@ def build_world(scene: Scene):
               rest_speed=scene.rest_speed, collapse_time=scene.collapse_time,
               max_events=scene.max_events, contact_step=scene.contact_step)
     for k, b in enumerate(scene.bodies):
+        shape = dict(parts=b.parts) if b.parts else dict(vertices=b.vertices, radius=b.radius)
         try:
-            w.add_body(b.vertices, radius=b.radius, kind=b.kind, position=b.position,
+            w.add_body(**shape, kind=b.kind, position=b.position,
                        angle=b.angle, velocity=b.velocity, omega=b.omega, gravity=b.gravity,
                        mass=b.mass, density=b.density, inertia=b.inertia,
                        restitution=b.restitution, friction=b.friction, group=b.group,

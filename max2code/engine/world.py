@@ -208,7 +208,7 @@ class World:
 
     # -- building ---------------------------------------------------------------------------
 
-    def add_body(self, vertices: Sequence[Vec], *, radius: float = 0.0, kind: str = "dynamic",
+    def add_body(self, vertices: Sequence[Vec] = (), *, radius: float = 0.0, kind: str = "dynamic",
                  position: Vec = (0.0, 0.0), angle: float = 0.0, velocity: Vec = (0.0, 0.0),
                  omega: float = 0.0, gravity: Vec | None = None, mass: float | None = None,
                  density: float = 1.0, inertia: float | None = None, restitution: float = 1.0,

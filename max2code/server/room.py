@@ -157,7 +157,7 @@ class Room:
     def _grow(self) -> None:
         """Per-body tables for bodies the world gained (a game adds them while it runs)."""
         for b in self.world.bodies[len(self.reach):]:
-            self.reach.append(max(math.hypot(*v) for v in b.vertices) + b.radius)
+            self.reach.append(max(math.hypot(*v) + r for vs, r in b.shapes for v in vs))
             self.gravity.append(self.world.acceleration(b.id))   # (what it falls with when dynamic)
         motions, _ = self.world.motions()
         for i in range(len(self.held), len(motions)):

@@ -435,3 +435,75 @@ def test_a_compound_is_drawn_as_its_parts(engine):
     assert dumbbell.parts[0] == Circle(0.25, (-1.0, 0.0))
     sent = shape(dumbbell)
     assert sent["parts"][0] == {"c": [-1.0, 0.0], "r": 0.25} and sent["parts"][2]["r"] == 0.05
+
+
+# -- scene files ------------------------------------------------------------------------------
+
+SCENE = """\
+gravity = [0.0, -10.0]
+
+[[bodies]]
+name = "floor"
+kind = "static"
+shape = "segment"
+points = [[-5, 0], [5, 0]]
+
+[[bodies]]
+name = "dumbbell"
+shape = "compound"
+position = [0, 3]
+angle = 0.3
+
+[[bodies.parts]]
+shape = "circle"
+radius = 0.25
+offset = [-1, 0]
+
+[[bodies.parts]]
+shape = "circle"
+radius = 0.25
+offset = [1, 0]
+
+[[bodies.parts]]
+shape = "box"
+size = [2, 0.1]
+"""
+
+
+def test_a_scene_file_compound_lands_at_the_closed_form_time(engine, tmp_path):
+    from max2code.engine.scenefile import build_world, load
+
+    (tmp_path / "s.toml").write_text(SCENE)
+    w = build_world(load(tmp_path / "s.toml"))
+    assert w.bodies[1].shape == "compound" and len(w.bodies[1].parts) == 3
+    assert w.bodies[1].parts[2][0][1] == (1.0, -0.05)
+    ev, hit = first_collision(w, 1)
+    assert ev.time == pytest.approx(math.sqrt(2 * (3 - math.sin(0.3) - 0.25) / 10), abs=1e-9)
+    assert hit == 0
+
+
+def test_bad_scene_compounds_are_errors_at_their_place(engine, tmp_path):
+    from max2code.engine.scenefile import SceneError, load
+
+    bad = SCENE.replace('size = [2, 0.1]', 'vertices = [[0, 0], [2, 0], [0.5, 0.5], [0, 2]]')
+    bad = bad.replace('shape = "box"', 'shape = "polygon"')
+    bad = bad.replace('angle = 0.3', 'angle = 0.3\nradius = 0.1')
+    bad = bad.replace('offset = [1, 0]', 'offset = [1, 0]\npoints = [[0, 0], [1, 1]]')
+    (tmp_path / "bad.toml").write_text(bad)
+    with pytest.raises(SceneError) as err:
+        load(tmp_path / "bad.toml")
+    f = tmp_path / "bad.toml"
+    assert err.value.diagnostics == [
+        f"{f}:14:1: error: bodies[1].radius: 'radius' belongs to a compound's parts "
+        f"(parts[k].radius), not to it",
+        f"{f}:25:1: error: bodies[1].parts[1].points: 'points' belongs to a segment, not a circle",
+        f"{f}:29:1: error: bodies[1].parts[2].vertices: not convex (or three vertices in a line) "
+        f"at vertex 2"]
+    (tmp_path / "empty.toml").write_text(SCENE.split("[[bodies.parts]]")[0])
+    with pytest.raises(SceneError, match=r"empty.toml:9:3: error: bodies\[1\]: missing field 'parts'"):
+        load(tmp_path / "empty.toml")
+    # a part that starts inside the floor (the lower ball, 0.3 deep) is an overlap
+    (tmp_path / "deep.toml").write_text(SCENE.replace("position = [0, 3]", "position = [0, 0.2]"))
+    with pytest.raises(SceneError, match=r"deep.toml:9:3: error: bodies\[1\]: body 'dumbbell' "
+                                         r"starts overlapping body 'floor'"):
+        load(tmp_path / "deep.toml")
