@@ -100,3 +100,17 @@ def test_distinct_colours_are_every_pixels(seed) -> None:
     want = np.unique(np.concatenate([p[..., :3].reshape(-1, 3) for p in pictures]), axis=0)
     got = palette._unpacked(palette._distinct(pictures))
     assert sorted(map(tuple, got.tolist())) == sorted(map(tuple, want.tolist()))
+
+
+def test_each_colour_maps_to_its_nearest_entry() -> None:
+    """Mapper's entries against the nearest by squared distance in Python's whole numbers (the
+    first of equals), for random colours and a random palette with repeated entries."""
+    rng = np.random.default_rng(7)
+    entries = rng.integers(0, 256, (256, 3), dtype=np.uint8)
+    entries[200:] = entries[:56]                         # ties: the first entry wins
+    pixels = rng.integers(0, 256, (1, 3000, 3), dtype=np.uint8)
+    got = np.asarray(palette.Mapper(entries).mapped(pixels))[0]
+    table = entries.astype(int).tolist()
+    for colour, index in zip(pixels[0].astype(int).tolist(), got.tolist()):
+        d = [sum((c - e) ** 2 for c, e in zip(colour, entry)) for entry in table]
+        assert index == d.index(min(d))
