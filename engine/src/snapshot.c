@@ -28,7 +28,7 @@ typedef struct {
 
 static void put(writer *w, const void *src, size_t size)
 {
-    if (w->p && w->used + size <= w->cap)
+    if (size && w->p && w->used + size <= w->cap) /* (no memcpy of an empty array: NULL) */
         memcpy(w->p + w->used, src, size);
     w->used += size;
 }

@@ -507,3 +507,58 @@ def test_bad_scene_compounds_are_errors_at_their_place(engine, tmp_path):
     with pytest.raises(SceneError, match=r"deep.toml:9:3: error: bodies\[1\]: body 'dumbbell' "
                                          r"starts overlapping body 'floor'"):
         load(tmp_path / "deep.toml")
+
+
+# -- queries, set_pose, sensors, the contact solver ------------------------------------------
+
+def test_queries_see_every_part(engine):
+    """A point in the second part, a box over the bar only, a ray that enters the right ball
+    first: the exact geometry of the parts (the dumbbell at (0, 0), balls r = 0.25 at +-1)."""
+    w = engine.World()
+    d = w.add_compound(DUMBBELL)
+    assert w.query_point((1.2, 0.1)) == [d]            # in the right ball only
+    assert w.query_point((0.0, 0.2)) == []             # above the bar (r = 0.05), between balls
+    assert w.query_box((-0.1, 0.04), (0.1, 0.3)) == [d]   # reaches the bar's rounding
+    assert w.query_box((-0.1, 0.06), (0.1, 0.3)) == []
+    hit = w.cast_ray((3.0, 0.1), (-3.0, 0.1))
+    x = 1 + math.sqrt(0.25 ** 2 - 0.1 ** 2)               # the right ball's rim at y = 0.1
+    assert hit.body == d and hit.point == pytest.approx((x, 0.1), abs=1e-12)
+    assert hit.normal == pytest.approx(((x - 1) / 0.25, 0.1 / 0.25), abs=1e-12)
+    hit = w.cast_ray((0.0, 2.0), (0.0, -2.0))              # down onto the bar's middle
+    assert hit.point == pytest.approx((0.0, 0.05), abs=1e-12) and hit.normal == pytest.approx((0, 1))
+
+
+def test_set_pose_and_sensors_use_the_parts(engine):
+    """A move that would put a ball (not the centre) into a wall is refused; a sensor that
+    only a ball reaches is entered and left at the exact times of that ball."""
+    w = engine.World()
+    wall = w.add_segment((2.0, -5), (2.0, 5))
+    d = w.add_compound(DUMBBELL)
+    with pytest.raises(EngineError, match="overlap"):
+        w.set_pose(d, (0.9, 3.0))                          # the right ball's rim at x = 2.15
+    w.set_pose(d, (0.7, 3.0))                              # the rim at 1.95: free
+    sensor = w.add_polygon([(-0.5, -0.5), (0.5, -0.5), (0.5, 0.5), (-0.5, 0.5)], kind="static",
+                           position=(0.0, 5.0), sensor=True)
+    w.set_pose(d, (-3.0, 5.6), 0.0)   # the balls reach 0.15 into the box's top; the bar clears it
+    w.set_velocity(d, (1.0, 0.0))
+    got = [(e.kind, e.time) for e in w.step_to(8.0) if e.b == sensor or e.a == sensor]
+    assert [k for k, _ in got] == ["sensor", "sensor_leave", "sensor", "sensor_leave"]
+    # each ball (centres x = -2 + t and -4 + t, 0.1 above the top) overlaps while within 0.25
+    # of the top edge's span: |x| <= 0.5 + sqrt(0.25^2 - 0.1^2)
+    s = 0.5 + math.sqrt(0.25 ** 2 - 0.1 ** 2)
+    assert [t for _, t in got] == pytest.approx([2 - s, 2 + s, 4 - s, 4 + s], abs=1e-9)
+    assert wall >= 0
+
+
+def test_a_dumbbell_settles_flat_with_the_contact_solver(engine):
+    """Dropped tilted and spinning, with the sustained-contact solver: it comes to rest lying
+    on both balls (centre at height r, angle a multiple of pi) and sleeps."""
+    w = engine.World(gravity=(0, -10), contact_step=1 / 240)
+    w.add_segment((-20, 0), (20, 0), friction=0.5)
+    d = w.add_compound(DUMBBELL, position=(0, 3), angle=0.3, omega=2, restitution=0.3,
+                       friction=0.5)
+    w.step_to(6.0)
+    x, y, a = w.pose(d)
+    assert y == pytest.approx(0.25, abs=1e-3)
+    assert math.sin(a) == pytest.approx(0.0, abs=1e-3)
+    assert w.asleep(d) or w.velocity(d) == pytest.approx((0, 0, 0), abs=1e-6)

@@ -2,7 +2,7 @@
 
 The core is built again with -fsanitize=address,undefined -fno-sanitize-recover=all (from the
 equation headers of the ordinary build) and scenes run through it, hostile ones included:
-any finding aborts the run. Found before: memmove(NULL, ..., 0) on every step (world.c), and
+any finding aborts the run (compound bodies too). Found before: memmove(NULL, ..., 0) on every step (world.c), and
 coordinates or a tolerance of +-1e308 reaching (int)NaN and a signed overflow in grid.c.
 """
 
@@ -71,6 +71,17 @@ SCENES = textwrap.dedent("""
     w.add_circle((1, 0), 0.1, velocity=(-3, 0))
     w.add_body([(0, -1), (0, 1)], kind="kinematic", position=(2, 0), velocity=(-1, 0))
     run(w)
+    import copy, pickle                             # compound bodies (the parts' tables),
+    for step in (0.0, 1 / 240):                     # a snapshot, queries, the contact solver
+        w = scene(contact_step=step)
+        w.add_compound([([(-0.5, 0.0)], 0.2), ([(0.5, 0.0)], 0.2), ([(-0.5, 0), (0.5, 0)], 0.05)],
+                       position=(0, 2), omega=4, velocity=(3, 0), restitution=0.5)
+        w.add_compound([([(0, 0), (1, 0), (1, 0.4), (0, 0.4)], 0.0), ([(0, 0.4), (0.4, 0.4), (0, 1.2)], 0.1)],
+                       position=(-3, 1), omega=-2, restitution=0.5)
+        w.add_compound([([(1, 0.5), (2, 0.5)], 0.0), ([(1.5, 1.0)], 0.3)], kind="static")
+        run(w, 1.0)
+        w2 = pickle.loads(pickle.dumps(w)); run(w2, 3.0)
+        w.query_point((0, 1)); w.query_box((-5, 0), (5, 5)); w.cast_ray((-5, 1), (5, 1))
     print("ok")
 """)
 
