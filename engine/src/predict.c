@@ -976,6 +976,22 @@ double contact_gap_accel(m2c_world *w, int i, int j, const event *ev, int *rotat
     return 2 * c[2];
 }
 
+/* A part's bounding circle now: its centre (the mean of its vertices, turned to the world
+ * frame, from the body's reference point) into c, its radius returned (rounding included). */
+static double part_circle(const m2c_world *w, const body *P, const snap *s, double c[2])
+{
+    double m[2] = {0.0, 0.0}, r = 0.0;
+    const double *v = &w->verts[2 * P->vert];
+    for (int k = 0; k < P->nvert; k++) {
+        m[0] += v[2 * k] / P->nvert;
+        m[1] += v[2 * k + 1] / P->nvert;
+    }
+    for (int k = 0; k < P->nvert; k++)
+        r = fmax(r, hypot(v[2 * k] - m[0], v[2 * k + 1] - m[1]));
+    world_vector(s, m, c);
+    return r * (1 + 1e-12) + P->radius;
+}
+
 /* The features of a pair of shapes (single-shape bodies, or one part of each: f->A, f->B). */
 static void predict_parts(feat *f, contact *c)
 {
@@ -1072,11 +1088,24 @@ int predict_pair(m2c_world *w, int i, int j, contact *c)
         predict_parts(&f, c);
         return c->improved;
     }
-    /* a compound: every pair of parts, the earliest contact of any (each part as a body) */
+    /* a compound: every pair of parts, the earliest contact of any (each part as a body),
+     * a pair of parts skipped when their bounding circles cannot meet before the best yet */
+    double reach_v = fabs(f.a.vx - f.b.vx) + fabs(f.a.vy - f.b.vy);
+    double reach_a = 0.5 * (fabs(f.a.ax - f.b.ax) + fabs(f.a.ay - f.b.ay));
     for (int p = 0; p < A->nparts; p++) {
         body pa = part_view(w, A, p);
+        double ca[2], ra = part_circle(w, &pa, &f.a, ca);
         for (int q = 0; q < B->nparts; q++) {
             body pb = part_view(w, B, q);
+            double cb[2], rb = part_circle(w, &pb, &f.b, cb);
+            double T = c->t - w->now;
+            double turn_a = fmin(2.0, fabs(f.a.w) * T) * hypot(ca[0], ca[1]);
+            double turn_b = fmin(2.0, fabs(f.b.w) * T) * hypot(cb[0], cb[1]);
+            double need = ra + rb + (reach_v + reach_a * T) * T + turn_a + turn_b
+                          + w->cfg.tolerance;
+            double dx = f.rx + ca[0] - cb[0], dy = f.ry + ca[1] - cb[1];
+            if (dx * dx + dy * dy > need * need * (1 + 1e-12))
+                continue;
             f.A = &pa;
             f.B = &pb;
             f.oa = pa.vert - A->vert;

@@ -547,6 +547,14 @@ def test_set_pose_and_sensors_use_the_parts(engine):
     # of the top edge's span: |x| <= 0.5 + sqrt(0.25^2 - 0.1^2)
     s = 0.5 + math.sqrt(0.25 ** 2 - 0.1 ** 2)
     assert [t for _, t in got] == pytest.approx([2 - s, 2 + s, 4 - s, 4 + s], abs=1e-9)
+    # 0.1 lower the bar overlaps too: one body inside from the right ball's entry (x = -0.75)
+    # to the left ball's exit (x = 0.75), whichever parts overlap in between
+    w.set_pose(d, (-3.0, 5.5), 0.0)
+    w.set_velocity(d, (1.0, 0.0))
+    t0 = w.time
+    got = [(e.kind, e.time - t0) for e in w.step_to(t0 + 8.0) if sensor in (e.a, e.b)]
+    assert got == [("sensor", pytest.approx(1.25, abs=1e-9)),
+                   ("sensor_leave", pytest.approx(4.75, abs=1e-9))]
     assert wall >= 0
 
 
@@ -562,3 +570,21 @@ def test_a_dumbbell_settles_flat_with_the_contact_solver(engine):
     assert y == pytest.approx(0.25, abs=1e-3)
     assert math.sin(a) == pytest.approx(0.0, abs=1e-3)
     assert w.asleep(d) or w.velocity(d) == pytest.approx((0, 0, 0), abs=1e-6)
+
+
+def test_a_static_compound_made_dynamic_takes_the_parts_mass(engine):
+    """set_kind: the L's mass 4, inertia 25/6 and centre (3/4, 5/4) from its parts; the parts
+    follow the reference point; then it falls as a whole."""
+    w = engine.World(gravity=(0, -10))
+    lb = w.add_compound(L_SHAPE, kind="static", position=(1, 1))
+    assert w.pose(lb) == (1.0, 1.0, 0.0) and w.bodies[lb].parts[0][0][0] == (0.0, 0.0)
+    w.set_kind(lb, "dynamic")
+    info = w.bodies[lb]
+    assert (info.mass, info.inertia) == pytest.approx((4.0, 25 / 6), rel=1e-12)
+    assert w.pose(lb) == pytest.approx((1.75, 2.25, 0.0))
+    assert info.parts[0][0][0] == pytest.approx((-0.75, -1.25))
+    assert info.parts[1][0][2] == pytest.approx((1 - 0.75, 3 - 1.25))
+    w.set_mass(lb, 8.0)                                    # the inertia scales with it
+    assert w.bodies[lb].inertia == pytest.approx(50 / 6, rel=1e-12)
+    w.step_to(1.0)
+    assert w.pose(lb)[1] == pytest.approx(2.25 - 5.0)
