@@ -1,13 +1,11 @@
 """One engine build against another on the same scenes, in one run: did a change to the C core
-slow the single-shape paths? Each scene runs in its own process per build (the library is chosen
-with MAX2CODE_ENGINE_LIB), the builds alternating, best of --repeat; the ratio is this
+slow the single-shape paths? Each scene runs in its own process per checkout (the baseline's
+with its own max2code package first on PYTHONPATH, so its binding and its library agree; each
+builds its engine on first use), the two alternating, best of --repeat; the ratio is this
 checkout's time over the baseline's (< 1: faster).
 
-    python bench/engine_ab.py --base /path/to/baseline/libmax2code_engine.so [--repeat 3]
-
-A baseline library: a checkout of the commit to compare with, built by importing its
-max2code.engine (the path is printed by `python -c "from max2code.engine.build import library;
-print(library())"` run in that checkout).
+    git worktree add /tmp/base origin/main
+    python bench/engine_ab.py --base /tmp/base [--repeat 3]
 """
 
 from __future__ import annotations
@@ -50,27 +48,29 @@ print(json.dumps({"seconds": time.perf_counter() - t0, "events": w.stats()["even
 SCENES = (("balls", 60.0), ("boxes", 6.0), ("balls-gravity", 30.0))
 
 
-def run(lib: str | None, name: str, T: float) -> dict:
+def run(checkout: Path, name: str, T: float) -> dict:
     env = dict(os.environ)
     env.pop("MAX2CODE_ENGINE_LIB", None)
-    if lib:
-        env["MAX2CODE_ENGINE_LIB"] = lib
-    out = subprocess.run([sys.executable, "-c", SCENE, name, str(T)], capture_output=True,
-                         text=True, env=env, cwd=ROOT, check=True).stdout
-    return json.loads(out.splitlines()[-1])
+    env["PYTHONPATH"] = os.pathsep.join([str(checkout)] + ([env["PYTHONPATH"]] if env.get("PYTHONPATH") else []))
+    proc = subprocess.run([sys.executable, "-c", SCENE, name, str(T)], capture_output=True,
+                          text=True, env=env, cwd=checkout)
+    if proc.returncode != 0:
+        raise SystemExit(f"{checkout}: scene {name} failed:\n{proc.stderr[-2000:]}")
+    return json.loads(proc.stdout.splitlines()[-1])
 
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--base", required=True, help="the baseline build's libmax2code_engine.so")
+    ap.add_argument("--base", required=True, type=Path,
+                    help="a checkout of the baseline commit (git worktree add DIR COMMIT)")
     ap.add_argument("--repeat", type=int, default=3)
     args = ap.parse_args()
     print(f"{'scene':16} {'events':>8} {'base s':>8} {'this s':>8} {'this/base':>9}")
     for name, T in SCENES:
         base, this = [], []
         for _ in range(args.repeat):
-            base.append(run(args.base, name, T))
-            this.append(run(None, name, T))
+            base.append(run(args.base.resolve(), name, T))
+            this.append(run(ROOT, name, T))
         b = min(r["seconds"] for r in base)
         t = min(r["seconds"] for r in this)
         assert base[0]["events"] == this[0]["events"], (name, base[0], this[0])
