@@ -213,6 +213,12 @@ M2C_API int m2c_world_apply_impulse(m2c_world *w, int body, double jx, double jy
  * m2c_world_set_mass moves the reference point): the count, or -1. */
 M2C_API int m2c_world_vertices(const m2c_world *w, int body, double *out, int capacity);
 
+/* A body's parts (1 for a single shape): their count, or -1; counts[k] and radii[k] (k <
+ * capacity) get part k's number of vertices and rounding radius (its vertices are the next
+ * counts[k] of m2c_world_vertices). */
+M2C_API int m2c_world_parts(const m2c_world *w, int body, int *counts, double *radii,
+                            int capacity);
+
 /* A body's flags (M2C_FLAG_*), from now on. */
 M2C_API int m2c_world_set_flags(m2c_world *w, int body, int flags);
 

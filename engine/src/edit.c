@@ -374,3 +374,15 @@ int m2c_world_vertices(const m2c_world *w, int i, double *out, int capacity)
     }
     return b->nvert;
 }
+
+int m2c_world_parts(const m2c_world *w, int i, int *counts, double *radii, int capacity)
+{
+    if (i < 0 || i >= w->n)
+        return -1;
+    const body *b = &w->b[i];
+    for (int k = 0; k < b->nparts && k < capacity; k++) {
+        counts[k] = w->parts[b->part + k].nvert;
+        radii[k] = w->parts[b->part + k].radius;
+    }
+    return b->nparts;
+}

@@ -370,8 +370,13 @@ int main(void)
             printf("hit %d %.17g %.17g %.17g\n", id, ev[k].time, ev[k].px, ev[k].py);
             break;
         }
-    double v[12];
+    double v[12], radii[4];
+    int counts[4];
     printf("vertices %d\n", m2c_world_vertices(w, id, v, 6));
+    int np = m2c_world_parts(w, id, counts, radii, 4);
+    printf("parts %d %d %g %d %g %d %g\n", np, counts[0], radii[0], counts[1], radii[1],
+           counts[2], radii[2]);
+    printf("floor %d\n", m2c_world_parts(w, 0, counts, radii, 4));
 
     /* misuse: no parts, a non-convex part, a shape given twice */
     m2c_body_def bad = m2c_default_body_def();
@@ -410,6 +415,8 @@ def test_the_c_api_builds_compounds_and_names_misuse(engine, tmp_path):
     assert float(t) == pytest.approx(math.sqrt(2 * (3 - math.sin(0.3) - 0.25) / 10), abs=1e-9)
     assert (float(px), float(py)) == pytest.approx((-math.cos(0.3), 0.0), abs=1e-7)
     assert lines["vertices"] == "4"
+    assert lines["parts"] == "3 1 0.25 1 0.25 2 0.05"
+    assert lines["floor"] == "1"
     assert lines["empty"].startswith("-1 ") and "at least one part" in lines["empty"]
     assert lines["concave"] == "-1 part 1 of 2: a polygon must be convex (no three vertices in a line)"
     assert lines["twice"].startswith("-1 ") and "leave nvertices" in lines["twice"]
