@@ -278,3 +278,32 @@ def test_page_stops_drawing_removed_bricks(browser):
         assert errors == []
     finally:
         served.stop()
+
+
+def test_page_draws_compound_bodies(browser):
+    """examples/scenes/compound.toml: every compound reaches the page with its parts (the post
+    2, the dumbbell 3, the L 2), and the dumbbell's bar is drawn, in its fill, at the centre of
+    mass where the server's segments put it (a point only the bar covers)."""
+    from conftest import ROOT
+
+    served = Served(ROOT / "examples" / "scenes" / "compound.toml")
+    try:
+        page, errors = open_page(browser, served)
+        page.wait_for_timeout(300)
+        shapes = page.evaluate("""Object.values(m2c.state.bodies).filter((b) => b.shape.parts)
+            .map((b) => [b.name, b.fill, b.shape.parts.length])""")
+        assert sorted((name, n) for name, _, n in shapes) == [("L", 2), ("dumbbell", 3), ("post", 2)]
+        (i, fill), = page.evaluate("""Object.values(m2c.state.bodies)
+            .filter((b) => b.name === 'dumbbell').map((b) => [b.id, b.fill])""")
+        t = page.evaluate("m2c.freeze(m2c.serverNow())")
+        n = page.evaluate("m2c.state.n")
+        served.catch_up(n)
+        from PIL import Image
+        image = Image.open(io.BytesIO(page.locator("#view").screenshot())).convert("RGB")
+        x, y, _ = served.watcher.pose(i, t, n)
+        px, py = page.evaluate(f"m2c.toPixel({x!r}, {y!r})")
+        assert image.getpixel((int(px), int(py))) == hex_rgb(fill), (t, x, y)
+        page.evaluate("m2c.thaw()")
+        assert errors == []
+    finally:
+        served.stop()
