@@ -595,3 +595,20 @@ def test_a_static_compound_made_dynamic_takes_the_parts_mass(engine):
     assert w.bodies[lb].inertia == pytest.approx(50 / 6, rel=1e-12)
     w.step_to(1.0)
     assert w.pose(lb)[1] == pytest.approx(2.25 - 5.0)
+
+
+def test_dumbbells_stack_ball_on_ball_with_the_contact_solver(engine):
+    """Three dumbbells dropped in a column, each 0.1 right of the one below: they come to rest
+    ball on ball, their centres sqrt(0.5^2 - 0.1^2) apart in height (touching balls of radius
+    0.25), flat, and asleep."""
+    w = engine.World(gravity=(0, -10), contact_step=1 / 240)
+    w.add_segment((-10, 0), (10, 0), friction=0.5)
+    ids = [w.add_compound(DUMBBELL, position=(0.1 * k, 0.3 + 0.6 * k), restitution=0.0,
+                          friction=0.5) for k in range(3)]
+    w.step_to(3.0)
+    rise = math.sqrt(0.5 ** 2 - 0.1 ** 2)
+    for k, i in enumerate(ids):
+        x, y, a = w.pose(i)
+        assert (x, y) == pytest.approx((0.1 * k, 0.25 + k * rise), abs=2e-3)
+        assert math.sin(a) == pytest.approx(0.0, abs=1e-3)
+        assert w.asleep(i)
