@@ -100,11 +100,14 @@ class GlyphCache:
         right = max([pen] + [pen_x + g.left + g.mask.shape[1] for g, pen_x in glyphs])
         bottom = max(self.ascent + g.top + g.mask.shape[0] for g, _ in glyphs)
         mask = np.zeros((bottom - top, right - left), dtype=np.uint8)
+        reached = 0   # columns left of this are the only ones drawn on so far
         for g, pen_x in glyphs:
             if g.mask.size:
                 x, y = pen_x + g.left - left, self.ascent + g.top - top
                 region = mask[y:y + g.mask.shape[0], x:x + g.mask.shape[1]]
-                region[...] = _over(region, g.mask)
+                # (over nothing, a glyph is itself: a copy, where the blend was half the time)
+                region[...] = g.mask if x >= reached else _over(region, g.mask)
+                reached = max(reached, x + g.mask.shape[1])
         return TextMask(mask, left, top)
 
 

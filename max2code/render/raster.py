@@ -438,8 +438,10 @@ def draw_contacts(canvas: Canvas, contacts: Sequence[Contact], size: float) -> N
     outer, inner = size + CONTACT_WIDTH / 2, max(size - CONTACT_WIDTH / 2, 0.0)
     length = CONTACT_REACH * size
     pad = outer + 1
+    w, h = canvas.view.width, canvas.view.height
     for x, y, turn in _distinct_contacts(contacts, canvas.view):
-        if canvas.box(x - reach, y - reach, x + reach + 1, y + reach + 1) is None:
+        # (canvas.box(x - reach, y - reach, x + reach + 1, y + reach + 1) is None, inline)
+        if x + reach + 1 <= 0 or y + reach + 1 <= 0 or x - reach >= w or y - reach >= h:
             continue
         cell = (int(x // (2 * reach)), int(y // (2 * reach)))
         if cell not in cells:
