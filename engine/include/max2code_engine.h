@@ -278,6 +278,9 @@ M2C_API void m2c_world_stats(const m2c_world *w, m2c_stats *out);
 M2C_API int m2c_world_certificate(m2c_world *w, int body, double *residual);
 /* 1 while the body is moved by the contact solver (sustained contact), else 0. */
 M2C_API int m2c_world_solving(const m2c_world *w, int body);
+/* The overlap a pair held by the contact solver may keep (its exact events come beyond it):
+ * 10,000 tolerances with the solver on, else 0 (docs/engine-contact.md). */
+M2C_API double m2c_world_contact_slop(const m2c_world *w);
 M2C_API const char *m2c_world_error(const m2c_world *w);
 /* cdef-end */
 

@@ -18,7 +18,10 @@
  *    the bodies' motion segments (constant velocity and spin until the next tick), evaluated
  *    exactly like every other motion, and every solver body is predicted again: any contact the
  *    linearised solve misses (a rotating corner's arc) is still an exact event, so nothing
- *    overlaps beyond the tolerance and nothing tunnels;
+ *    tunnels. A pair the solver holds may overlap by the slop (solver_slop, 1e-5 m at the
+ *    default tolerance: Box2D's linear slop) before that event comes -- the solve meets a jammed
+ *    pile's contacts only to about 1e-4 m/s -- and the overlap is pushed out again by a velocity
+ *    of its own (push_sweep: split impulses) that the next tick takes off;
  *  - fast contacts (closing faster than v_soft) stay exact impacts with restitution;
  *  - a solver body with no contact for 3 ticks flies again (exact free flight);
  *  - an island (solver bodies linked by contacts) sleeps only when all of its bodies have been
@@ -28,8 +31,9 @@
  *    Otherwise it keeps moving: it tips, slides, rolls or falls.
  *
  * Energy: the semi-implicit step loses m |g|^2 h^2 / 2 per tick in flight; inelastic contact
- * impulses and friction only remove energy; the one source is pushing an overlap (rounding,
- * never beyond the tolerance) back out, at most m |g| tolerance per contact.
+ * impulses and friction only remove energy; the one source is pushing an overlap (never deeper
+ * than the slop) back out, which raises a body by at most the slop: m |g| slop per contact
+ * (the push's velocity is no momentum: it is taken off at the next tick).
  */
 #include <float.h>
 #include <stdint.h>
@@ -44,10 +48,15 @@
 #define SLEEP_TIME 0.25       /* seconds slower than v_sleep before an island may sleep */
 #define CERT_RESIDUAL 1e-6    /* certificate: unbalanced force / weight (and torque / (weight rho)) */
 #define CERT_ITERATIONS 4000
+#define CERT_OMEGA 1.8        /* over-relaxation of the certificate's normal forces (SOR) */
 #define CERT_WAIT_BODIES 25   /* a failed certificate waits 0.125 s more per this many bodies */
-#define WORK_BUDGET 40000     /* PGS contact updates per tick (iterations = budget / contacts) */
+#define WORK_BUDGET 200000    /* PGS contact updates per tick (iterations = budget / contacts) */
 #define MIN_ITERATIONS 10
-#define MAX_ITERATIONS 400
+#define MAX_ITERATIONS 2000
+#define CONVERGED 1e-9        /* a sweep that changes no impulse by more than this of m |g| h */
+#define SLOP_TOLERANCES 1e4   /* solver_slop */
+#define CONE_SLACK 0.05       /* solver_in_cone */
+#define PUSH_OUT 0.8          /* of an overlap pushed out per tick (push_sweep) */
 
 typedef struct {
     int a, b;                 /* a: in the solve; b: in the solve too when free_b */
@@ -61,6 +70,7 @@ typedef struct {
     double ln, lt;            /* accumulated impulses */
     double bias;              /* the least relative normal velocity allowed */
     double mu;
+    double lp, push;          /* the push-out: its impulse and target speed (push_out) */
 } cp;
 
 struct solver {
@@ -73,6 +83,8 @@ struct solver {
     int *mark;                /* per body: island membership (certificates) */
     int *flag;                /* per body: 1 touches, 2 supported, 4 touches a mover */
     double *v;                /* per body: vx, vy, w during a solve */
+    double *vp;               /* per body: the push-out's velocity in its motion since the tick */
+    unsigned *pc;             /* per body: its motion counter when the tick set that motion */
     int bcap;
     cp *c, *prev;
     int nc, capc, nprev, capprev;
@@ -89,6 +101,22 @@ double solver_step(const m2c_world *w)
 {
     double h = w->cfg.contact_step;
     return h > 0 ? h : -1.0; /* opt-in until the pile storms are fixed (DEFAULT_STEP: 1/240) */
+}
+
+/* The overlap a pair the solver holds may keep without an exact event (predict.c's
+ * feature_slop): SLOP_TOLERANCES tolerances (1e-5 m at the default 1e-9), as Box2D's linear
+ * slop; the ticks push any overlap out again. 0 with the solver off. */
+double solver_slop(const m2c_world *w)
+{
+    return solver_step(w) > 0 ? SLOP_TOLERANCES * w->cfg.tolerance : 0.0;
+}
+
+/* The gap within which a contact counts for a certificate (and for support): 1,000
+ * tolerances, or the slop where that is larger (a pair the solver holds may sit that far in
+ * or out of touch from one tick to the next). */
+static double cert_gap(const m2c_world *w)
+{
+    return fmax(1e3 * w->cfg.tolerance, solver_slop(w));
 }
 
 static double glen(const body *b)
@@ -133,6 +161,12 @@ static int ensure(m2c_world *w)
         if (flag)
             s->flag = flag;
         double *v = realloc(s->v, sizeof(double) * 3 * (size_t)cap);
+        double *vp = realloc(s->vp, sizeof(double) * 3 * (size_t)cap);
+        if (vp)
+            s->vp = vp;
+        unsigned *pc = realloc(s->pc, sizeof(unsigned) * (size_t)cap);
+        if (pc)
+            s->pc = pc;
         if (list)
             s->list = list;
         if (slot)
@@ -147,7 +181,7 @@ static int ensure(m2c_world *w)
             s->mark = mark;
         if (v)
             s->v = v;
-        if (!list || !slot || !calm || !idle || !uf || !mark || !flag || !v)
+        if (!list || !slot || !calm || !idle || !uf || !mark || !flag || !v || !vp || !pc)
             return -1;
         for (int i = s->bcap; i < cap; i++) {
             s->slot[i] = -1;
@@ -172,6 +206,8 @@ void solver_free(m2c_world *w)
     free(s->mark);
     free(s->flag);
     free(s->v);
+    free(s->vp);
+    free(s->pc);
     free(s->c);
     free(s->prev);
     free(s->hash);
@@ -216,6 +252,8 @@ int solver_adopt(m2c_world *w, int k)
     s->list[s->n++] = k;
     s->calm[k] = 0.0;
     s->idle[k] = 0;
+    s->vp[3 * k] = s->vp[3 * k + 1] = s->vp[3 * k + 2] = 0.0;
+    s->pc[k] = K->counter;
     s->uf[k] = k; /* (an island of its own until the next tick links it) */
     if (s->n == 1 || !(s->t_next > w->now)) {
         double h = solver_step(w);
@@ -269,6 +307,8 @@ void solver_save(const m2c_world *w, void (*put)(void *, const void *, size_t), 
     for (int m = 0; m < s->n; m++) {
         put(ctx, &s->calm[s->list[m]], sizeof(double));
         put(ctx, &s->idle[s->list[m]], sizeof(int));
+        put(ctx, &s->vp[3 * s->list[m]], 3 * sizeof(double));
+        put(ctx, &s->pc[s->list[m]], sizeof(unsigned));
     }
     put(ctx, s->c, sizeof(cp) * (size_t)s->nc);
 }
@@ -296,7 +336,9 @@ int solver_load(m2c_world *w, int (*get)(void *, void *, size_t), void *ctx)
     }
     for (int m = 0; m < s->n; m++)
         if (get(ctx, &s->calm[s->list[m]], sizeof(double)) != 0
-            || get(ctx, &s->idle[s->list[m]], sizeof(int)) != 0)
+            || get(ctx, &s->idle[s->list[m]], sizeof(int)) != 0
+            || get(ctx, &s->vp[3 * s->list[m]], 3 * sizeof(double)) != 0
+            || get(ctx, &s->pc[s->list[m]], sizeof(unsigned)) != 0)
             return -1;
     for (int k = 0; k < counts[1]; k++) {
         cp c;
@@ -335,8 +377,11 @@ static int push_contact(m2c_world *w, cp *c)
     return 0;
 }
 
-/* Is direction d in the outward normal cone of vertex v of body B (at snapshot sn)? */
-static int in_cone(const m2c_world *w, const body *B, const snap *sn, int v, const double d[2])
+/* Is direction d in the outward normal cone of vertex v of body B (at snapshot sn), or within
+ * CONE_SLACK (a sine) of it? The slack keeps a box's corner on a floor when the box tilts a
+ * little the other way (at 1e-6 the lifted corner lost its contact, in the ticks and in
+ * predict.c alike, and a column sank); a side met at right angles stays out. */
+int solver_in_cone(const m2c_world *w, const body *B, const snap *sn, int v, const double d[2])
 {
     if (B->nvert == 1)
         return 1;
@@ -353,7 +398,7 @@ static int in_cone(const m2c_world *w, const body *B, const snap *sn, int v, con
         double Q[2];
         world_point(sn, &w->verts[2 * (B->vert + nb[k])], Q);
         double e[2] = {P[0] - Q[0], P[1] - Q[1]};
-        if (d[0] * e[0] + d[1] * e[1] < -1e-6 * hypot(e[0], e[1]))
+        if (d[0] * e[0] + d[1] * e[1] < -CONE_SLACK * hypot(e[0], e[1]))
             return 0;
     }
     return 1;
@@ -446,7 +491,7 @@ static void gen_parts(m2c_world *w, int i, int j, const body *P0, const body *P1
                     continue;
                 double out[2] = {sgn * D[1], -sgn * D[0]}; /* the edge's outward normal */
                 double d[2] = {-out[0], -out[1]};          /* from the vertex into the edge */
-                if (!in_cone(w, P, sp, v, d))
+                if (!solver_in_cone(w, P, sp, v, d))
                     continue;
                 double p[2] = {X[0] - out[0] * P->radius, X[1] - out[1] * P->radius};
                 /* normal from i towards j */
@@ -472,7 +517,7 @@ static void gen_parts(m2c_world *w, int i, int j, const body *P0, const body *P1
                 if (gap > margin)
                     continue;
                 double n[2] = {d[0] / dist, d[1] / dist}, m[2] = {-n[0], -n[1]};
-                if (!in_cone(w, B[0], &sn[0], v, n) || !in_cone(w, B[1], &sn[1], u, m))
+                if (!solver_in_cone(w, B[0], &sn[0], v, n) || !solver_in_cone(w, B[1], &sn[1], u, m))
                     continue;
                 /* the edge features cover the interior of a cone's sides: skip when the normal
                  * is an edge's normal (the vertex-edge contact is already there) */
@@ -612,7 +657,7 @@ static void rel_velocity(const struct solver *s, const cp *c, double out[2])
 }
 
 /* One sweep; returns the largest impulse change. */
-static double sweep(struct solver *s, const m2c_world *w, cp *c, int nc, int friction)
+static double sweep(struct solver *s, const m2c_world *w, cp *c, int nc, int friction, double omega)
 {
     double worst = 0.0;
     for (int k = 0; k < nc; k++) {
@@ -634,7 +679,7 @@ static double sweep(struct solver *s, const m2c_world *w, cp *c, int nc, int fri
         }
         rel_velocity(s, q, u);
         double vn = u[0] * q->n[0] + u[1] * q->n[1];
-        double nl = q->ln + (q->bias - vn) * q->mn;
+        double nl = q->ln + omega * (q->bias - vn) * q->mn;
         if (nl < 0)
             nl = 0;
         double d = nl - q->ln;
@@ -647,12 +692,49 @@ static double sweep(struct solver *s, const m2c_world *w, cp *c, int nc, int fri
     return worst;
 }
 
+/* The push-out (split impulses, as Box2D v2 and Bullet): an overlap is pushed out by
+ * PUSH_OUT of its depth per tick (a gap may close) through a velocity
+ * vp of its own, solved like the normal impulses (no friction) but kept out of the bodies'
+ * momentum: it moves them until the next tick, which takes it off again. Pushing the overlap
+ * out through the real velocity (Baumgarte) kept it as motion: a column of boxes swayed and a
+ * pile boiled, never calm enough to sleep, and energy rose. Returns the largest change. */
+static double push_sweep(struct solver *s, const m2c_world *w, cp *c, int nc)
+{
+    double worst = 0.0;
+    for (int k = 0; k < nc; k++) {
+        cp *q = &c[k];
+        const body *A = &w->b[q->a], *B = &w->b[q->b];
+        double *va = &s->vp[3 * q->a], *vb = q->free_b ? &s->vp[3 * q->b] : NULL;
+        double vn = -(va[0] * q->n[0] + va[1] * q->n[1] + va[2] * cross(q->ra, q->n));
+        if (vb)
+            vn += vb[0] * q->n[0] + vb[1] * q->n[1] + vb[2] * cross(q->rb, q->n);
+        double nl = q->lp + (q->push - vn) * q->mn;
+        if (nl < 0)
+            nl = 0;
+        double d = nl - q->lp;
+        if (d == 0.0)
+            continue;
+        q->lp = nl;
+        double P[2] = {d * q->n[0], d * q->n[1]};
+        va[0] -= P[0] * A->inv_mass;
+        va[1] -= P[1] * A->inv_mass;
+        va[2] -= cross(q->ra, P) * A->inv_inertia;
+        if (vb) {
+            vb[0] += P[0] * B->inv_mass;
+            vb[1] += P[1] * B->inv_mass;
+            vb[2] += cross(q->rb, P) * B->inv_inertia;
+        }
+        worst = fmax(worst, fabs(d));
+    }
+    return worst;
+}
+
 /* Iterate until the largest impulse change is below eps or `limit` sweeps. */
 static int pgs(struct solver *s, const m2c_world *w, cp *c, int nc, int limit, double eps)
 {
     int it;
     for (it = 0; it < limit; it++)
-        if (sweep(s, w, c, nc, 1) <= eps)
+        if (sweep(s, w, c, nc, 1, 1.0) <= eps)
             break;
     return it;
 }
@@ -800,7 +882,7 @@ static double certify(m2c_world *w, const int *bodies, int nb)
     int keep_nc = s->nc;      /* the tick's contacts stay below: work above them */
     for (int m = 0; m < nb; m++)
         s->mark[bodies[m]] = 1;
-    double gap = 1e3 * w->cfg.tolerance;
+    double gap = cert_gap(w);
     gen_ctx g = {w, gap, 1, 0};
     for (int m = 0; m < nb; m++)
         grid_neighbours(w, bodies[m], gen_visit, &g);
@@ -844,7 +926,7 @@ static double certify(m2c_world *w, const int *bodies, int nb)
                 for (int k = 0; k < nc; k++)
                     apply(s, w, &c[k], c[k].ln, c[k].lt);
                 for (int r = 0; r < 20; r++)
-                    sweep(s, w, c, nc, friction);
+                    sweep(s, w, c, nc, friction, CERT_OMEGA);
                 result = residual(w, c, nc, bodies, nb);
                 if (result <= CERT_RESIDUAL)
                     break;
@@ -910,7 +992,7 @@ int m2c_world_certificate(m2c_world *w, int i, double *res)
         return -1;
     int *members = w->members;
     members[0] = i;
-    int nb = flood(w, members, 1, 1e3 * w->cfg.tolerance, asleep_dynamic);
+    int nb = flood(w, members, 1, cert_gap(w), asleep_dynamic);
     double r = certify(w, members, nb);
     if (res)
         *res = r;
@@ -926,7 +1008,7 @@ int m2c_world_certificate(m2c_world *w, int i, double *res)
  * Returns the new count. */
 static int add_sleepers(m2c_world *w, int *members, int nb)
 {
-    return flood(w, members, nb, 1e3 * w->cfg.tolerance, asleep_dynamic);
+    return flood(w, members, nb, cert_gap(w), asleep_dynamic);
 }
 
 static void island_sleep(m2c_world *w, int root, const int *bodies, int nb)
@@ -958,20 +1040,25 @@ void solver_tick(m2c_world *w)
         int i = s->list[m];
         body *B = &w->b[i];
         body_commit(B, w->now);
-        s->v[3 * i] = B->m.vx + B->gx * h;
-        s->v[3 * i + 1] = B->m.vy + B->gy * h;
-        s->v[3 * i + 2] = B->m.w;
+        /* the last tick's push-out off again, unless an event changed the motion since */
+        const double *vp = &s->vp[3 * i];
+        int kept = s->pc[i] == B->counter;
+        s->v[3 * i] = B->m.vx - (kept ? vp[0] : 0.0) + B->gx * h;
+        s->v[3 * i + 1] = B->m.vy - (kept ? vp[1] : 0.0) + B->gy * h;
+        s->v[3 * i + 2] = B->m.w - (kept ? vp[2] : 0.0);
     }
     remember(s);
     double slop = 10 * w->cfg.tolerance;
-    gen_ctx g = {w, 4 * slop, 0, 0};
+    gen_ctx g = {w, 4 * solver_slop(w), 0, 0};
     int n0 = s->n;
     for (int m = 0; m < n0; m++)
         grid_neighbours(w, s->list[m], gen_visit, &g);
     double scale = 0.0;
     for (int k = 0; k < s->nc; k++) {
         cp *q = &s->c[k];
-        q->bias = q->gap > slop ? -(q->gap - slop) / h : q->gap < 0 ? -q->gap / h : 0.0;
+        q->bias = q->gap > slop ? -(q->gap - slop) / h : 0.0;
+        q->push = q->gap > 0 ? -q->gap / h : -PUSH_OUT * q->gap / h;
+        q->lp = 0.0;
         const cp *p = recall(s, q);
         if (p) {
             q->ln = p->ln;
@@ -982,7 +1069,14 @@ void solver_tick(m2c_world *w)
     }
     int limit = s->nc > 0 ? WORK_BUDGET / s->nc : 0;
     limit = limit < MIN_ITERATIONS ? MIN_ITERATIONS : limit > MAX_ITERATIONS ? MAX_ITERATIONS : limit;
-    w->st.solver_iterations += pgs(s, w, s->c, s->nc, limit, 1e-12 * scale);
+    w->st.solver_iterations += pgs(s, w, s->c, s->nc, limit, CONVERGED * scale);
+    for (int m = 0; m < s->n; m++) {
+        double *vp = &s->vp[3 * s->list[m]];
+        vp[0] = vp[1] = vp[2] = 0.0;
+    }
+    for (int it = 0; it < limit; it++)
+        if (push_sweep(s, w, s->c, s->nc) <= CONVERGED * scale)
+            break;
     /* islands; which bodies touch anything */
     for (int m = 0; m < s->n; m++) {
         int i = s->list[m];
@@ -1001,7 +1095,7 @@ void solver_tick(m2c_world *w)
             const body *B = &w->b[q->b];
             int moving = B->kind == M2C_KINEMATIC ? (B->m.vx != 0 || B->m.vy != 0 || B->m.w != 0)
                                                   : (B->kind == M2C_DYNAMIC && B->state != ASLEEP);
-            if (q->gap <= 1e3 * w->cfg.tolerance)
+            if (q->gap <= cert_gap(w))
                 s->flag[q->a] |= moving ? 4 : 2;
         }
     }
@@ -1010,11 +1104,12 @@ void solver_tick(m2c_world *w)
     for (int m = 0; m < s->n; m++) {
         int i = s->list[m];
         body *B = &w->b[i];
-        B->m.vx = s->v[3 * i];
-        B->m.vy = s->v[3 * i + 1];
-        B->m.w = s->v[3 * i + 2];
+        B->m.vx = s->v[3 * i] + s->vp[3 * i];
+        B->m.vy = s->v[3 * i + 1] + s->vp[3 * i + 1];
+        B->m.w = s->v[3 * i + 2] + s->vp[3 * i + 2];
         B->m.ax = B->m.ay = 0.0;
         B->counter++;
+        s->pc[i] = B->counter;
         s->idle[i] = (s->flag[i] & 1) ? 0 : s->idle[i] + 1;
         double sp = surface_speed(B, &s->v[3 * i]);
         s->calm[i] = sp <= sleep_speed(w, B) ? s->calm[i] + h : 0.0;

@@ -128,6 +128,8 @@ typedef struct {
     double solver_h;        /* a pair the contact solver holds: the time to its next tick
                                (touching now is its business while the gap stays within the
                                tolerance until then); else 0 */
+    double shrink;          /* the overlap the pair may keep (feature_slop): its contact
+                               surface lies that far in; 0: exact */
 } feat;
 
 /* A pair in sustained contact (contact_solver.c): one side in the solver, the other in it
@@ -226,14 +228,14 @@ static void fill_motion(const feat *f, double p[], int w2)
 static void fill_pp(const feat *f, double p[PP_NPARAMS], double dr)
 {
     fill_motion(f, p, W2);
-    p[R1] = f->A->radius + dr;
+    p[R1] = f->A->radius + dr - f->shrink;
     p[R2] = f->B->radius;
 }
 
 static void fill_pl(const feat *f, double p[PL_NPARAMS], double dr)
 {
     fill_motion(f, p, WL);
-    p[RR] = f->R + dr;
+    p[RR] = f->R + dr - f->shrink;
     p[DX] = f->dir[0];
     p[DY] = f->dir[1];
 }
@@ -409,12 +411,12 @@ static double exact_gap(const feat *f, double t)
     double P[2], Q[2];
     world_point(&a, &w->verts[2 * (f->A->vert + f->va)], P);
     world_point(&b, &w->verts[2 * (f->B->vert + f->vb)], Q);
-    double dx = P[0] - Q[0], dy = P[1] - Q[1];
+    double dx = P[0] - Q[0], dy = P[1] - Q[1], R = f->R - f->shrink;
     if (f->kind == F_PP)
-        return dx * dx + dy * dy - f->R * f->R;
+        return dx * dx + dy * dy - R * R;
     double D[2];
     world_vector(&b, &w->edges[3 * (f->B->vert + f->vb)], D);
-    return f->side * (dx * D[1] - dy * D[0]) - f->R;
+    return f->side * (dx * D[1] - dy * D[0]) - R;
 }
 
 /* A crossing of the exact gap in [lo, hi] (absolute times), down (sense 1: g(lo) >= 0 >= g(hi))
@@ -612,8 +614,8 @@ static int solve_rotating(feat *f, double tmax, double tolp, double vthr, double
         double H = tmax - t0;
         /* distance-like gap now, for the budget of the model error and the reach test */
         double dx = f->rx + f->pa[0] - f->pb[0], dy = f->ry + f->pa[1] - f->pb[1];
-        double dist = f->kind == F_PP ? hypot(dx, dy) - f->R
-                                      : dx * f->dir[1] - dy * f->dir[0] - f->R;
+        double dist = f->kind == F_PP ? hypot(dx, dy) - (f->R - f->shrink)
+                                      : dx * f->dir[1] - dy * f->dir[0] - (f->R - f->shrink);
         double dv = hypot(f->a.vx - f->b.vx, f->a.vy - f->b.vy);
         double da = hypot(f->a.ax - f->b.ax, f->a.ay - f->b.ay);
         double ra = hypot(f->pa[0], f->pa[1]), span = hypot(dx, dy) + f->R;
@@ -780,6 +782,26 @@ static int solve_rotating(feat *f, double tmax, double tolp, double vthr, double
     return 2;
 }
 
+/* The overlap the feature's pair may keep: the contact solver's slop (solver_slop) for a pair
+ * it holds -- its PGS solve meets the contacts of a jammed pile only to about 1e-7 m/s, and at
+ * the exact events' tolerance each miss was an event at the tick, local solves between the
+ * wedged neighbours, and the wedge rule stopping the whole pile once per tick (issue 34) -- and
+ * for a pair that overlaps now beyond the tolerance (one the solver held, set flying by an
+ * edit: with its surface at 0 an overlapping point pressed further in crossed no root, and
+ * sank). Within it a pair is no event; beyond it, an exact one. 0 elsewhere: exact. */
+static double feature_slop(feat *f, double tolp)
+{
+    double S = solver_slop(f->w);
+    if (!(S > 0))
+        return 0.0;
+    if (f->kind == F_PP)
+        S = fmin(S, 0.5 * f->R);
+    if (f->solver_h > 0)
+        return S;
+    f->shrink = 0.0;
+    return exact_gap(f, f->w->now) < -tolp ? S : 0.0;
+}
+
 static int solve_feature(feat *f, double tmax, double *tau, double *rate)
 {
     double c[MAXC] = {0};
@@ -791,6 +813,17 @@ static int solve_feature(feat *f, double tmax, double *tau, double *rate)
                 + fabs(f->b.w) * (fabs(f->pb[0]) + fabs(f->pb[1]));
     double vthr = 1e-12 * dv + DBL_MIN;
     double tol = f->w->cfg.tolerance, tolp;
+    f->shrink = feature_slop(f, f->kind == F_PP ? tol * (2 * f->R + tol) : tol);
+    if (f->shrink > 0 && f->kind == F_PL) {
+        /* with an overlap kept, a corner sunk into a face lies on the next face's line too (a
+         * box on an aligned box: its corner on the lower one's side, sideways events,
+         * ping-pong, wedge stops): a vertex meets an edge only along a normal in its own
+         * normal cone, as the solver's contacts (the deepest overlap of two convex shapes is
+         * always such a pair: the overlap stays within the slop) */
+        double d[2] = {-f->dir[1], f->dir[0]};
+        if (!solver_in_cone(f->w, f->A, &f->a, f->va, d))
+            return 0;
+    }
     if (f->rot_a || f->rot_b) {
         double norm = f->kind == F_PP ? 2 * f->R : 1.0;
         tolp = f->kind == F_PP ? tol * (2 * f->R + tol) : tol;
@@ -1051,6 +1084,7 @@ int predict_pair(m2c_world *w, int i, int j, contact *c)
     f.leaves = f.ghost && ((A->flags | B->flags) & M2C_FLAG_SENSOR);
     f.dir[0] = f.dir[1] = f.len = 0.0;
     f.solver_h = solver_window(w, A, B);
+    f.shrink = 0.0;
     /* the cheapest test first: can the bounding circles about the reference points meet before
      * the current best at all? (1-norm bounds of the relative speed and acceleration; a wall's
      * circle is too large to tell anything) */

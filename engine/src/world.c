@@ -840,6 +840,11 @@ int m2c_world_solving(const m2c_world *w, int i)
     return i >= 0 && i < w->n && w->b[i].kind == M2C_DYNAMIC && w->b[i].state == SOLVING;
 }
 
+double m2c_world_contact_slop(const m2c_world *w)
+{
+    return solver_slop(w);
+}
+
 int m2c_world_asleep(const m2c_world *w, int i)
 {
     return i >= 0 && i < w->n && w->b[i].state == ASLEEP;

@@ -717,6 +717,12 @@ class World:
         """True while the body is in sustained contact, moved by the contact solver."""
         return bool(self._lib.m2c_world_solving(self._w, body))
 
+    @property
+    def contact_slop(self) -> float:
+        """The overlap a pair held by the contact solver may keep (10,000 tolerances with the
+        solver on, else 0): within it such a pair is no event, beyond it an exact one."""
+        return float(self._lib.m2c_world_contact_slop(self._w))
+
     def certificate(self, body: int) -> tuple[bool, float]:
         """The sleep certificate of an asleep body's island, checked now: (found, residual),
         residual = the worst unbalanced force per weight under the best contact forces found
