@@ -84,6 +84,12 @@ def compound_mass_properties(parts: list[tuple[list[Vec], float]]) -> MassProper
         return MassProperties(0.0, centre, 0.0)
     cx = sum(p.area * p.centroid[0] for p in props) / area
     cy = sum(p.area * p.centroid[1] for p in props) / area
-    second = sum(p.area * (p.inertia_per_mass + (p.centroid[0] - cx) ** 2 + (p.centroid[1] - cy) ** 2)
+    second = sum(p.area * (p.inertia_per_mass + _square(p.centroid[0] - cx) + _square(p.centroid[1] - cy))
                  for p in props)
     return MassProperties(area, (cx, cy), second / area)
+
+
+def _square(x: float) -> float:
+    """x * x: inf past the float range (a part 1e200 from the centre), where x ** 2 raises
+    OverflowError; the core then refuses the infinite inertia by name."""
+    return x * x

@@ -108,6 +108,33 @@ def _anticlockwise(vertices: Sequence[Vec]) -> list[Vec]:
     return verts
 
 
+def _parts(parts: Sequence[tuple[Sequence[Vec], float]]) -> list[tuple[list[Vec], float]]:
+    """A compound's parts as (anticlockwise vertices, radius), a malformed one named (part k
+    of n) rather than left to an unpacking error."""
+    shapes = []
+    for k, part in enumerate(parts):
+        try:
+            v, r = part
+            shapes.append((_anticlockwise(v), float(r)))
+        except (TypeError, ValueError):
+            shown = repr(part)
+            shown = shown if len(shown) <= 60 else shown[:57] + "..."
+            raise EngineError(f"part {k} of {len(parts)}: expected (vertices, radius) with "
+                              f"vertices (x, y) pairs, got {shown}") from None
+    return shapes
+
+
+def _finite(shapes: list[tuple[list[Vec], float]], compound: bool) -> None:
+    """The core's finiteness checks, said before the mass properties (which a NaN or an inf
+    would turn into a misleading "needs a positive mass"), naming the part."""
+    for k, (v, r) in enumerate(shapes):
+        where = f"part {k} of {len(shapes)}: " if compound else ""
+        if not all(math.isfinite(c) for p in v for c in p):
+            raise EngineError(where + "a vertex is not finite")
+        if not math.isfinite(r):
+            raise EngineError(where + "a number of the body is not finite")
+
+
 def _shape_mass(shapes: list[tuple[list[Vec], float]], compound: bool) -> MassProperties:
     """The mass properties of a body's shapes; a shape with no area where one is needed (a
     polygon with its vertices in a line, or none) is the core's error, said here first."""
@@ -237,9 +264,10 @@ class World:
                 raise EngineError("a compound body's shape is its parts: give no vertices or radius")
             if not len(parts):
                 raise EngineError("a compound body needs at least one part")
-            shapes = [(_anticlockwise(v), float(r)) for v, r in parts]
+            shapes = _parts(parts)
         else:
             shapes = [(_anticlockwise(vertices), float(radius))]
+        _finite(shapes, parts is not None)
         for bits in (category, mask):
             if not (isinstance(bits, int) and 0 <= bits <= 0xFFFFFFFF):
                 raise EngineError(f"category and mask are 32-bit masks, not {bits!r}")

@@ -334,6 +334,43 @@ def test_bad_compounds_are_refused_by_name(engine):
     assert w.bodies == []
 
 
+@pytest.mark.parametrize("bad, message", [
+    (([(math.nan, 0.0)], 0.5), "part 1 of 2: a vertex is not finite"),
+    (([(0.0, math.inf), (1.0, 0.0)], 0.1), "part 1 of 2: a vertex is not finite"),
+    (([(1.0, 0.0)], math.nan), "part 1 of 2: a number of the body is not finite"),
+    (([(1.0, 0.0)], -math.inf), "part 1 of 2: a number of the body is not finite"),
+    (([(1.0, 0.0)],), r"part 1 of 2: expected \(vertices, radius\)"),
+    (([(1.0, 0.0, 2.0)], 0.5), r"part 1 of 2: expected \(vertices, radius\)"),
+    (([(1.0, 0.0)], "wide"), r"part 1 of 2: expected \(vertices, radius\)"),
+])
+@pytest.mark.parametrize("kw", [{}, {"mass": 2.0}, {"mass": 2.0, "inertia": 3.0}])
+def test_hostile_numbers_name_their_part(engine, bad, message, kw):
+    """A NaN, an infinity or a malformed part is refused as that part, also for a dynamic
+    body, whose mass properties (worked out first) once turned it into "needs a positive
+    mass" or a ValueError."""
+    w = engine.World()
+    with pytest.raises(EngineError, match=message):
+        w.add_compound([([(0.0, 0.0)], 0.5), bad], **kw)
+    assert w.bodies == []
+
+
+def test_parts_past_the_float_range_are_refused_not_overflowed(engine):
+    """Two balls 2e308 apart: the inertia is past the float range (the parallel axis term
+    1e308^2); a named refusal, not Python's OverflowError. With mass and inertia given, the
+    body is built and a step ends in a named error or a finite pose."""
+    w = engine.World(gravity=(0, -10))
+    w.add_segment((-10, 0), (10, 0))
+    far = [([(1e308, 0.0)], 0.5), ([(-1e308, 0.0)], 0.5)]
+    with pytest.raises(EngineError, match="positive mass and moment of inertia"):
+        w.add_compound(far, position=(0, 3))
+    b = w.add_compound(far, position=(0, 3), mass=1.0, inertia=1.0)
+    try:
+        w.step_to(1.0)
+    except EngineError as exc:
+        assert "stuck" in str(exc) or "events" in str(exc), exc
+    assert all(math.isfinite(c) for c in w.pose(b))
+
+
 # -- the C API --------------------------------------------------------------------------------
 
 C_PROGRAM = r"""
