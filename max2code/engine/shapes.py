@@ -75,18 +75,22 @@ def compound_mass_properties(parts: list[tuple[list[Vec], float]]) -> MassProper
     """Several shapes (vertices, radius) of one density on one rigid body: the areas add, the
     centroid is their area-weighted mean and each part's inertia moves to it by the parallel
     axis theorem (I = sum of a_k (i_k + |c_k - C|^2)). Parts with no area (a thin segment) add
-    nothing; a compound with no area at all takes its parts' plain mean as the centroid."""
+    nothing. A compound with no area at all (thin segments only, its mass given) is rods of one
+    line density, weighted by length as a single thin segment is (its L^2/12), not a point
+    mass; with no length either (circles whose area underflows), equal point masses."""
     props = [mass_properties(list(v), r) for v, r in parts]
-    area = sum(p.area for p in props)
+    weights = [p.area for p in props]
+    area = sum(weights)
     if not area > 0:
-        n = len(props)
-        centre = (sum(p.centroid[0] for p in props) / n, sum(p.centroid[1] for p in props) / n)
-        return MassProperties(0.0, centre, 0.0)
-    cx = sum(p.area * p.centroid[0] for p in props) / area
-    cy = sum(p.area * p.centroid[1] for p in props) / area
-    second = sum(p.area * (p.inertia_per_mass + _square(p.centroid[0] - cx) + _square(p.centroid[1] - cy))
-                 for p in props)
-    return MassProperties(area, (cx, cy), second / area)
+        weights = [math.dist(*v) if len(v) == 2 else 0.0 for v, _ in parts]
+        if not sum(weights) > 0:
+            weights = [1.0] * len(props)
+    total = sum(weights)
+    cx = sum(a * p.centroid[0] for a, p in zip(weights, props)) / total
+    cy = sum(a * p.centroid[1] for a, p in zip(weights, props)) / total
+    second = sum(a * (p.inertia_per_mass + _square(p.centroid[0] - cx) + _square(p.centroid[1] - cy))
+                 for a, p in zip(weights, props))
+    return MassProperties(area if area > 0 else 0.0, (cx, cy), second / total)
 
 
 def _square(x: float) -> float:

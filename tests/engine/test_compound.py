@@ -371,6 +371,41 @@ def test_parts_past_the_float_range_are_refused_not_overflowed(engine):
     assert all(math.isfinite(c) for c in w.pose(b))
 
 
+def rods_inertia_per_mass(rods):
+    """Thin rods of one line density: (centre of mass, second moment per unit mass) by
+    Simpson's rule along each rod, exact for the quadratic |p(t) - C|^2 (Fractions)."""
+    lengths = [Q(math.dist(a, b)) for a, b in rods]
+    total = sum(lengths)
+    cx = sum(l * (Q(a[0]) + Q(b[0])) / 2 for l, (a, b) in zip(lengths, rods)) / total
+    cy = sum(l * (Q(a[1]) + Q(b[1])) / 2 for l, (a, b) in zip(lengths, rods)) / total
+
+    def sq(t, a, b):
+        x, y = Q(a[0]) + t * (Q(b[0]) - Q(a[0])), Q(a[1]) + t * (Q(b[1]) - Q(a[1]))
+        return (x - cx) ** 2 + (y - cy) ** 2
+
+    second = sum(l * (sq(Q(0), a, b) + 4 * sq(Q(1, 2), a, b) + sq(Q(1), a, b)) / 6
+                 for l, (a, b) in zip(lengths, rods))
+    return (cx, cy), second / total
+
+
+@pytest.mark.parametrize("rods", [
+    [((-1, 0), (1, 0)), ((0, -1), (0, 1))],                 # a cross: I = m / 3
+    [((-1, 1), (1, 1)), ((0, -3), (0, 1))],                 # a T of lengths 2 and 4
+])
+def test_a_compound_of_thin_rods_has_the_rods_inertia(engine, rods):
+    """Thin segments only, the mass given: the body is rods of one line density (a single thin
+    segment's L^2/12, moved by the parallel axis theorem), not a point mass of inertia
+    m * 1e-12 (which once spun a landing cross into "stuck")."""
+    centre, per_mass = rods_inertia_per_mass(rods)
+    w = engine.World(gravity=(0, -10))
+    w.add_segment((-10, 0), (10, 0))
+    b = w.add_compound([(list(r), 0.0) for r in rods], position=(0, 5), mass=2.0, omega=1.0)
+    assert w.bodies[b].inertia == pytest.approx(2 * float(per_mass), rel=1e-12)
+    assert w.pose(b)[:2] == pytest.approx((float(centre[0]), 5 + float(centre[1])), abs=1e-12)
+    w.step_to(3.0)
+    assert all(math.isfinite(c) for c in w.pose(b))
+
+
 # -- the C API --------------------------------------------------------------------------------
 
 C_PROGRAM = r"""
