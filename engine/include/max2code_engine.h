@@ -85,7 +85,8 @@ typedef struct {
     double mass, inertia;      /* dynamic bodies: both > 0 */
     double restitution;        /* 0..1; a contact uses the product of the two */
     double radius;             /* rounding radius (the circle's radius) */
-    int nvertices;             /* 1: circle, 2: segment/capsule, >= 3: convex polygon */
+    int nvertices;             /* 1: circle, 2: segment/capsule, >= 3: convex polygon
+                                  (at most 1 << 24 a body, all parts together) */
     const double *vertices;    /* 2 * nvertices numbers: offsets in the body frame */
     int group;                 /* >= 0: bodies of one group never collide with each other; -1: none */
     double friction;           /* Coulomb coefficient >= 0; a contact uses sqrt(fa fb); impacts only */
@@ -215,7 +216,7 @@ M2C_API int m2c_world_vertices(const m2c_world *w, int body, double *out, int ca
 
 /* A body's parts (1 for a single shape): their count, or -1; counts[k] and radii[k] (k <
  * capacity) get part k's number of vertices and rounding radius (its vertices are the next
- * counts[k] of m2c_world_vertices). */
+ * counts[k] of m2c_world_vertices); either may be NULL (not wanted). */
 M2C_API int m2c_world_parts(const m2c_world *w, int body, int *counts, double *radii,
                             int capacity);
 

@@ -381,8 +381,10 @@ int m2c_world_parts(const m2c_world *w, int i, int *counts, double *radii, int c
         return -1;
     const body *b = &w->b[i];
     for (int k = 0; k < b->nparts && k < capacity; k++) {
-        counts[k] = w->parts[b->part + k].nvert;
-        radii[k] = w->parts[b->part + k].radius;
+        if (counts)
+            counts[k] = w->parts[b->part + k].nvert;
+        if (radii)
+            radii[k] = w->parts[b->part + k].radius;
     }
     return b->nparts;
 }

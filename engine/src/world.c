@@ -18,6 +18,7 @@
 #define WORK_SOLVES 2000000    /* root solves per call, likewise (about 0.1 to 1 s) */
 #define SAME_TIME_LIMIT 100000 /* events within STUCK_SPAN of one time: the step gives up */
 #define STUCK_SPAN 1e-6 /* s, relative to 1 + |t| */
+#define MAX_VERTICES (1 << 24) /* a body's, all parts together: 2 * n and the sums fit int */
 
 static int fail(m2c_world *w, const char *msg)
 {
@@ -114,6 +115,8 @@ static int check_shape(m2c_world *w, const char *where, int n, const double *v, 
     const char *why = NULL;
     if (n < 1 || !v)
         why = "a body needs at least one vertex";
+    else if (n > MAX_VERTICES)
+        why = "a body has at most 16777216 vertices";
     else if (!finite_all(v, 2 * n))
         why = "a vertex is not finite";
     else if (!isfinite(radius))
@@ -172,12 +175,16 @@ static int check_def(m2c_world *w, const m2c_body_def *d)
         return fail(w, "a dynamic body needs a positive mass and moment of inertia");
     if (d->nparts == 0)
         return check_shape(w, "", d->nvertices, d->vertices, d->radius);
+    long long total = 0;
     for (int p = 0; p < d->nparts; p++) {
         char where[48];
         snprintf(where, sizeof where, "part %d of %d: ", p, d->nparts);
         const m2c_part *q = &d->parts[p];
         if (check_shape(w, where, q->nvertices, q->vertices, q->radius) != 0)
             return -1;
+        total += q->nvertices;
+        if (total > MAX_VERTICES)   /* before the parts' counts overflow the sum */
+            return fail(w, "a body has at most 16777216 vertices (all its parts together)");
     }
     return 0;
 }

@@ -82,6 +82,14 @@ SCENES = textwrap.dedent("""
         run(w, 1.0)
         w2 = pickle.loads(pickle.dumps(w)); run(w2, 3.0)
         w.query_point((0, 1)); w.query_box((-5, 0), (5, 5)); w.cast_ray((-5, 1), (5, 1))
+    for parts, kw in [([([(1e300, 0.0)], 0.5), ([(-1e300, 0.0)], 0.5)], dict(mass=1.0, inertia=1.0)),
+                      ([([(-5e14, 0.0), (5e14, 0.0)], 0.1), ([(0.0, 0.0)], 0.5)], dict(omega=1)),
+                      ([([(0.01 * k, 0.0)], 0.1) for k in range(2000)], dict(omega=3)),
+                      ([([(-0.5, 0.0)], 0.2), ([(0.5, 0.0)], 0.2)], dict(omega=1e308))]:
+        w = World(gravity=(0, -9.81), max_events=20000)   # hostile compounds: far, long, many
+        w.add_segment((-100, 0), (100, 0))                 # parts, spin; one a world
+        w.add_compound(parts, position=(0, 3), **kw)
+        run(w, 1.0)
     print("ok")
 """)
 
@@ -120,3 +128,86 @@ def test_scenes_run_clean_under_asan_and_ubsan(sanitized):
     report = proc.stdout + proc.stderr
     assert "runtime error" not in report and "AddressSanitizer" not in report, report[-4000:]
     assert proc.returncode == 0 and proc.stdout.rstrip().endswith("ok"), report[-4000:]
+
+
+MISUSE = r"""
+#include <limits.h>
+#include <stdio.h>
+#include "max2code_engine.h"
+
+static void show(m2c_world *w, const char *what, int r)
+{
+    printf("%s: %d %s\n", what, r, r < 0 ? m2c_world_error(w) : "");
+}
+
+int main(void)
+{
+    m2c_config cfg = {0};
+    m2c_world *w = m2c_world_new(&cfg);
+    double c0[] = {0, 0}, c1[] = {1, 0}, nanv[] = {0.0 / 0.0, 0};
+    m2c_part good[] = {{1, c0, 0.25}, {1, c1, 0.25}};
+    m2c_body_def d = m2c_default_body_def();
+    d.nparts = 2;
+    show(w, "parts NULL", m2c_world_add_body(w, &d));
+    d.nparts = INT_MIN;
+    d.parts = good;
+    show(w, "nparts INT_MIN", m2c_world_add_body(w, &d));
+    m2c_part none[] = {{0, NULL, 0.25}};
+    d.nparts = 1;
+    d.parts = none;
+    show(w, "no vertices", m2c_world_add_body(w, &d));
+    m2c_part huge[] = {{INT_MAX, c0, 0.25}};      /* 2 * n overflowed int before reading */
+    d.parts = huge;
+    show(w, "INT_MAX vertices", m2c_world_add_body(w, &d));
+    m2c_part sum[] = {{INT_MAX / 2 + 10, nanv, 0.1}, {INT_MAX / 2 + 10, nanv, 0.1}};
+    d.nparts = 2;
+    d.parts = sum;
+    show(w, "counts past INT_MAX", m2c_world_add_body(w, &d));
+    m2c_body_def zero = {0};
+    zero.nparts = 2;
+    zero.parts = good;
+    show(w, "zeroed def", m2c_world_add_body(w, &zero));
+    d.parts = good;
+    int id = m2c_world_add_body(w, &d);
+    show(w, "good", id);
+    double radii[1];
+    show(w, "parts NULL, capacity 0", m2c_world_parts(w, id, NULL, NULL, 0));
+    show(w, "radii only, capacity 1", m2c_world_parts(w, id, NULL, radii, 1));
+    printf("radius: %g\n", radii[0]);
+    show(w, "counts and radii NULL, capacity 2", m2c_world_parts(w, id, NULL, NULL, 2));
+    show(w, "capacity -1", m2c_world_parts(w, id, NULL, NULL, -1));
+    show(w, "no such body", m2c_world_parts(w, 7, NULL, NULL, 2));
+    m2c_world_free(w);
+    return 0;
+}
+"""
+
+
+def test_c_api_misuse_of_compounds_is_refused_clean(sanitized, tmp_path):
+    """Compound defs misused from C, built with the sanitizers against the sanitized core:
+    each is a named refusal (found: a part of INT_MAX vertices overflowed 2 * n in int before
+    anything was read, and m2c_world_parts wrote through NULL buffers), and no finding."""
+    from max2code.engine.build import engine_dir
+    lib, _ = sanitized
+    (tmp_path / "misuse.c").write_text(MISUSE)
+    exe = tmp_path / "misuse"
+    subprocess.run(["cc", "-std=c11", "-g", SANITIZE, "-fno-sanitize-recover=all",
+                    f"-I{engine_dir() / 'include'}", str(tmp_path / "misuse.c"), "-o", str(exe),
+                    str(lib), f"-Wl,-rpath,{lib.parent}", "-lm"], check=True, capture_output=True)
+    proc = subprocess.run([str(exe)], capture_output=True, text=True, timeout=300,
+                          env=dict(os.environ, ASAN_OPTIONS="detect_leaks=1"))
+    report = proc.stdout + proc.stderr
+    assert proc.returncode == 0 and "runtime error" not in report, report[-4000:]
+    lines = dict(line.split(": ", 1) for line in proc.stdout.splitlines())
+    assert lines["parts NULL"] == "-1 a compound body needs its parts (nparts >= 1 and parts)"
+    assert lines["nparts INT_MIN"].startswith("-1 a compound body needs its parts")
+    assert lines["no vertices"] == "-1 part 0 of 1: a body needs at least one vertex"
+    assert lines["INT_MAX vertices"] == "-1 part 0 of 1: a body has at most 16777216 vertices"
+    assert lines["counts past INT_MAX"] == "-1 part 0 of 2: a body has at most 16777216 vertices"
+    assert lines["zeroed def"].startswith("-1 the body def was not made by m2c_default_body_def")
+    assert lines["good"] == "0 "
+    assert lines["parts NULL, capacity 0"] == "2 "
+    assert lines["radius"] == "0.25"
+    assert lines["counts and radii NULL, capacity 2"] == "2 "
+    assert lines["capacity -1"] == "2 "
+    assert lines["no such body"].startswith("-1")
