@@ -55,7 +55,6 @@
 #define MAX_ITERATIONS 2000
 #define CONVERGED 1e-9        /* a sweep that changes no impulse by more than this of m |g| h */
 #define SLOP_TOLERANCES 1e4   /* solver_slop */
-#define CONE_SLACK 0.05       /* solver_in_cone */
 #define PUSH_OUT 0.8          /* of an overlap pushed out per tick (push_sweep) */
 
 typedef struct {
@@ -378,7 +377,7 @@ static int push_contact(m2c_world *w, cp *c)
 }
 
 /* Is direction d in the outward normal cone of vertex v of body B (at snapshot sn), or within
- * CONE_SLACK (a sine) of it? The slack keeps a box's corner on a floor when the box tilts a
+ * SOLVER_CONE_SLACK (a sine) of it? The slack keeps a box's corner on a floor when the box tilts a
  * little the other way (at 1e-6 the lifted corner lost its contact, in the ticks and in
  * predict.c alike, and a column sank); a side met at right angles stays out. */
 int solver_in_cone(const m2c_world *w, const body *B, const snap *sn, int v, const double d[2])
@@ -398,7 +397,7 @@ int solver_in_cone(const m2c_world *w, const body *B, const snap *sn, int v, con
         double Q[2];
         world_point(sn, &w->verts[2 * (B->vert + nb[k])], Q);
         double e[2] = {P[0] - Q[0], P[1] - Q[1]};
-        if (d[0] * e[0] + d[1] * e[1] < -CONE_SLACK * hypot(e[0], e[1]))
+        if (d[0] * e[0] + d[1] * e[1] < -SOLVER_CONE_SLACK * hypot(e[0], e[1]))
             return 0;
     }
     return 1;

@@ -230,6 +230,7 @@ double solver_step(const m2c_world *w);                 /* h; < 0: off */
 double solver_soft_speed(const m2c_world *w, const body *b);  /* slower contacts join */
 double solver_slop(const m2c_world *w);                 /* overlap its pairs may keep; 0: off */
 int solver_in_cone(const m2c_world *w, const body *B, const snap *sn, int v, const double d[2]);
+#define SOLVER_CONE_SLACK 0.05  /* solver_in_cone: a sine */
 int solver_adopt(m2c_world *w, int k);                  /* 1 when k joined */
 int solver_has(const m2c_world *w, int i);
 int solver_count(const m2c_world *w);                   /* bodies in it */
