@@ -86,7 +86,9 @@ typedef struct {
     double restitution;        /* 0..1; a contact uses the product of the two */
     double radius;             /* rounding radius (the circle's radius) */
     int nvertices;             /* 1: circle, 2: segment/capsule, >= 3: convex polygon
-                                  (at most 1 << 24 a body, all parts together) */
+                                  (at most 1 << 24 a body, all parts together; a dynamic
+                                  or kinematic body at most 128: the prediction of two
+                                  turning bodies pairs every vertex with every edge) */
     const double *vertices;    /* 2 * nvertices numbers: offsets in the body frame */
     int group;                 /* >= 0: bodies of one group never collide with each other; -1: none */
     double friction;           /* Coulomb coefficient >= 0; a contact uses sqrt(fa fb); impacts only */

@@ -145,6 +145,15 @@ static int check_shape(m2c_world *w, const char *where, int n, const double *v, 
     return -1;
 }
 
+/* A moving body's vertices are bounded (MAX_MOVING_VERTICES: why, in engine.h). */
+static int check_moving(m2c_world *w, int kind, long long nvertices)
+{
+    if (kind != M2C_STATIC && nvertices > MAX_MOVING_VERTICES)
+        return fail(w, "a dynamic or kinematic body has at most 128 vertices (all its parts "
+                       "together; a static one may have more)");
+    return 0;
+}
+
 static int check_def(m2c_world *w, const m2c_body_def *d)
 {
     if (w->broken)
@@ -174,7 +183,8 @@ static int check_def(m2c_world *w, const m2c_body_def *d)
                                     && isfinite(d->inertia)))
         return fail(w, "a dynamic body needs a positive mass and moment of inertia");
     if (d->nparts == 0)
-        return check_shape(w, "", d->nvertices, d->vertices, d->radius);
+        return check_shape(w, "", d->nvertices, d->vertices, d->radius) != 0 ? -1
+               : check_moving(w, d->kind, d->nvertices);
     long long total = 0;
     for (int p = 0; p < d->nparts; p++) {
         char where[48];
@@ -186,7 +196,7 @@ static int check_def(m2c_world *w, const m2c_body_def *d)
         if (total > MAX_VERTICES)   /* before the parts' counts overflow the sum */
             return fail(w, "a body has at most 16777216 vertices (all its parts together)");
     }
-    return 0;
+    return check_moving(w, d->kind, total);
 }
 
 static int grow(m2c_world *w, int nverts, int nparts)

@@ -11,6 +11,7 @@ SIGINT: each call of the core now returns after a bounded amount of work.
 
 from __future__ import annotations
 
+import math
 import os
 import signal
 import subprocess
@@ -119,3 +120,77 @@ def cpu_seconds(pid: int) -> float:
     except OSError:
         return 0.0
     return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+def gon(n: int, r: float) -> list[list[float]]:
+    return [[r * math.cos(2 * math.pi * k / n), r * math.sin(2 * math.pi * k / n)] for k in range(n)]
+
+
+def test_moving_bodies_have_at_most_128_vertices(engine):
+    """The prediction of two turning bodies pairs every vertex of one with every edge of the
+    other in one go, before the step can return (and a signal be honoured): two 512-gons took
+    11 s, two rings of 256 octagons 33 s. A moving body's vertices are bounded; a static body's
+    are not (a dynamic body never pairs two of them)."""
+    from max2code.engine import EngineError, World
+
+    w = World()
+    w.add_polygon(gon(128, 1.0), position=(0, 0), omega=3)                      # the most
+    w.add_compound([([[x + 0.3 * k, y] for x, y in gon(8, 0.1)], 0.0) for k in range(16)],
+                   position=(0, 5))                                              # 16 x 8
+    big = w.add_polygon(gon(4096, 2.0), position=(10, 0), kind="static")          # static: any
+    for add in (lambda: w.add_polygon(gon(129, 1.0), position=(0, -5)),
+                lambda: w.add_polygon(gon(129, 1.0), position=(0, -5), kind="kinematic"),
+                lambda: w.add_compound([([[x + 0.3 * k, y] for x, y in gon(8, 0.1)], 0.0)
+                                        for k in range(17)], position=(0, -9))):
+        with pytest.raises(EngineError, match="at most 128 vertices"):
+            add()
+    with pytest.raises(EngineError, match="at most 128 vertices"):
+        w.set_kind(big, "dynamic")
+    assert w.bodies[big].kind == "static"
+    w.step_to(1.0, events=False)       # (the largest ones move: the 128-gon turned 3 rad)
+    assert w.pose(0, 1.0)[2] == pytest.approx(3.0)
+
+
+LARGEST = """\
+name = "largest-turning"
+until = 1e6
+""" + "".join(f"""
+[[bodies]]
+name = "wall{k}"
+kind = "static"
+shape = "segment"
+points = {p}
+""" for k, p in enumerate([[[-6, -6], [6, -6]], [[6, -6], [6, 6]], [[6, 6], [-6, 6]], [[-6, 6], [-6, -6]]])) + "".join(f"""
+[[bodies]]
+name = "gon{k}"
+shape = "polygon"
+vertices = {gon(128, 2.0)}
+position = [{-3 + 6 * k}, {0.5 * k}]
+velocity = [{3 - 6 * k}, 1]
+omega = {5 - 11 * k}
+restitution = 1.0
+""" for k in range(2))
+
+
+def test_sim_honours_signals_with_the_largest_turning_bodies(engine, tmp_path):
+    """Two turning 128-gons (the most a moving body may have) bouncing in a box for ever:
+    each call of the core still returns soon enough for SIGINT."""
+    scene = tmp_path / "largest.toml"
+    scene.write_text(LARGEST)
+    proc = subprocess.Popen([sys.executable, "-m", "max2code", "sim", str(scene)], cwd=ROOT,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            start_new_session=True)
+    try:
+        deadline = time.monotonic() + 60
+        while time.monotonic() < deadline and cpu_seconds(proc.pid) < 4.0:
+            assert proc.poll() is None, proc.stderr.read()
+            time.sleep(0.1)
+        sent = time.monotonic()
+        proc.send_signal(signal.SIGINT)
+        rc = proc.wait(timeout=30)
+        assert time.monotonic() - sent < 5, "the signal took long to be honoured"
+        assert rc == 130
+    finally:
+        if proc.poll() is None:
+            os.killpg(proc.pid, signal.SIGKILL)
+            proc.wait()
