@@ -289,9 +289,9 @@ int m2c_world_set_kind(m2c_world *w, int i, int kind)
         return 0;
     if (kind == M2C_DYNAMIC && !(b->dmass > 0))
         return fail(w, "set_kind", "a dynamic body needs a mass (give one first: set_mass)");
-    if (kind != M2C_STATIC && b->nvert > MAX_MOVING_VERTICES)
-        return fail(w, "set_kind", "a dynamic or kinematic body has at most 128 vertices (all "
-                                   "its parts together; a static one may have more)");
+    const char *why = moving_vertices_refusal(kind, b->nvert);
+    if (why)
+        return fail(w, "set_kind", why);
     begin_edit(w, i);
     if (b->kind == M2C_DYNAMIC && w->prepared) {
         heap_remove(w, i);

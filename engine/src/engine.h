@@ -281,6 +281,9 @@ double vertex_radius(const m2c_world *w, const body *b, int v);
 void body_reach(const m2c_world *w, body *b);
 
 /* world.c */
+/* Why a body of `kind` with `nvertices` cannot be added or made so (MAX_MOVING_VERTICES), or
+ * NULL: one rule and one message for add_body and set_kind. */
+const char *moving_vertices_refusal(int kind, long long nvertices);
 void world_predict(m2c_world *w, int i);
 int world_emit(m2c_world *w, const m2c_event *e);
 

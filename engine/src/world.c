@@ -146,12 +146,18 @@ static int check_shape(m2c_world *w, const char *where, int n, const double *v, 
 }
 
 /* A moving body's vertices are bounded (MAX_MOVING_VERTICES: why, in engine.h). */
+const char *moving_vertices_refusal(int kind, long long nvertices)
+{
+    return kind != M2C_STATIC && nvertices > MAX_MOVING_VERTICES
+               ? "a dynamic or kinematic body has at most 128 vertices (all its parts together; "
+                 "a static one may have more)"
+               : NULL;
+}
+
 static int check_moving(m2c_world *w, int kind, long long nvertices)
 {
-    if (kind != M2C_STATIC && nvertices > MAX_MOVING_VERTICES)
-        return fail(w, "a dynamic or kinematic body has at most 128 vertices (all its parts "
-                       "together; a static one may have more)");
-    return 0;
+    const char *why = moving_vertices_refusal(kind, nvertices);
+    return why ? fail(w, why) : 0;
 }
 
 static int check_def(m2c_world *w, const m2c_body_def *d)
