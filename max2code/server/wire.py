@@ -88,12 +88,18 @@ def at(m: Motion, t: float) -> tuple[float, ...]:
             vx + ax * s, vy + ay * s, w, ax, ay)
 
 
-def segment(i: int, m: Motion, t: float, zero: Zero = Zero()) -> list:
-    """Body i's segment from time t, trailing zeros left off (and values below `zero` 0)."""
-    values = [0 if abs(v) < z else number(v) for v, z in zip(at(m, t), zero.limits())]
+def _trimmed(i: int, values: list) -> list:
+    """Body i's segment of `values`, trailing zeros left off (x, y and angle always kept): the
+    one form every segment is sent in, so equal motions are equal lists."""
+    values = list(values)
     while len(values) > 3 and values[-1] == 0:
         values.pop()
     return [i] + values
+
+
+def segment(i: int, m: Motion, t: float, zero: Zero = Zero()) -> list:
+    """Body i's segment from time t, trailing zeros left off (and values below `zero` 0)."""
+    return _trimmed(i, [0 if abs(v) < z else number(v) for v, z in zip(at(m, t), zero.limits())])
 
 
 def split(segs: list[list], g: tuple) -> tuple[list[list], list[list]]:
@@ -109,10 +115,7 @@ def split(segs: list[list], g: tuple) -> tuple[list[list], list[list]]:
         if full[7:9] != g:
             explicit.append(seg)
             continue
-        values = full[1:7]
-        while len(values) > 3 and values[-1] == 0:
-            values.pop()
-        fall.append([seg[0]] + values)
+        fall.append(_trimmed(seg[0], full[1:7]))
     return explicit, fall
 
 
@@ -120,11 +123,8 @@ def expanded(message: dict, g: tuple) -> list[list]:
     """A message's segments as `segment` made them: its `seg`, then its `fall` given g's
     acceleration back (g: the `world` message's `g`, default (0, 0))."""
     out = list(message.get("seg", []))
-    for seg in message.get("fall", []):
-        values = (list(seg[1:]) + [0] * 6)[:6] + list(g)
-        while len(values) > 3 and values[-1] == 0:   # (as segment leaves them off: g = (1, 0))
-            values.pop()
-        out.append([seg[0]] + values)
+    for seg in message.get("fall", []):   # (trimmed again: g = (1, 0) ends in a zero)
+        out.append(_trimmed(seg[0], (list(seg[1:]) + [0] * 6)[:6] + list(g)))
     return out
 
 

@@ -29,11 +29,6 @@ class Clock:
         return self.t
 
 
-def joined(text: str) -> Client:
-    """A protocol client fed in-process (no socket): client.py's state from a world message."""
-    return Client.fed(text)
-
-
 def check_poses(c: Client, world, t: float) -> None:
     for i in c.bodies:
         assert c.pose(i, t) == pytest.approx(world.pose(i, t), abs=1e-7), (i, t)
@@ -45,7 +40,7 @@ def test_after_every_message_the_client_holds_the_alive_set(tolerance):
     room = Room("r", bricks.scene(), (), clock=clock, tolerance=tolerance, world=bricks.build())
     inbox: list[str] = []
     first, text = room.join(inbox.append, "a")
-    c = joined(text)
+    c = Client.fed(text)
     assert set(c.bodies) == bricks.alive(room.world) and c.world["v"] == protocol.VERSION
     late = None
     gone: set[int] = set()
@@ -70,7 +65,7 @@ def test_after_every_message_the_client_holds_the_alive_set(tolerance):
         if k == 150:   # a late joiner, after removals and additions
             late_inbox: list[str] = []
             _, text = room.join(late_inbox.append, "late")
-            late = joined(text)
+            late = Client.fed(text)
             assert set(late.bodies) == bricks.alive(room.world)
         if late is not None:
             for m in map(json.loads, late_inbox):

@@ -45,7 +45,7 @@ def test_the_program_goes_on_after_each_run(tmp_path):
     """Code after a run() runs at that run's end, in the room's time: an object added at 0.3
     (a PGE rebuild) reaches the client as an addition, its removal at 0.6 as a removal, and the
     program's end stops the room with an error frame."""
-    from .test_membership import Clock, joined
+    from .test_membership import Clock
 
     game = tmp_path / "sequence.py"
     game.write_text(SEQUENCE)
@@ -54,7 +54,7 @@ def test_the_program_goes_on_after_each_run(tmp_path):
                 world=GameWorld(load(str(game))))
     inbox: list[str] = []
     _, text = room.join(inbox.append, "a")
-    c = joined(text)
+    c = Client.fed(text)
     assert [b["name"] for b in c.bodies.values()] == ["box-0", "circle-1"]
     added = removed = None
     for k in range(1, 101):
