@@ -255,6 +255,42 @@ def throws(draw):
     return gravity, bodies
 
 
+def run_checking_parts(w, fixed: list[int], ids: list[int], times, events_checked: int) -> None:
+    """Step w to each of `times`; at the collisions of the thrown bodies `ids` (their first
+    `events_checked` checks) and at each time, every thrown body's pose is finite and none of
+    its parts overlaps a part of another body, fixed or thrown (exact rational geometry on the
+    reported poses). A named refusal ("stuck", max_events) ends the run; a wrong place fails."""
+    checks = [0]
+
+    def shapes(i):
+        pose = w.pose(i)
+        return [(world_points(v, pose), r) for v, r in w.bodies[i].shapes]
+
+    def check(i, when):
+        assert all(math.isfinite(c) for c in w.pose(i)), f"body {i} {when}"
+        against = [(j, sh) for j in fixed + ids if j != i for sh in shapes(j)]
+        for k, (pts, r) in enumerate(shapes(i)):
+            for j, (q, rq) in against:
+                assert not too_close(pts, r, q, rq), f"body {i} part {k} in body {j} {when}"
+        checks[0] += 1
+
+    def on_event(world_, ev):
+        if checks[0] < events_checked:
+            for i in (ev.a, ev.b):
+                if i in ids:
+                    check(i, f"at t = {ev.time}")
+
+    w.on_collision(on_event)
+    for t in times:
+        try:
+            w.step_to(t)
+        except EngineError as exc:   # a named condition is allowed; a wrong place is not
+            assert "stuck" in str(exc) or "events" in str(exc), exc
+            return
+        for i in ids:
+            check(i, f"at t = {t}")
+
+
 @settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(world=throws())
 def test_no_part_ever_overlaps_a_static_body(engine, world):
@@ -266,37 +302,7 @@ def test_no_part_ever_overlaps_a_static_body(engine, world):
     statics = [w.add_segment(a, b) for a, b in WALLS]
     statics.append(w.add_compound(OBSTACLE, kind="static"))
     ids = [w.add_compound(s.pop("parts"), **s) for s in specs]
-    checks = [0]
-
-    def shapes(i):
-        pose = w.pose(i)
-        return [(world_points(v, pose), r) for v, r in w.bodies[i].shapes]
-
-    def check(i, when):
-        fixed = [sh for s in statics for sh in shapes(s)]
-        others = [sh for j in ids if j != i for sh in shapes(j)]
-        for k, (pts, r) in enumerate(shapes(i)):
-            for q, rq in fixed:
-                assert not too_close(pts, r, q, rq), f"body {i} part {k} in a static body {when}"
-            for q, rq in others:
-                assert not too_close(pts, r, q, rq), f"body {i} part {k} in the other {when}"
-        checks[0] += 1
-
-    def on_event(world_, ev):
-        if checks[0] < 300:
-            for i in (ev.a, ev.b):
-                if i in ids:
-                    check(i, f"at t = {ev.time}")
-
-    w.on_collision(on_event)
-    for t in (0.05, 0.3, 1.0):
-        try:
-            w.step_to(t)
-        except EngineError as exc:   # a named condition is allowed; a wrong place is not
-            assert "stuck" in str(exc) or "events" in str(exc), exc
-            return
-        for i in ids:
-            check(i, f"at t = {t}")
+    run_checking_parts(w, statics, ids, (0.05, 0.3, 1.0), events_checked=300)
 
 
 THIN = [((0.0, -HALF), (0.0, -1.5)), ((0.0, 1.5), (0.0, HALF))]   # a thin wall with a gap
@@ -331,35 +337,7 @@ def test_fast_spinning_compounds_pass_no_thin_wall(engine, world):
     fixed = [w.add_segment(a, b) for a, b in WALLS + THIN]
     fixed.append(w.add_compound(PADDLE, kind="kinematic", position=(-2.0, 2.0), omega=spin))
     ids = [w.add_compound(s.pop("parts"), **s) for s in specs]
-    checks = [0]
-
-    def shapes(i):
-        pose = w.pose(i)
-        return [(world_points(v, pose), r) for v, r in w.bodies[i].shapes]
-
-    def check(i, when):
-        assert all(math.isfinite(c) for c in w.pose(i)), f"body {i} {when}"
-        against = [sh for j in fixed + ids if j != i for sh in shapes(j)]
-        for k, (pts, r) in enumerate(shapes(i)):
-            for q, rq in against:
-                assert not too_close(pts, r, q, rq), f"body {i} part {k} overlaps {when}"
-        checks[0] += 1
-
-    def on_event(world_, ev):
-        if checks[0] < 200:
-            for i in (ev.a, ev.b):
-                if i in ids:
-                    check(i, f"at t = {ev.time}")
-
-    w.on_collision(on_event)
-    for t in (0.01, 0.1, 0.4):
-        try:
-            w.step_to(t)
-        except EngineError as exc:
-            assert "stuck" in str(exc) or "events" in str(exc), exc
-            return
-        for i in ids:
-            check(i, f"at t = {t}")
+    run_checking_parts(w, fixed, ids, (0.01, 0.1, 0.4), events_checked=200)
 
 
 # -- snapshots --------------------------------------------------------------------------------

@@ -92,13 +92,19 @@ def test_sim_honours_signals_during_a_long_step(engine, tmp_path, signum, status
     microsecond of simulated time, none reported, for 10^6 s."""
     scene = tmp_path / "spin.toml"
     scene.write_text(SPIN_SCENE)
+    pid = signal_sim_midway(scene, signum, status, cpu=3.0)
+    assert not os.path.exists(f"/proc/{pid}"), "a process was left behind"
+
+
+def signal_sim_midway(scene, signum: int, status: int, cpu: float) -> int:
+    """`max2code sim scene`, sent `signum` once it has used `cpu` seconds (inside the step:
+    startup is < 1 s): it must end with `status` within 5 s. Its process id."""
     proc = subprocess.Popen([sys.executable, "-m", "max2code", "sim", str(scene)], cwd=ROOT,
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                             start_new_session=True)
     try:
-        # wait until it is inside the step: several seconds of CPU time (startup is < 1 s)
         deadline = time.monotonic() + 60
-        while time.monotonic() < deadline and cpu_seconds(proc.pid) < 3.0:
+        while time.monotonic() < deadline and cpu_seconds(proc.pid) < cpu:
             assert proc.poll() is None, proc.stderr.read()
             time.sleep(0.1)
         sent = time.monotonic()
@@ -110,7 +116,7 @@ def test_sim_honours_signals_during_a_long_step(engine, tmp_path, signum, status
         if proc.poll() is None:
             os.killpg(proc.pid, signal.SIGKILL)
             proc.wait()
-    assert not os.path.exists(f"/proc/{proc.pid}"), "a process was left behind"
+    return proc.pid
 
 
 def cpu_seconds(pid: int) -> float:
@@ -177,20 +183,4 @@ def test_sim_honours_signals_with_the_largest_turning_bodies(engine, tmp_path):
     each call of the core still returns soon enough for SIGINT."""
     scene = tmp_path / "largest.toml"
     scene.write_text(LARGEST)
-    proc = subprocess.Popen([sys.executable, "-m", "max2code", "sim", str(scene)], cwd=ROOT,
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                            start_new_session=True)
-    try:
-        deadline = time.monotonic() + 60
-        while time.monotonic() < deadline and cpu_seconds(proc.pid) < 4.0:
-            assert proc.poll() is None, proc.stderr.read()
-            time.sleep(0.1)
-        sent = time.monotonic()
-        proc.send_signal(signal.SIGINT)
-        rc = proc.wait(timeout=30)
-        assert time.monotonic() - sent < 5, "the signal took long to be honoured"
-        assert rc == 130
-    finally:
-        if proc.poll() is None:
-            os.killpg(proc.pid, signal.SIGKILL)
-            proc.wait()
+    signal_sim_midway(scene, signal.SIGINT, 130, cpu=4.0)
