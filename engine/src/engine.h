@@ -14,7 +14,8 @@
 /* A moving (dynamic or kinematic) body's vertices, all its parts together. Why a limit: the
  * prediction of one pair of turning bodies compares every vertex of each with every edge of
  * the other in one go, and returns to the caller (who honours signals) only after it: two
- * turning 128-gons take 0.7 s, two 512-gons 11 s, two rings of 256 octagons 33 s (2026-12-07).
+ * turning 128-gons take 0.7 s, two 512-gons 11 s, two rings of 256 octagons 33 s (2026-12-07,
+ * bench/turning_pairs.py).
  * Box2D allows 8 vertices a polygon; a static body may have far more (only moving ones pair). */
 #define MAX_MOVING_VERTICES 128
 
