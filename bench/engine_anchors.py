@@ -2,7 +2,8 @@
 engine_scenes.Scene and driven the same way.
 
 Each engine keeps its own defaults except where the scene says otherwise (restitution, zero
-friction, no damping, no sleeping): pymunk 10 iterations, collision slop 0.1; Box2D 8 velocity and
+friction, no damping, no sleeping; the stacking scenes, `Scene.rest`: friction, sleeping, and for
+pymunk a collision slop of 5 mm, Box2D's linear slop, as its default 0.1 is meant for pixels): pymunk 10 iterations, collision slop 0.1; Box2D 8 velocity and
 3 position iterations, continuous collision on (it is Box2D's default, and covers dynamic bodies
 against static ones; `bullet` is not set).
 
@@ -36,10 +37,13 @@ class PymunkSim:
         self.contacts: list[tuple[float, int, int]] = []
         space = pymunk.Space()
         space.gravity = scene.gravity
+        if scene.rest:      # stacking: bodies may sleep, and a slop fit for metres (Box2D's 5 mm)
+            space.sleep_time_threshold = 0.5
+            space.collision_slop = 0.005
         index = {}
         for k, wall in enumerate(scene.walls):
             seg = pymunk.Segment(space.static_body, wall.a, wall.b, 0.0)
-            seg.elasticity, seg.friction = wall.e, 0.0
+            seg.friction, seg.elasticity = scene.coefficients(wall.e, "product", "product")
             space.add(seg)
             index[seg] = -(k + 1)
         self.bodies = []
@@ -52,7 +56,7 @@ class PymunkSim:
             else:
                 assert isinstance(b, Block)
                 shape = pymunk.Poly(body, b.vertices, radius=0.0)
-            shape.elasticity, shape.friction = b.e, 0.0
+            shape.friction, shape.elasticity = scene.coefficients(b.e, "product", "product")
             space.add(body, shape)
             index[shape] = i
             self.bodies.append(body)
@@ -89,24 +93,26 @@ class Box2DSim:
         import Box2D
         self.dt, self.now, self.steps = dt, 0.0, 0
         self.contacts: list[tuple[float, int, int]] = []
-        world = Box2D.b2World(gravity=scene.gravity, doSleep=False)
+        world = Box2D.b2World(gravity=scene.gravity, doSleep=scene.rest)
         world.continuousPhysics = True
         if scene.walls:
             ground = world.CreateStaticBody()
             for k, wall in enumerate(scene.walls):
-                fx = ground.CreateEdgeFixture(vertices=[wall.a, wall.b], friction=0.0, restitution=wall.e)
+                mu, e = scene.coefficients(wall.e, "sqrt", "max")
+                fx = ground.CreateEdgeFixture(vertices=[wall.a, wall.b], friction=mu, restitution=e)
                 fx.userData = -(k + 1)
         self.bodies = []
         for i, b in enumerate(scene.bodies):
             body = world.CreateDynamicBody(position=(b.x, b.y), angle=b.angle, linearVelocity=(b.vx, b.vy),
                                            angularVelocity=b.w, linearDamping=0.0, angularDamping=0.0,
-                                           allowSleep=False)
+                                           allowSleep=scene.rest)
+            mu, e = scene.coefficients(b.e, "sqrt", "max")
             if isinstance(b, Disc):
                 fx = body.CreateCircleFixture(radius=b.r, density=b.m / (math.pi * b.r * b.r),
-                                              friction=0.0, restitution=b.e)
+                                              friction=mu, restitution=e)
             else:
                 fx = body.CreatePolygonFixture(vertices=list(b.vertices), density=b.m / b.area,
-                                               friction=0.0, restitution=b.e)
+                                               friction=mu, restitution=e)
             fx.userData = i
             self.bodies.append(body)
         self.world = world

@@ -40,6 +40,14 @@ def unavailable() -> str | None:
 TOLERANCE = 1e-9   # the engine's default tolerance on contact times (World(tolerance=))
 
 
+def contact_step() -> float:
+    """The contact solver's step for the stacking scenes: the World's default when it has one
+    (the solver on by default), else 1/240 s."""
+    import inspect
+    from max2code.engine import World
+    return inspect.signature(World).parameters["contact_step"].default or 1 / 240
+
+
 class OursSim:
     """A scene in max2code.engine.World, driven like the anchors.
 
@@ -51,14 +59,17 @@ class OursSim:
         from max2code.engine import World
         from engine_scenes import Disc
 
-        self.world = w = World(gravity=scene.gravity, tolerance=TOLERANCE)
+        solver = {"contact_step": contact_step()} if scene.rest else {}
+        self.world = w = World(gravity=scene.gravity, tolerance=TOLERANCE, **solver)
         self.index: dict[int, int] = {}
         for k, wall in enumerate(scene.walls):
-            self.index[w.add_segment(wall.a, wall.b, restitution=wall.e)] = -(k + 1)
+            mu, e = scene.coefficients(wall.e, "sqrt", "product")
+            self.index[w.add_segment(wall.a, wall.b, restitution=e, friction=mu)] = -(k + 1)
         self.ids = []
         for i, b in enumerate(scene.bodies):
+            mu, e = scene.coefficients(b.e, "sqrt", "product")
             common = dict(angle=b.angle, velocity=(b.vx, b.vy), omega=b.w, mass=b.m, inertia=b.moment,
-                          restitution=b.e)
+                          restitution=e, friction=mu)
             if isinstance(b, Disc):
                 body = w.add_circle((b.x, b.y), b.r, **common)
             else:

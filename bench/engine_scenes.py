@@ -78,6 +78,23 @@ class Scene:
     walls: tuple[Wall, ...] = ()
     gravity: tuple[float, float] = (0.0, 0.0)
     notes: dict = field(default_factory=dict, compare=False)
+    # Sustained contact (bench/engine_stacking.py): every contact's Coulomb friction and, when
+    # given, its restitution (instead of the bodies' e); `rest`: sleeping allowed and our
+    # contact solver on, as an engine is run for stacking.
+    friction: float = 0.0
+    restitution: float | None = None
+    rest: bool = False
+
+    def coefficients(self, body_e: float, friction_mixed: str, restitution_mixed: str) -> tuple[float, float]:
+        """What to give each shape (friction, restitution) so that an engine mixing two shapes'
+        coefficients by `friction_mixed` / `restitution_mixed` ("product", "sqrt" for sqrt(a b),
+        "max") gets the scene's: the same value for every shape, so sqrt and max give it back
+        and a product needs its square root."""
+        e = body_e if self.restitution is None else self.restitution
+        if self.restitution is not None and restitution_mixed == "product":
+            e = math.sqrt(e)
+        f = math.sqrt(self.friction) if friction_mixed == "product" else self.friction
+        return f, e
 
 
 # --- geometry ----------------------------------------------------------------------------------
