@@ -176,12 +176,18 @@ static int solve_normalised(double c[], const int e[], const int nz[], int n,
     double skin = method == M2C_METHOD_INTERVAL_NOGRAZE ? -1
                   : eps == 0                           ? 0
                                                        : ldexp(eps, -E);
-    if (n == 1) {
-        *root = -c[0] / c[1];
-        return *root > 0 && *root <= tu;
+    if (n <= 2) {
+        int found;
+        if (n == 1) {
+            *root = -c[0] / c[1];
+            found = *root > 0 && *root <= tu;
+        } else {
+            found = first_root_quadratic(c, 0, tu, skin, root, g);
+        }
+        if (found && skin >= 0 && m > 0)
+            late_low_degree(c, n, dropped, m, E, root, g);
+        return found;
     }
-    if (n == 2)
-        return first_root_quadratic(c, 0, tu, skin, root, g);
     if (method == M2C_METHOD_GSL)
         return first_root_gsl(c, n, tu, root, g);
     if (closed)
@@ -195,11 +201,13 @@ static int solve_normalised(double c[], const int e[], const int nz[], int n,
     int found = T > 0 ? first_root_interval_fixed(c, n, T, skin, failed_w, root, g) : 0;
     if (!found)
         return 0;
-    if (skin == 0 && m == 0 && found != SCANNED)
+    /* (with a contact skin too: a touch within it stands where p is not
+     * certainly negative, as any touch) */
+    if (skin >= 0 && m == 0 && found != SCANNED)
         never_late(c, n, NULL, 0, root, g);
-    else if (skin == 0 && m == 0)
+    else if (skin >= 0 && m == 0)
         late_scanned(c, n, root, g);
-    else if (skin == 0)
+    else if (skin >= 0)
         late_with_tail(c, n, dropped, m, sign, E, root, g);
     return 1;
 }

@@ -184,8 +184,8 @@
  *     1/u -- also roots near 1e-12, and moderately ill-conditioned ones
  *     (plain or FMA Horner would leave n u kappa).  Beyond 2^100 FMA Horner
  *     with power-of-two scaling.
- *     Never later than the first root (issue 33, item 11): without a skin,
- *     a root r of steps 1-2 stands where p is certainly positive just
+ *     Never later than the first root (issue 33, item 11), with a contact
+ *     skin or without: a root r of steps 1-2 stands where p is certainly positive just
  *     before it, at r (1 - 2^-50), and a touch unless p is certainly
  *     negative at it (p falls monotonely to a touch: only then can a
  *     crossing lie before it; an exact multiple root stays where it is).
@@ -202,9 +202,12 @@
  *     crossing where p is certainly negative there, else as a touch
  *     (*graze = 1).  Checked against the exact first root of the
  *     coefficients as given (tests/runtime/test_hostile_fuzz.py: never
- *     later by more than 8 ulps).  Not applied beyond 2^60 (compensated
- *     Horner is unscaled), at the extreme spreads of step 4, nor to
- *     degrees 1 and 2.
+ *     later by more than 8 ulps).  At the extreme spreads of step 4 it is
+ *     applied to the slice's scaled polynomial, and to the closed forms of
+ *     degree 1 and 2 where step 3 dropped leading terms (their root is
+ *     that of the rest: up to 7e-8 relative late near a double root).  Not
+ *     applied beyond 2^60 (compensated Horner is unscaled), nor to degrees
+ *     1 and 2 as given (their closed forms are exact to rounding).
  *     Degree 1 and 2 use closed forms; the quadratic uses an FMA-corrected
  *     discriminant (Kahan) and the cancellation-free formula; its graze
  *     check is the same bound at the vertex.  An exactly zero discriminant

@@ -99,11 +99,16 @@ def _solve_normalised(c: list[float], n: int, emax: int, tu: float, method: str,
         skin = -1.0
     else:
         skin = 0.0 if eps == 0 else solver.ldexp(eps, -E)
-    if n == 1:
-        r = solver.div(-c[0], c[1])
-        return (r, False) if 0 < r <= tu else None
-    if n == 2:
-        return solver.first_root_quadratic(c, tu, skin)
+    tail = [solver.ldexp(sign * v, -E) for v in dropped]  # scaled as c
+    if n <= 2:
+        if n == 1:
+            r = solver.div(-c[0], c[1])
+            hit = (r, False) if 0 < r <= tu else None
+        else:
+            hit = solver.first_root_quadratic(c, tu, skin)
+        if hit is not None and skin >= 0 and tail:
+            return solver.late_low_degree(c, n, tail, hit)
+        return hit
     if closed:
         return _first_root_closed(c, n, tu)
     # every positive root below it (with a skin, Fujiwara's on every root, as the skin's
@@ -114,9 +119,8 @@ def _solve_normalised(c: list[float], n: int, emax: int, tu: float, method: str,
     if found is None:
         return None
     t, g, scanned = found
-    if skin != 0:
+    if skin < 0:
         return t, g
-    tail = [solver.ldexp(sign * v, -E) for v in dropped]  # scaled as c
     if scanned and not tail:
         return solver.late_scanned(c, n, (t, g))
     return solver.never_late(c, n, tail, (t, g))

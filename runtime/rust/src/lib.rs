@@ -286,11 +286,18 @@ fn solve_normalised(c: &mut Coeffs, e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], 
         fp::ldexp(eps, -i64::from(big_e))
     };
     match n {
-        1 => {
-            let r = -c[0] / c[1];
-            (r > 0.0 && r <= tu).then_some((r, false))
+        1 | 2 => {
+            let hit = if n == 1 {
+                let r = -c[0] / c[1];
+                (r > 0.0 && r <= tu).then_some((r, false))
+            } else {
+                solver::quadratic(c, tu, skin)
+            };
+            match hit {
+                Some(h) if skin >= 0.0 && !tail.is_empty() => Some(solver::late_low_degree(c, n, tail, h)),
+                _ => hit,
+            }
         }
-        2 => solver::quadratic(c, tu, skin),
         3 | 4 if closed_form => {
             let mut c9 = [0.0; 9];
             c9.copy_from_slice(&c[..9]);
@@ -324,7 +331,7 @@ fn interval(c: &Coeffs, e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n: usize, tu
     let t_end = if tu < b { tu } else { b };
     if t_end > 0.0 {
         let (t, g, scanned) = solver::first_root_interval(c, n, t_end, skin, failed_w)?;
-        Some(if skin != 0.0 {
+        Some(if skin < 0.0 {
             (t, g)
         } else if scanned && tail.is_empty() {
             solver::late_scanned(c, n, (t, g))

@@ -73,7 +73,7 @@ pub(crate) use prepare::{load_coefficients, max_spread, normalise, reduce, root_
 pub(crate) use early::{cleared_at_once, outweighed};
 pub(crate) use evaluate::noise_factor;
 pub(crate) use quadratic::{quad_roots, quadratic};
-pub(crate) use never_late::{dropped_terms, late_scanned, never_late};
+pub(crate) use never_late::{dropped_terms, late_low_degree, late_scanned, never_late};
 pub(crate) use interval::first_root_interval;
 pub(crate) use spread::first_root_sliced;
 

@@ -212,6 +212,14 @@ def late_scanned(c: Sequence[float], n: int, hit: tuple[float, bool]) -> tuple[f
     return out
 
 
+def late_low_degree(c: Sequence[float], n: int, tail: Sequence[float], hit: tuple[float, bool]
+                    ) -> tuple[float, bool]:
+    """C late_low_degree: never_late for the closed forms of degree 1 and 2 after reduce dropped
+    leading terms (tail, scaled as c), with p(0) made positive, as never_late wants."""
+    s = -1.0 if c[0] < 0 else 1.0
+    return never_late([s * v for v in c[:n + 1]], n, [s * v for v in tail], hit)
+
+
 def dropped_terms(cc: Sequence[float], n: int) -> list[float]:
     """C dropped_terms: the leading terms reduce dropped from cc (n kept after the factors of t
     it divided out), up to the last nonzero; empty where it dropped none."""

@@ -11,6 +11,7 @@ from .prepare import exponents
 from .evaluate import sign_at
 from .quadratic import first_root_quadratic
 from .derivative import derivative_method
+from .never_late import late_scanned
 
 
 # ---------------------------------------------------------------------------
@@ -72,6 +73,9 @@ def first_root_sliced(c: Sequence[float], n: int, tmax: float, eps: float,
                 if s < 0:
                     q = [-x for x in q]
                 hit = (_LO, False) if s == 0 else derivative_method(q, m, _LO, T, 0.0, skin)
+                # never later than the first root, as unsliced (C says why)
+                if hit is not None and s != 0 and skin >= 0:
+                    hit = late_scanned(q, m, hit)
             if hit is not None:
                 # a root at or above half the least subnormal rounds up to it (C says why)
                 t = ldexp(hit[0], k)

@@ -274,6 +274,22 @@ pub(crate) fn late_scanned(c: &[f64], n: usize, hit: (f64, bool)) -> (f64, bool)
     }
 }
 
+/// C `late_low_degree`: `never_late` for the closed forms of degree 1 and 2 after reduce
+/// dropped leading terms (tail, scaled as c), with p(0) made positive, as never_late wants.
+#[inline(never)]
+pub(crate) fn late_low_degree(c: &[f64], n: usize, tail: &[f64], hit: (f64, bool)) -> (f64, bool) {
+    let s = if c[0] < 0.0 { -1.0 } else { 1.0 };
+    let mut p = [0.0f64; 3];
+    for (v, &x) in p.iter_mut().zip(&c[..=n]) {
+        *v = s * x;
+    }
+    let mut t = [0.0f64; MAXN];
+    for (v, &x) in t.iter_mut().zip(tail) {
+        *v = s * x;
+    }
+    never_late(&p[..=n], n, &t[..tail.len()], hit)
+}
+
 /// C `dropped_terms`: the leading terms reduce dropped from coef (n kept after the factors of t
 /// it divided out), up to the last nonzero; empty where it dropped none.
 pub(crate) fn dropped_terms(coef: &[f64], n: usize) -> &[f64] {

@@ -92,7 +92,9 @@ pub(crate) fn first_root_sliced(c: &[f64], n: usize, tmax: f64, eps: f64, nograz
                     if s == 0 {
                         Some((lo, false))
                     } else {
+                        // never later than the first root, as unsliced (C says why)
                         derivative_method(&q, m, lo, t_end, 0.0, skin)
+                            .map(|h| if skin >= 0.0 { late_scanned(&q, m, h) } else { h })
                     }
                 }
             };
