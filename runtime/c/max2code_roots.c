@@ -273,15 +273,14 @@ static ALWAYS_INLINE int solve_core(const double c_in[], int degree, double tmax
     emax = sc.emax;
     int sp = n == degree ? sc.emax - sc.emin /* reduce dropped nothing */
                          : spread(e, nz, n, &emax);
+    int m = 0;
+    const double *dropped = n == degree ? c_in : dropped_terms(c_in, degree, n, &m);
     if (sp > MAX_SPREAD)
-        found = first_root_sliced(c, n, tmax, eps,
-                                  method == M2C_METHOD_INTERVAL_NOGRAZE, &root, &g);
-    else {
-        int m = 0;
-        const double *dropped = n == degree ? c_in : dropped_terms(c_in, degree, n, &m);
+        found = first_root_sliced(c, n, tmax, eps, method == M2C_METHOD_INTERVAL_NOGRAZE,
+                                  dropped, m, &root, &g);
+    else
         found = solve_normalised(c, e, nz, n, emax, tmax, method, eps, failed_w, bound,
                                  dropped, m, &root, &g);
-    }
     if (!found)
         return 0;
     /* a root that underflows to 0 or overflows is not representable: none */

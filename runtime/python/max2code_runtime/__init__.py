@@ -158,10 +158,10 @@ def _solve_python(cc: list[float], tmax: float, method: str, eps: float) -> tupl
     if n <= 0:
         return 0, math.nan, False
     _, _, spread, emax = solver.exponents(c, n)
+    dropped = [] if n == degree else solver.dropped_terms(cc, n)
     if spread > solver.MAX_SPREAD:
-        found = solver.first_root_sliced(c, n, tmax, eps, method == "interval-nograze")
+        found = solver.first_root_sliced(c, n, tmax, eps, method == "interval-nograze", dropped)
     else:
-        dropped = [] if n == degree else solver.dropped_terms(cc, n)
         found = _solve_normalised(c, n, emax, tmax, method, eps, failed_w, dropped)
     if found is None:
         return 0, math.nan, False

@@ -244,10 +244,10 @@ fn solve_core(coef: &[f64], tmax: f64, method: Method, eps: f64) -> Status {
     } else {
         solver::spread(&e, &nz, n)
     };
+    let dropped = if n == degree { &coef[..0] } else { solver::dropped_terms(coef, n) };
     let hit = if spread > solver::max_spread() {
-        solver::first_root_sliced(&c, n, tmax, eps, method == Method::IntervalNoGraze)
+        solver::first_root_sliced(&c, n, tmax, eps, method == Method::IntervalNoGraze, dropped)
     } else {
-        let dropped = if n == degree { &coef[..0] } else { solver::dropped_terms(coef, n) };
         solve_normalised(&mut c, &e, &nz, n, emax, tmax, method, eps, failed_w, dropped)
     };
     let Some((t, graze)) = hit else {

@@ -212,6 +212,16 @@ def late_scanned(c: Sequence[float], n: int, hit: tuple[float, bool]) -> tuple[f
     return out
 
 
+def late_sliced_tail(q: Sequence[float], m: int, n: int, dropped: Sequence[float], k: int,
+                     top: int, sign: float, hit: tuple[float, bool]) -> tuple[float, bool]:
+    """C late_sliced_tail: never_late on a slice where reduce dropped leading terms: q (degree
+    m) is c_i 2^(k i - top - 1) times sign, its terms of degrees m+1..n 0 in the tail, the
+    dropped ones scaled alike after them."""
+    tail = [0.0] * (n - m) + [ldexp(sign * v, k * (n + 1 + j) - top - 1)
+                              for j, v in enumerate(dropped)]
+    return never_late(q, m, tail, hit)
+
+
 def late_low_degree(c: Sequence[float], n: int, tail: Sequence[float], hit: tuple[float, bool]
                     ) -> tuple[float, bool]:
     """C late_low_degree: never_late for the closed forms of degree 1 and 2 after reduce dropped

@@ -11,7 +11,7 @@ from .prepare import exponents
 from .evaluate import sign_at
 from .quadratic import first_root_quadratic
 from .derivative import derivative_method
-from .never_late import late_scanned
+from .never_late import late_scanned, late_sliced_tail
 
 
 # ---------------------------------------------------------------------------
@@ -39,9 +39,10 @@ def _dominant_term(e: list[int], nz: list[bool], n: int, d: int) -> int | None:
 
 
 def first_root_sliced(c: Sequence[float], n: int, tmax: float, eps: float,
-                      nograze: bool) -> tuple[float, bool] | None:
+                      nograze: bool, dropped: Sequence[float] = ()) -> tuple[float, bool] | None:
     """Coefficients spanning more than 2^MAX_SPREAD (c[0] != 0, not normalised), slice by
-    slice of t: the C runtime's first_root_sliced."""
+    slice of t: the C runtime's first_root_sliced (dropped: the leading terms reduce dropped,
+    in c's units, for never_late)."""
     e, nz, _, emax = exponents(c, n)
     d = (e[0] - emax - 2) // SLICE * SLICE
     while d < 1024:
@@ -75,7 +76,8 @@ def first_root_sliced(c: Sequence[float], n: int, tmax: float, eps: float,
                 hit = (_LO, False) if s == 0 else derivative_method(q, m, _LO, T, 0.0, skin)
                 # never later than the first root, as unsliced (C says why)
                 if hit is not None and s != 0 and skin >= 0:
-                    hit = late_scanned(q, m, hit)
+                    hit = (late_sliced_tail(q, m, n, dropped, k, top, -1.0 if s < 0 else 1.0, hit)
+                           if dropped else late_scanned(q, m, hit))
             if hit is not None:
                 # a root at or above half the least subnormal rounds up to it (C says why)
                 t = ldexp(hit[0], k)

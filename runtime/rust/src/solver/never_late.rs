@@ -274,6 +274,19 @@ pub(crate) fn late_scanned(c: &[f64], n: usize, hit: (f64, bool)) -> (f64, bool)
     }
 }
 
+/// C `late_sliced_tail`: `never_late` on a slice where reduce dropped leading terms: q (degree
+/// m) is c_i 2^(k i - top - 1) times sign, its terms of degrees m+1..n 0 in the tail, the
+/// dropped ones scaled alike after them.
+#[inline(never)]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn late_sliced_tail(q: &[f64], m: usize, n: usize, dropped: &[f64], k: i32, top: i32, sign: f64, hit: (f64, bool)) -> (f64, bool) {
+    let mut tail = [0.0f64; MAXN];
+    for (j, &v) in dropped.iter().enumerate() {
+        tail[n - m + j] = ldexp(sign * v, i64::from(k * (n + 1 + j) as i32 - top - 1));
+    }
+    never_late(q, m, &tail[..n - m + dropped.len()], hit)
+}
+
 /// C `late_low_degree`: `never_late` for the closed forms of degree 1 and 2 after reduce
 /// dropped leading terms (tail, scaled as c), with p(0) made positive, as never_late wants.
 #[inline(never)]

@@ -30,8 +30,9 @@ fn dominant_term(e: &[i32; MAXN + 1], nz: &[bool; MAXN + 1], n: usize, d: i32) -
 }
 
 /// C `first_root_sliced`: coefficients spanning more than 2^MAX_SPREAD, solved slice by slice
-/// of t (see the C runtime); c has c[0] != 0 and is not normalised.
-pub(crate) fn first_root_sliced(c: &[f64], n: usize, tmax: f64, eps: f64, nograze: bool) -> Option<(f64, bool)> {
+/// of t (see the C runtime); c has c[0] != 0 and is not normalised; dropped: the leading terms
+/// reduce dropped, in c's units, for never_late.
+pub(crate) fn first_root_sliced(c: &[f64], n: usize, tmax: f64, eps: f64, nograze: bool, dropped: &[f64]) -> Option<(f64, bool)> {
     let mut e = [0i32; MAXN + 1];
     let mut nz = [false; MAXN + 1];
     let (_, emax) = exponents(c, n, &mut e, &mut nz);
@@ -93,8 +94,16 @@ pub(crate) fn first_root_sliced(c: &[f64], n: usize, tmax: f64, eps: f64, nograz
                         Some((lo, false))
                     } else {
                         // never later than the first root, as unsliced (C says why)
-                        derivative_method(&q, m, lo, t_end, 0.0, skin)
-                            .map(|h| if skin >= 0.0 { late_scanned(&q, m, h) } else { h })
+                        let sign = if s < 0 { -1.0 } else { 1.0 };
+                        derivative_method(&q, m, lo, t_end, 0.0, skin).map(|h| {
+                            if skin < 0.0 {
+                                h
+                            } else if dropped.is_empty() {
+                                late_scanned(&q, m, h)
+                            } else {
+                                late_sliced_tail(&q, m, n, dropped, k, top, sign, h)
+                            }
+                        })
                     }
                 }
             };
