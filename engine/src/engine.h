@@ -101,6 +101,9 @@ typedef struct {
     int burst;                  /* collisions in a row, each within t_c of the last */
     int elastic;                /* its burst's cluster rests on nothing: rule 2 applies */
     int instant;                /* collisions in a row at one identical time (rule 5) */
+    int solved;                 /* left the contact solver (flying or asleep) and no impact since:
+                                   an overlap it has when it is predicted may be the solver's
+                                   slop (predict.c feature_slop) */
     event ev;
 } body;
 
@@ -248,7 +251,8 @@ void solver_forget(m2c_world *w, int k);                /* k flies again (an edi
 void solver_save(const m2c_world *w, void (*put)(void *, const void *, size_t), void *ctx);
 int solver_load(m2c_world *w, int (*get)(void *, void *, size_t), void *ctx);  /* 0 or -1 */
 void solver_wedged(m2c_world *w, int k);
-int solver_soft_response(m2c_world *w, int i, int j, const event *ev, double closing, m2c_event *out);
+int solver_soft_response(m2c_world *w, int i, int j, const event *ev, double closing, m2c_event *out,
+                         int *moved, int cap, int *nmoved);  /* moved: solver neighbours changed */
 
 /* motion.c */
 double first_crossing(double x, double v, double a, double edge, int dir, double tmax);

@@ -170,6 +170,7 @@ int respond(m2c_world *w, int i, int j, const event *ev)
 {
     body *A = &w->b[i], *B = &w->b[j];
     int woken = 0;
+    A->solved = B->solved = 0; /* an impact: exact from here on (predict.c feature_slop) */
     body_commit(A, w->now);
     if (B->kind == M2C_DYNAMIC)
         body_commit(B, w->now);
@@ -192,7 +193,10 @@ int respond(m2c_world *w, int i, int j, const event *ev)
         if (B->kind == M2C_DYNAMIC)
             solver_adopt(w, j);
         m2c_event out;
-        if (solver_soft_response(w, i, j, ev, closing, &out) == 0) {
+        int moved = 0;
+        if (solver_soft_response(w, i, j, ev, closing, &out, w->woken + woken, w->cap - woken,
+                                 &moved) == 0) {
+            woken += moved; /* the caller predicts them again */
             A->counter++;
             if (B->kind == M2C_DYNAMIC)
                 B->counter++;

@@ -517,7 +517,7 @@ void world_predict(m2c_world *w, int i)
     /* a body in the contact solver is predicted again at every tick (solver_tick): searching
      * beyond the next one is wasted (in a settled pile, most of a tick's cost) */
     double tick = b->state == SOLVING ? solver_next_tick(w) : INFINITY;
-    int capped = tick < ev.t;
+    int capped = tick <= ev.t;
     if (capped) {
         ev.t = tick;
         ev.kind = EV_NONE;
@@ -685,7 +685,8 @@ int m2c_world_step(m2c_world *w, double until, m2c_event *events, int capacity, 
         double tt = w->ntimers > 0 ? w->timers[0].t : INFINITY;
         double ts = solver_next_tick(w);   /* sustained contact (contact_solver.c) */
         double next = t < tt ? t : tt;
-        int tick = ts < next;
+        int tick = ts <= next; /* first at a tie: its solve, not an exact event, takes the
+                                  solver's pairs that come back to the slop's depth there */
         if (tick)
             next = ts;
         if (!(next <= until))
