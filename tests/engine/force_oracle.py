@@ -114,10 +114,15 @@ def contacts(shapes: list[Shape], gap: float) -> list[Contact]:
                             continue
                         found.append(Contact(i, j, (p[0] + m[0] * A.radius, p[1] + m[1] * A.radius),
                                              m, mu))
-    # a contact listed from both sides (two free bodies, vertex on vertex) is kept once
+    # a contact listed from both sides (two free bodies, vertex on vertex) is kept once; two
+    # at one point along different normals are two (a box's corner in the corner of a floor
+    # and a wall: its floor contact was dropped for the wall's end against its side, and the
+    # box, lying flat, seemed to hang on the wall)
     unique: dict[tuple, Contact] = {}
     for c in found:
-        key = (min(c.a, c.b), max(c.a, c.b), round(c.point[0], 9), round(c.point[1], 9))
+        s = 1.0 if c.a < c.b else -1.0
+        key = (min(c.a, c.b), max(c.a, c.b), round(c.point[0], 9), round(c.point[1], 9),
+               round(s * c.normal[0], 6), round(s * c.normal[1], 6))
         unique.setdefault(key, c)
     return list(unique.values())
 
