@@ -22,6 +22,8 @@ SMALLEST = 1e-30        # ... and 0 or at least this
 SPAN = 2.0 ** 45        # lengths from the origin: at most SPAN tolerances
 MASS = (1e-30, 1e30)    # a dynamic body's mass, given or derived (density x area)
 INERTIA = (1e-90, 1e90)  # its moment of inertia, given or derived (mass x length^2)
+CONTACT_STEP = 1 / 240  # the contact solver's default step h (docs/engine-contact.md): World's
+                        # and scene files'; 0 turns it off (exact impacts and the rest rule)
 
 
 def finite(v: object) -> bool:

@@ -13,8 +13,9 @@
     collapse_time = 0.0              # the collapse rules' t_c; 0: automatic (1e-3 s); < 0: off
     max_events = 0                   # a step processing more fails (0: no limit): the whole run
                                      # without pictures, one frame with them
-    contact_step = 0.0               # the sustained-contact solver's step h (e.g. 1/240 s);
-                                     # 0: off (docs/engine-contact.md)
+    contact_step = 0.004166666666666667   # the sustained-contact solver's step h (default
+                                     # 1/240 s); 0: off, exact impacts and the rest rule only
+                                     # (docs/engine-contact.md)
 
     [[bodies]]
     name = "ball"                    # optional, unique; default body<N>
@@ -118,7 +119,7 @@ class Scene:
     rest_speed: float = 0.0
     collapse_time: float = 0.0
     max_events: int = 0
-    contact_step: float = 0.0        # the contact solver's h; 0: off (docs/engine-contact.md)
+    contact_step: float = limits.CONTACT_STEP  # the contact solver's h; 0: off (engine-contact.md)
     path: str = ""
     places: tuple[str, ...] = ()     # each body's `file:line:col`, for the engine's refusals
 
@@ -686,7 +687,7 @@ def check(doc: Located, shown: str, stem: str = "scene") -> Scene:
         c.error(("engine", "max_events"), f"expected a whole number of events from 0 to "
                 f"{MAX_EVENTS_LIMIT}, got {max_events:g}")
         max_events = 0.0
-    contact_step = c.number(eng, "contact_step", ("engine",), 0.0, nonneg=True)
+    contact_step = c.number(eng, "contact_step", ("engine",), limits.CONTACT_STEP, nonneg=True)
     bodies: list[tuple[int, BodySpec]] = []
     names: set[str] = set()
     for k, raw in enumerate(c.bodies(data)):

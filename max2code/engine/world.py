@@ -9,6 +9,7 @@ from typing import Callable, Iterable, Iterator, Sequence
 from .binding import load
 from .handlers import FLAG_SENSOR, CollisionHandler, Handlers
 from .inputs import Input
+from .limits import CONTACT_STEP
 from .shapes import MassProperties, compound_mass_properties, mass_properties, polygon_area
 
 Vec = tuple[float, float]
@@ -158,7 +159,7 @@ class World:
 
     def __init__(self, *, gravity: Vec = (0.0, 0.0), tolerance: float = 1e-9,
                  cell_size: float = 0.0, rest_speed: float = 0.0, collapse_time: float = 0.0,
-                 max_events: int = 0, contact_step: float = 0.0) -> None:
+                 max_events: int = 0, contact_step: float = CONTACT_STEP) -> None:
         if not (isinstance(contact_step, (int, float)) and 0 <= contact_step < math.inf):
             raise EngineError(f"contact_step is a step in seconds (> 0; 0: the contact solver "
                               f"off), not {contact_step!r}")

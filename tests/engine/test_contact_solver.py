@@ -1,11 +1,11 @@
 """The sustained-contact solver (issue 34, docs/engine-contact.md) against closed-form physics
 and an independent statics check (force_oracle.py), never against the engine's own output.
 
-Without the solver (contact_step = 0, the default) the engine freezes each of these: the tilted
-box balanced on its corner, the sliding box where it lands, the box on the slope where it was
-put -- the rest rule decides there. With it the box tips flat, slides v0^2 / (2 mu g) and
-stops, and accelerates at g (sin - mu cos) down the slope; a body sleeps only when contact
-forces that hold it exist."""
+Without the solver (contact_step = 0; the default is 1/240 s) the engine freezes each of these:
+the tilted box balanced on its corner, the sliding box where it lands, the box on the slope
+where it was put -- the rest rule decides there. With it the box tips flat, slides
+v0^2 / (2 mu g) and stops, and accelerates at g (sin - mu cos) down the slope; a body sleeps
+only when contact forces that hold it exist."""
 
 from __future__ import annotations
 
@@ -320,6 +320,49 @@ def test_removing_the_support_wakes_what_it_held(engine) -> None:
     assert sleeping_residual(w) < CERTIFIED
 
 
+# -- energy --------------------------------------------------------------------------------------
+
+def _balls_in_a_box(engine, seed: int, n: int = 40):
+    """tests/engine/test_rest.py's pile: n balls (r = 0.12, m = 0.05, e = 0.6, walls 0.8)
+    dropped into a 2 m box with sideways speeds up to 1 m/s."""
+    rng = random.Random(seed)
+    w = engine.World(gravity=(0.0, -G), contact_step=H)
+    for a, b in [((0, 0), (2, 0)), ((2, 0), (2, 4)), ((0, 4), (0, 0))]:
+        w.add_segment(a, b, restitution=0.8)
+    pts: list[tuple[float, float]] = []
+    while len(pts) < n:
+        x, y = rng.uniform(0.15, 1.85), rng.uniform(0.5, 3.85)
+        if all(math.hypot(x - p, y - q) > 0.26 for p, q in pts):
+            pts.append((x, y))
+    for x, y in pts:
+        w.add_circle((x, y), 0.12, restitution=0.6, velocity=(rng.uniform(-1, 1), 0.0), mass=0.05)
+    return w
+
+
+@pytest.mark.parametrize("seed", [2, 3])
+def test_energy_rises_at_most_a_hop_per_body_and_tick(engine, seed: int) -> None:
+    """docs/engine-contact.md: between ticks a solver body flies freely (its energy constant);
+    a tick's inelastic solve raises the energy by at most m (|g| h / 2)^2 / 2 per body (a body
+    stopped on a support leaves it at |g| h / 2 and lands again at the next tick). Sampled just
+    after every tick of 5 s, the pile's energy never rises by more than that summed over the
+    balls. (Before: segments at the tick's velocity with no gravity climbed, gaining
+    m |g| v h by the next tick -- 1.2e-3 J between two of test_rest's samples, 50 ms apart --
+    and a soft contact's solve treated solver neighbours as walls moving at their own
+    velocity: a ball's kinetic energy doubled, 0.019 J.)"""
+    w = _balls_in_a_box(engine, seed)
+    m, n = 0.05, 40
+    bound = n * m * (G * H / 2) ** 2 / 2
+    prev = w.energy(0.0)
+    worst = -math.inf
+    for k in range(1, int(5.0 / H)):
+        w.step_to(k * H + 1e-9, events=False)
+        e = w.energy()
+        worst = max(worst, e - prev)
+        prev = e
+    assert worst <= bound      # measured: 4.1e-5 and 4.4e-5 J against 4.2e-4 (before: 1.3e-3)
+    assert all(w.asleep(b.id) for b in w.bodies if b.kind == "dynamic")
+
+
 # -- piles: every sleeper certified by the oracle --------------------------------------------------
 
 def _pile(engine, seed: int, n: int, mu: float, e: float):
@@ -459,6 +502,44 @@ restitution = 0.0
     bad.write_text(text % ("-1.0", 1.0))
     with pytest.raises(SceneError, match=r"bad\.toml:3:\d+: error: engine\.contact_step: must not be negative"):
         load(bad)
+
+
+def test_the_solver_is_on_by_default_and_0_turns_it_off(engine, tmp_path) -> None:
+    """World() and a scene file without [engine] contact_step tick at 1/240 s: the tilted box
+    tips flat. contact_step = 0 is the exact engine with the rest rule alone: it stays on its
+    corner (issue 34's first item, kept as what the rest rule does)."""
+    from max2code.engine.scenefile import build_world, load
+
+    tilt = 0.6
+    y = _lowest(0.25, tilt) + 0.01
+    for step in (None, 0.0):
+        w = engine.World(gravity=(0.0, -G), **({} if step is None else {"contact_step": step}))
+        _floor(w, 0.5, 0.0)
+        b = _box(w, 0.5, 0.5, position=(0.0, y), angle=tilt, restitution=0.0, friction=0.5)
+        w.step_to(3.0, events=False)
+        assert w.contact_slop == pytest.approx(1e-5 if step is None else 0.0)
+        if step is None:
+            assert abs(w.pose(b)[2]) < 0.02 and w.asleep(b)
+        else:
+            assert w.pose(b)[2] == pytest.approx(tilt, abs=1e-6)
+    path = tmp_path / "tip.toml"
+    path.write_text(f"""gravity = [0.0, -9.81]
+[[bodies]]
+shape = "segment"
+kind = "static"
+points = [[-5, 0], [5, 0]]
+[[bodies]]
+shape = "box"
+size = [0.5, 0.5]
+position = [0.0, {y!r}]
+angle = {tilt}
+restitution = 0.0
+""")
+    scene = load(path)
+    assert scene.contact_step == 1 / 240
+    w = build_world(scene)
+    w.step_to(3.0, events=False)
+    assert abs(w.pose(1)[2]) < 0.02 and w.asleep(1)
 
 
 @pytest.mark.parametrize("step", [-1.0, math.inf, math.nan])

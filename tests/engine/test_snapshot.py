@@ -1,11 +1,12 @@
 """Snapshots of a World (issue 35): pickle and copy.deepcopy give a world that goes on with the
 same future events, bit for bit; restore rolls back; damaged bytes are refused.
 
-The property runs without gravity in a closed box: gravity piles pushed by the kinematic ball
-are jams the engine cannot resolve yet (resting contact, issue 34), which end a step with
-`stuck` after 100,000 events or take 700,000 events for 4 s (a spinning box resting on a ball),
-minutes for one run of this test. Gravity, rests and a jam are covered by fixed worlds, where
-the future includes the error: a copy must fail the same way at the same time."""
+The property runs without gravity in a closed box: with the contact solver off, gravity piles
+pushed by the kinematic ball are jams the exact engine cannot resolve (resting contact, issue
+34), which end a step with `stuck` after 100,000 events or take 700,000 events for 4 s (a
+spinning box resting on a ball), minutes for one run of this test. Gravity, rests, the solver's
+ticks and a jam are covered by fixed worlds, where the future includes the error: a copy must
+fail the same way at the same time."""
 
 from __future__ import annotations
 
@@ -16,12 +17,13 @@ import pytest
 from hypothesis import Phase, example, given, settings, strategies as st
 
 
-def _scene(engine, seed: int, gravity: tuple[float, float] = (0.0, -9.81)):
+def _scene(engine, seed: int, gravity: tuple[float, float] = (0.0, -9.81), **options):
     """A box of balls with every kind of body: a spinning polygon, a kinematic and a static
-    sensor circle, a timer. Without gravity the box gets a lid (the balls stay inside)."""
+    sensor circle, a timer. Without gravity the box gets a lid (the balls stay inside).
+    `options` go to the World (contact_step=0: the exact engine alone)."""
     import random
     rnd = random.Random(seed)
-    w = engine.World(gravity=gravity)
+    w = engine.World(gravity=gravity, **options)
     walls = [((-5, 0), (5, 0)), ((-5, 0), (-5, 10)), ((5, 0), (5, 10))]
     for a, b in walls + ([((-5, 10), (5, 10))] if gravity == (0.0, 0.0) else []):
         w.add_segment(a, b)
@@ -80,18 +82,26 @@ def test_a_box_spun_onto_a_ball_is_parted_from_it(engine) -> None:
     assert w.energy() <= energy
 
 
-@pytest.mark.parametrize("seed, t, outcome", [(4, 2.0, "rests"), (346, 3.7, "stuck")])
-def test_copies_of_a_falling_world_rest_and_jam_alike(engine, seed: int, t: float, outcome: str) -> None:
-    """Seed 346 jams at t = 3.70: the kinematic ball pushes a row of balls resting on the floor
-    (issue 34). Should the engine learn to resolve it, pick a seed that still jams."""
-    w = _scene(engine, seed)
+@pytest.mark.parametrize("seed, t, outcome, step", [(4, 2.0, "rests", None),
+                                                     (346, 3.7, "stuck", 0.0),
+                                                     (346, 3.7, "solved", None)])
+def test_copies_of_a_falling_world_rest_and_jam_alike(engine, seed: int, t: float, outcome: str,
+                                                      step: float | None) -> None:
+    """With the contact solver off (step 0) seed 346 jams at t = 3.70: the kinematic ball pushes
+    a row of balls resting on the floor (issue 34); a copy must jam alike. With the solver (the
+    default) the same world goes on to 4 s, the row held by the solver, its ticks the same in
+    the copies. Seed 4 puts islands to sleep (each a `rest` per body) after t = 2."""
+    w = _scene(engine, seed, **({} if step is None else {"contact_step": step}))
     w.step_to(t)
     pickled, copied = pickle.dumps(w), copy.deepcopy(w)
     future = _future(engine, w, 4.0)
     if outcome == "stuck":
         assert isinstance(future, str) and future.startswith("stuck:"), future
+    elif outcome == "solved":
+        assert not isinstance(future, str), future
+        assert any(w.solving(b.id) for b in w.bodies)
     else:
-        assert sum(e[1] == "rest" for e in future) > 10
+        assert sum(e[1] == "rest" for e in future) >= 5
     assert _future(engine, pickle.loads(pickled), 4.0) == future
     assert _future(engine, copied, 4.0) == future
 
