@@ -5,9 +5,9 @@ Written from the statics, not from the engine: the contacts come from the bodies
 vertex or circle within `gap` of an edge, a circle within `gap` of a vertex or circle), each
 contact's force is a non-negative mix of its friction cone's two edge directions n +- mu t
 (exact in the plane), and Lawson & Hanson's active-set NNLS (Solving Least Squares Problems,
-1974, ch. 23) finds the mix closest to balance. The residual is the worst body's unbalanced
-force over its weight, and torque over weight times size. numpy only: the oracle shares
-nothing with the C core's projected Gauss-Seidel."""
+1974, ch. 23) finds the mix closest to balance (SciPy's). The residual is the worst body's unbalanced
+force over its weight, and torque over weight times size. numpy and SciPy only: the oracle
+shares nothing with the C core's projected Gauss-Seidel."""
 
 from __future__ import annotations
 
@@ -149,31 +149,14 @@ def _covered(A: Shape, B: Shape, p, q) -> bool:
     return False
 
 
-def nnls(A: np.ndarray, b: np.ndarray, iterations: int = 2000) -> np.ndarray:
-    """min |A x - b| subject to x >= 0: Lawson & Hanson's active-set algorithm."""
-    m, n = A.shape
-    x = np.zeros(n)
-    passive = np.zeros(n, dtype=bool)
-    w = A.T @ (b - A @ x)
-    tol = 1e-12 * max(1.0, float(np.abs(A).max()) * float(np.abs(b).max()) * n)
-    for _ in range(iterations):
-        if passive.all() or not (w[~passive] > tol).any():
-            break
-        cand = np.where(~passive, w, -np.inf)
-        passive[int(np.argmax(cand))] = True
-        while True:
-            z = np.zeros(n)
-            z[passive] = np.linalg.lstsq(A[:, passive], b, rcond=None)[0]
-            if (z[passive] > 0).all():
-                x = z
-                break
-            bad = passive & (z <= 0)
-            alpha = np.min(x[bad] / (x[bad] - z[bad]))
-            x = x + alpha * (z - x)
-            passive &= x > 1e-15
-            x[~passive] = 0.0
-        w = A.T @ (b - A @ x)
-    return x
+def nnls(A: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """min |A x - b| subject to x >= 0: Lawson & Hanson's active-set algorithm, SciPy's
+    compiled one. (A loop of numpy least squares adding one column at a time took 227 s and
+    487 s on the 200-disc piles of test_contact_solver, mu 0 and 0.5, against SciPy's 0.11 s
+    and 0.15 s, with the same residuals to 1e-13.)"""
+    from scipy.optimize import nnls as lawson_hanson
+
+    return lawson_hanson(A, b, maxiter=50 * A.shape[1])[0]
 
 
 def balance(shapes: list[Shape], found: list[Contact], gravity) -> float:
