@@ -162,6 +162,7 @@ struct m2c_world {
     int in_presolve;            /* inside the pre-solve callback: no changes allowed */
     m2c_stats st;
     struct solver *solver;      /* sustained contact (contact_solver.c); NULL until used */
+    int overflow;               /* an impulse beyond doubles was refused: the step fails (err) */
     char err[256];
 };
 

@@ -13,6 +13,7 @@
  * friction_impulse.
  */
 #include <math.h>
+#include <stdio.h>
 
 #include "engine.h"
 
@@ -268,6 +269,14 @@ int respond(m2c_world *w, int i, int j, const event *ev)
         double sep = -closing + J * k;
         if (sep < want)
             J += (want - sep) / k;
+    }
+    if (!isfinite(J)) { /* a mass or speed beyond doubles (1e308 kg against a floor): nothing
+                           is written (static bodies' 0 * inf would be NaN); the step fails */
+        w->overflow = 1;
+        snprintf(w->err, sizeof w->err,
+                 "overflow: the impulse between bodies %d and %d at t = %.17g is beyond double "
+                 "precision (a mass, speed or size too large for the arithmetic)", i, j, w->now);
+        return woken;
     }
     if (J != 0.0) {
         A->m.vx += J * ua[0] * ima;

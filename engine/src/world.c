@@ -735,6 +735,13 @@ int m2c_world_step(m2c_world *w, double until, m2c_event *events, int capacity, 
                 w->now = next;
             process(w, i);
         }
+        if (w->overflow) { /* response.c refused a non-finite impulse: err says which pair */
+            w->overflow = 0;
+            w->out = NULL;
+            *count = w->out_n;
+            w->step_events = 0;
+            return -1;
+        }
         /* (counted over the resumed calls of one step: each returns when the buffer fills,
          * about every thousand events with the Python binding's buffer; a contact solver's
          * tick is no event: it reports nothing, and there are only until / h of them) */

@@ -65,6 +65,25 @@ def test_impossible_scene_ends_in_a_named_error(engine, scene):
     assert time.monotonic() - start < 100
 
 
+def test_an_impulse_beyond_doubles_is_a_named_error_not_nan(engine):
+    """Issue 33 item 5 through the Python API (scene files refuse such masses with a location):
+    a 1e308 kg ball landing on a floor needs an impulse of about 9e308, beyond doubles. It used
+    to be applied: the static floor's pose became NaN (0 * inf), the heavy ball's speed inf,
+    and an unrelated ball then fell through the NaN floor. Now the step fails with a named
+    error at that contact and nothing non-finite is left in the world."""
+    w = engine.World(gravity=(0.0, -9.81))
+    floor = w.add_segment((-10.0, 0.0), (10.0, 0.0))
+    heavy = w.add_circle((0.0, 1.0), 0.5, mass=1e308)
+    other = w.add_circle((3.0, 1.0), 0.5)
+    with pytest.raises(engine.EngineError, match=r"^overflow: the impulse between bodies"):
+        w.step_to(3.0, events=False)
+    for body in (floor, heavy, other):
+        assert all(math.isfinite(v) for v in w.pose(body) + w.velocity(body))
+    assert w.pose(floor) == (0.0, 0.0, 0.0)
+    # the heavy ball hit the floor at the exact time of its free fall: sqrt(2 * 0.5 / g)
+    assert w.time == pytest.approx(math.sqrt(1.0 / 9.81), rel=1e-12)
+
+
 SPIN_SCENE = """\
 name = "fast-orbit"
 until = 1e6
