@@ -8,7 +8,8 @@ from typing import Sequence
 
 from .shared import DBL_MIN, TRUE_MIN, div, ldexp
 from .prepare import exponents
-from .evaluate import sign_at
+from .evaluate import sign_at, within_noise
+from .newton import horner_compensated
 from .quadratic import first_root_quadratic
 from .derivative import derivative_method
 from .never_late import late_scanned, late_sliced_tail
@@ -71,6 +72,12 @@ def first_root_sliced(c: Sequence[float], n: int, tmax: float, eps: float,
                 hit = first_root_quadratic(q, T, skin, _LO_OPEN)
             else:
                 s = sign_at(q, m, _LO, True)
+                # within its noise at lo the fma sign may be noise: the precise value decides
+                # (C says why)
+                if s != 0 and within_noise(q, m, _LO, 0.0):
+                    pc = horner_compensated(q, m, _LO)
+                    if pc != 0:
+                        s = 1 if pc > 0 else -1
                 if s < 0:
                     q = [-x for x in q]
                 hit = (_LO, False) if s == 0 else derivative_method(q, m, _LO, T, 0.0, skin)

@@ -84,7 +84,15 @@ pub(crate) fn first_root_sliced(c: &[f64], n: usize, tmax: f64, eps: f64, nograz
                 }
                 2 => first_root_quadratic(&q, lo_open, t_end, skin),
                 _ => {
-                    let s = sign_at(&q, m, lo, true);
+                    let mut s = sign_at(&q, m, lo, true);
+                    // within its noise at lo the fma sign may be noise: the precise value
+                    // decides (C says why)
+                    if s != 0 && within_noise(&q, m, lo, 0.0) {
+                        let pc = horner_compensated(&q, m, lo);
+                        if pc != 0.0 {
+                            s = if pc > 0.0 { 1 } else { -1 };
+                        }
+                    }
                     if s < 0 {
                         for v in q.iter_mut().take(m + 1) {
                             *v = -*v;
