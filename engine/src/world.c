@@ -831,7 +831,12 @@ double m2c_world_next_time(m2c_world *w)
     int i = heap_top(w);
     double t = i >= 0 ? w->b[i].ev.t : INFINITY;
     double tt = w->ntimers > 0 ? w->timers[0].t : INFINITY;
-    return t < tt ? t : tt;
+    /* the contact solver's next tick changes its bodies' motions too: between ticks they fly
+     * freely under gravity, so a server that slept past a tick would leave its clients drawing
+     * a resting body falling through the floor */
+    double ts = solver_next_tick(w);
+    double next = t < tt ? t : tt;
+    return ts < next ? ts : next;
 }
 
 int m2c_world_add_timer(m2c_world *w, double t)

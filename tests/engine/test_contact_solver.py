@@ -546,3 +546,22 @@ restitution = 0.0
 def test_world_refuses_a_bad_step(engine, step: float) -> None:
     with pytest.raises(engine.EngineError, match="contact_step"):
         engine.World(contact_step=step)
+
+
+def test_next_time_includes_the_solvers_next_tick(engine) -> None:
+    """World.next_time is when a server wakes: a tick changes the solver's bodies' motions (they
+    fly freely under gravity between ticks), so it must come no later than the next tick. It
+    used to count exact events and timers only: a server slept past the ticks, and its pages
+    drew the compound example's dumbbell falling through the floor (tests/server/test_browser.py)."""
+    w = engine.World(gravity=(0.0, -G), contact_step=H)
+    w.add_segment((-5.0, 0.0), (5.0, 0.0), friction=0.5)
+    box = _box(w, 0.5, 0.5, position=(0.0, 0.5), angle=0.6, friction=0.5, restitution=0.0)
+    held, ticks = 0, 0
+    for k in range(1, 60):
+        w.step_to(0.01 * k, events=False)
+        now = w.stats()["solver_ticks"]
+        if now > ticks and not w.asleep(box):    # the solver holds it (it ticked): tipping
+            held += 1
+            assert w.next_time() <= w.time + H * (1 + 1e-9)
+        ticks = now
+    assert held > 5
