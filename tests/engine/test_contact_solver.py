@@ -17,7 +17,10 @@ import random
 import pytest
 from hypothesis import assume, given, settings, strategies as st
 
+from max2code.engine.limits import CONTACT_STEP
+
 from .force_oracle import Shape, balance, contacts, sleeping_residual
+from .test_rest import _pile as _rest_pile
 from .scenes import assert_apart
 
 G = 9.81
@@ -322,23 +325,6 @@ def test_removing_the_support_wakes_what_it_held(engine) -> None:
 
 # -- energy --------------------------------------------------------------------------------------
 
-def _balls_in_a_box(engine, seed: int, n: int = 40):
-    """tests/engine/test_rest.py's pile: n balls (r = 0.12, m = 0.05, e = 0.6, walls 0.8)
-    dropped into a 2 m box with sideways speeds up to 1 m/s."""
-    rng = random.Random(seed)
-    w = engine.World(gravity=(0.0, -G), contact_step=H)
-    for a, b in [((0, 0), (2, 0)), ((2, 0), (2, 4)), ((0, 4), (0, 0))]:
-        w.add_segment(a, b, restitution=0.8)
-    pts: list[tuple[float, float]] = []
-    while len(pts) < n:
-        x, y = rng.uniform(0.15, 1.85), rng.uniform(0.5, 3.85)
-        if all(math.hypot(x - p, y - q) > 0.26 for p, q in pts):
-            pts.append((x, y))
-    for x, y in pts:
-        w.add_circle((x, y), 0.12, restitution=0.6, velocity=(rng.uniform(-1, 1), 0.0), mass=0.05)
-    return w
-
-
 @pytest.mark.parametrize("seed", [2, 3])
 def test_energy_rises_at_most_a_hop_per_body_and_tick(engine, seed: int) -> None:
     """docs/engine-contact.md: between ticks a solver body flies freely (its energy constant);
@@ -349,7 +335,8 @@ def test_energy_rises_at_most_a_hop_per_body_and_tick(engine, seed: int) -> None
     m |g| v h by the next tick -- 1.2e-3 J between two of test_rest's samples, 50 ms apart --
     and a soft contact's solve treated solver neighbours as walls moving at their own
     velocity: a ball's kinetic energy doubled, 0.019 J.)"""
-    w = _balls_in_a_box(engine, seed)
+    assert CONTACT_STEP == H       # test_rest.py's pile ticks at the default step
+    w = _rest_pile(engine, 40, seed)
     m, n = 0.05, 40
     bound = n * m * (G * H / 2) ** 2 / 2
     prev = w.energy(0.0)
