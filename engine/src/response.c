@@ -183,6 +183,8 @@ int respond(m2c_world *w, int i, int j, const event *ev)
     double vb[2] = {b.vx - b.w * rb[1], b.vy + b.w * rb[0]};
     double closing = -((vb[0] - va[0]) * n[0] + (vb[1] - va[1]) * n[1]);
     int soft = soft_contact(w, i, j, closing);
+    if (soft && solver_rest_at_once(w, i, j) > 0)
+        return 0; /* at rest and held: asleep, nothing moves */
     if (body_still(B) && ((wake_speed(w, B) > 0 && closing > wake_speed(w, B)) || soft)) {
         woken = wake_island(w, j, w->woken, w->cap);
         if (solver_step(w) > 0) /* they were at rest in contact: the solver takes them */

@@ -13,13 +13,14 @@ import copy
 import math
 import pickle
 import random
+from fractions import Fraction
 
 import pytest
 from hypothesis import assume, given, settings, strategies as st
 
 from max2code.engine.limits import CONTACT_STEP
 
-from .force_oracle import Shape, balance, contacts, sleeping_residual
+from .force_oracle import Shape, balance, contacts, sleeping_residual, world_shapes
 from .test_rest import _pile as _rest_pile
 from .scenes import assert_apart
 
@@ -283,6 +284,69 @@ def test_column_of_ten_boxes_stands(engine, mu: float) -> None:
     assert sleeping_residual(w) < CERTIFIED
     w.step_to(11.0, events=False)
     assert [w.pose(b) for b in boxes] == settled
+
+
+@pytest.mark.parametrize("mu", [0.0, 0.5])
+def test_column_put_down_touching_never_moves(engine, mu: float) -> None:
+    """Issue 34 item 4: ten 0.5 m boxes put down at rest, each exactly on the one below (centres
+    at 1/4 + k/2, exact in binary). Forces that hold them exist at t = 0 (the oracle finds them),
+    so staying put is their motion: over 10 s no box moves 1e-9 m from its exact pose
+    (rationals), and they sleep certified at once. (Before: the soft contacts at t = 0 gave each
+    a hop and a sway, the solver ran 0.25 s before a certificate was tried, and they slept
+    5.6e-6 m from where they were put.)"""
+    w = engine.World(gravity=(0.0, -G), contact_step=H)
+    _floor(w, mu, 0.0, half=5.0)
+    exact = [(Fraction(0), Fraction(1, 4) + Fraction(k, 2)) for k in range(10)]
+    boxes = [_box(w, 0.5, 0.5, position=(float(x), float(y)), restitution=0.0, friction=mu)
+             for x, y in exact]
+    shapes = world_shapes(w, set(boxes))
+    assert balance(shapes, contacts(shapes, 1e-9), (0.0, -G)) < CERTIFIED
+    w.step_to(H / 2, events=False)          # before the solver's first tick
+    assert all(w.asleep(b) for b in boxes)
+    assert sleeping_residual(w) < CERTIFIED
+    for t in range(1, 21):
+        w.step_to(t / 2, events=False)
+        for b, (x, y) in zip(boxes, exact):
+            px, py, th = (Fraction(v) for v in w.pose(b))
+            assert (px - x) ** 2 + (py - y) ** 2 < Fraction(1, 10 ** 18) and abs(th) < 1e-9
+
+
+def _jittered_column(w, rng: random.Random, n: int = 10) -> list[int]:
+    """bench/engine_stacking.py's jittered column: each 0.5 m box offset up to 3 mm sideways
+    and turned up to 0.02 rad, its lowest corner 1 mm above the highest of the box below."""
+    boxes, top = [], 0.0
+    for _ in range(n):
+        angle, x = rng.uniform(-0.02, 0.02), rng.uniform(-0.003, 0.003)
+        y = top + 0.001 + _lowest(0.25, angle)
+        boxes.append(_box(w, 0.5, 0.5, position=(x, y), angle=angle, restitution=0.0,
+                          friction=0.5))
+        top = y + _lowest(0.25, angle)
+    return boxes
+
+
+def _tilt(angle: float) -> float:
+    """How far a box is turned from lying on a side (0 .. pi/4)."""
+    a = angle % (math.pi / 2)
+    return min(a, math.pi / 2 - a)
+
+
+@pytest.mark.parametrize("seed", [7, 2, 3])
+def test_jittered_column_settles_flat_or_topples(engine, seed: int) -> None:
+    """The same column jittered (issue 34 item 4) settles as pymunk and Box2D do: flat (every
+    box within 1e-6 rad of a side) and asleep with forces that hold it, or toppled; never
+    asleep tilted. With the rest rule alone (contact_step = 0) the boxes freeze at their
+    landing tilts (up to 0.02 rad)."""
+    w = engine.World(gravity=(0.0, -G), contact_step=H)
+    _floor(w, 0.5, 0.0, half=5.0)
+    boxes = _jittered_column(w, random.Random(seed))
+    top = w.pose(boxes[-1])[1]
+    w.step_to(4.0, events=False)
+    asleep = [b for b in boxes if w.asleep(b)]
+    if w.pose(boxes[-1])[1] > top - 0.5:      # standing: flat and asleep, held
+        assert asleep == boxes
+        assert max(_tilt(w.pose(b)[2]) for b in boxes) < 1e-6
+    assert sleeping_residual(w) < CERTIFIED
+    assert_apart(w)
 
 
 def test_pyramid_of_ten_boxes_stands(engine) -> None:
