@@ -304,3 +304,26 @@ def table(by: dict, labels: list[str]) -> list[str]:
                      if "wall" in by[label]["stacking"].get(scene, {}) else "–" for label in labels]
             lines.append(f"| {scene} | wall time / pymunk 1/60's | {' | '.join(cells)} |")
     return lines
+
+
+def main() -> int:
+    """`python bench/engine_stacking.py`: the stacking measure alone, every engine in one run,
+    its table printed (the rows of bench/results/engine.md's stacking section). The smallest run
+    that answers a question about stacking: `python bench/engine.py` runs every measure (minutes)
+    and writes the results files."""
+    import engine_anchors
+    import engine_ours
+
+    chosen = list(engine_anchors.anchors())
+    reason = engine_ours.unavailable()
+    if reason is None:
+        chosen.append(engine_ours.Ours())
+    else:
+        print(f"bench/engine_stacking: ours not run: {reason}")
+    by = {engine.label: {"stacking": stacking(engine, quick=False)} for engine in chosen}
+    print("\n".join(table(by, list(by))))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
