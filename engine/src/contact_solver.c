@@ -632,7 +632,8 @@ static void gen_visit(m2c_world *w, int i, int j, void *ctx)
  * Projected Gauss-Seidel. v: per body (vx, vy, w); contacts' impulses ln, lt accumulate.
  */
 
-static void apply(struct solver *s, const m2c_world *w, const cp *c, double Pn, double Pt)
+static inline __attribute__((always_inline)) void apply(struct solver *s, const m2c_world *w,
+                                                        const cp *c, double Pn, double Pt)
 {
     double t[2] = {-c->n[1], c->n[0]};
     double P[2] = {Pn * c->n[0] + Pt * t[0], Pn * c->n[1] + Pt * t[1]};
@@ -650,7 +651,8 @@ static void apply(struct solver *s, const m2c_world *w, const cp *c, double Pn, 
     }
 }
 
-static void rel_velocity(const struct solver *s, const cp *c, double out[2])
+static inline __attribute__((always_inline)) void rel_velocity(const struct solver *s,
+                                                               const cp *c, double out[2])
 {
     const double *va = &s->v[3 * c->a];
     double ua[2] = {va[0] - va[2] * c->ra[1], va[1] + va[2] * c->ra[0]};
