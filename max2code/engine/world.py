@@ -177,6 +177,9 @@ class World:
         self._attach(ptr)
         self.gravity = (float(gravity[0]), float(gravity[1]))
         self.tolerance = tolerance
+        # the contact solver's step h (0: off): its ticks are at the multiples of h, and a
+        # server models a held body's hop from it (max2code/server/room.py)
+        self.contact_step = float(contact_step)
         self.bodies: list[BodyInfo] = []
         self._names: dict[str, int] = {}
         self._groups: dict[str, int] = {}
