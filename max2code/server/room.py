@@ -142,8 +142,10 @@ class Room:
 
     def advance(self, t: float) -> None:
         """Step the world to t and send what changed (nothing when nothing drawn changed)."""
-        if self.failed is not None or t < self.world.time or (t == self.world.time and not self._waiting()):
-            return
+        if self.failed is not None or t < self.world.time or (
+                t == self.world.time and not self._waiting() and self.world.next_time() > t):
+            return      # (an event queued at the world's own time is stepped: one at 0 in a
+                        # world that starts in contact kept the loop waking for ever)
         try:
             events = self.world.step_to(t)
         except EngineError as exc:   # the world cannot go on: say so, keep serving the page
