@@ -69,15 +69,50 @@ def _polish(c: float, b: float, a: float, s: float) -> float:
 SOON = 0.05   # seconds: a change visible within this is sent at once, with its event
 
 
-def deadline(held: Motion, truth: Motion, now: float, eps: float, reach: float) -> float:
+def deadline(held: Motion, truth: Motion, now: float, eps: float, reach: float,
+             soon: float = SOON) -> float:
     """When the held segment first drifts from the truth by more than eps/2 along x or y, or
     by more than eps/2 at `reach` from the reference point through rotation (both segments
-    valid from `now`); `now` when eps is 0 or they already differ that much."""
+    valid from `now`); `now` when eps is 0 or they already differ that much, or when that
+    comes within `soon`."""
     if eps <= 0:
         return now
     h, g = _at(held, now), _at(truth, now)
     e = eps / 2
+    turn = g[2] - h[2]      # (angles a whole turn apart draw the same: the engine wraps them)
+    turn -= 2 * math.pi * round(turn / (2 * math.pi))
     s = min(_first_exceed(g[0] - h[0], g[3] - h[3], g[6] - h[6], e),
             _first_exceed(g[1] - h[1], g[4] - h[4], g[7] - h[7], e),
-            _first_exceed(reach * (g[2] - h[2]), reach * (g[5] - h[5]), 0.0, e) if reach > 0 else math.inf)
-    return now if s < SOON else now + s
+            _first_exceed(reach * turn, reach * (g[5] - h[5]), 0.0, e) if reach > 0 else math.inf)
+    return now if s < soon or s == 0 else now + s
+
+
+def next_tick(t: float, h: float) -> float:
+    """The contact solver's first tick after t. Its ticks are at the multiples of h, each the
+    last plus h (so a few ulps off k h after many): a t within 1e-6 h of one is that tick."""
+    k = round(t / h)
+    if abs(t - k * h) <= 1e-6 * h:
+        return (k + 1) * h
+    return math.ceil(t / h) * h
+
+
+def chord(truth: Motion, t: float, h: float) -> Motion:
+    """What clients are sent for a body the contact solver holds, from time t: its pose at t,
+    moving straight until the solver's next tick T at the mean velocity its free flight has
+    over [t, T], no acceleration. Why: between ticks such a body flies freely under gravity
+    and each tick pushes it back (docs/engine-contact.md), so its exact segment changes 240
+    times a second even at rest; the chord is where it is at the ticks (semi-implicit Euler's
+    positions), at most |a| (T - t)^2 / 8 from its flight in between (the hop), and a body at
+    rest or rolling steadily keeps the same chord from tick to tick, so that clients need no
+    new one (room.py: re-sent only when the truth leaves `hop_bound`)."""
+    x, y, th, vx, vy, w, ax, ay = _at(truth, t)
+    half = (next_tick(t, h) - t) / 2
+    return (t, x, y, th, vx + ax * half, vy + ay * half, w, 0.0, 0.0)
+
+
+def hop_bound(truth: Motion, h: float, slop: float) -> float:
+    """How far (per axis, and through rotation at a body's reach) a client's chord of a held
+    body may be from the truth: the hop, |a| h^2 / 8 (the flight between two ticks is that far
+    from its chord at most), plus the solver's slop (a held pair may overlap that much: the
+    solver itself places such a body only to within it)."""
+    return slop + math.hypot(truth[7], truth[8]) * h * h / 8

@@ -92,6 +92,12 @@ class Room:
         self.held: list[tuple[float, ...]] = [wire.motion(wire.segment(i, m, 0.0, self.zero), 0.0)
                                               for i, m in enumerate(motions)]
         self.due: dict[int, float] = {}
+        # bodies the contact solver holds: clients get their chord (reckon.chord), and each is
+        # checked again at `watch[i]`, when the truth would leave reckon.hop_bound of it
+        self.step = float(getattr(self.world, "contact_step", 0.0))
+        self.slop = self.world.contact_slop if self.step > 0 else 0.0
+        self.modelled: set[int] = set()
+        self.watch: dict[int, float] = {}
         self.reach: list[float] = []
         self.gravity: list[tuple[float, float]] = []
         self._grow()
@@ -193,9 +199,27 @@ class Room:
         now = self.world.time
         for i in removed:   # (its wait, if any, is over: clients drop it)
             self.due.pop(i, None)
+            self.watch.pop(i, None)
+            self.modelled.discard(i)
+        for i, d in list(self.watch.items()):   # a held body's chord about to leave its bound
+            if d <= now:
+                del self.watch[i]
+                self.due[i] = now
         # with a tolerance, a change clients would not see yet waits (reckon.py); an input's
         # body is always sent, as is every body whose wait is over
         for i in changed:
+            if (extra is None or extra[1] != i) and self.step > 0 and self.world.solving(i):
+                self.modelled.add(i)   # (entering and leaving the solver bump the counter)
+                d = self._held_deadline(i, motions[i], now)
+                if d is None:
+                    self.due[i] = now
+                    self.watch.pop(i, None)
+                else:           # clients' chord is good until d: nothing owed
+                    self.watch[i] = d
+                    self.due.pop(i, None)
+                continue
+            self.modelled.discard(i)
+            self.watch.pop(i, None)
             self.due[i] = (reckon.deadline(self.held[i], motions[i], now, self.tolerance, self.reach[i])
                            if extra is None or extra[1] != i else now)
         for i in added:     # a new body's segment goes with it, whatever the tolerance
@@ -228,7 +252,8 @@ class Room:
         # (t exact: rounded, it could fall before a removal the message carries)
         t = (max([motions[i][0] for i in send] + [e.time for e in drawn], default=now)
              if extra is None else now)
-        segs = [wire.segment(i, motions[i], t, self.zero) for i in send]
+        segs = [wire.segment(i, reckon.chord(motions[i], t, self.step) if i in self.modelled
+                             else motions[i], t, self.zero) for i in send]
         # a segment equal to what clients hold (re-expressed from t: a contact with no impulse,
         # a rest or wake that moved nothing) is not sent again, unless the body is new
         fresh = set(added)
@@ -242,6 +267,13 @@ class Room:
             ev.append(list(extra))
         for seg in segs:   # what clients now hold (the numbers as sent)
             self.held[seg[0]] = wire.motion(seg, t)
+        for i in send:     # a held body's chord: checked again when it would leave its bound
+            if i in self.modelled:
+                d = self._held_deadline(i, motions[i], now)
+                if d is None:   # (rounding only: a chord starts on the truth) the next message
+                    self.due[i] = now
+                else:
+                    self.watch[i] = d
         self.seq += 1
         self.last_sent = now
         message = {"type": "ev", "n": self.seq, "t": t, "ev": ev, **self._segments(segs)}
@@ -250,6 +282,15 @@ class Room:
         if added:
             message["add"] = [wire.body(self.world, i) for i in added]
         self._broadcast(message)
+
+    def _held_deadline(self, i: int, truth: tuple[float, ...], now: float) -> float | None:
+        """For a body the contact solver holds: when the chord clients hold leaves the truth by
+        more than reckon.hop_bound (or the room's tolerance, if larger), None when that comes
+        before the solver's next tick (send it now: the change is real). Checked at every change
+        of the truth (every tick), so clients stay within that bound at every instant."""
+        eps = max(self.tolerance, 2 * reckon.hop_bound(truth, self.step, self.slop))
+        d = reckon.deadline(self.held[i], truth, now, eps, self.reach[i], soon=0.0)
+        return None if d <= reckon.next_tick(now, self.step) else d
 
     def _segments(self, segs: list[list]) -> dict:
         """A message's `seg`, and its `fall` (segments accelerating at the room's g, sent
@@ -261,7 +302,8 @@ class Room:
         """The next queued event, or the end of a change's wait (and of the rate's interval
         when a change waits for it), whichever is first."""
         owed = min(self.due.values(), default=-math.inf if self._waiting() else math.inf)
-        return min(self.world.next_time(), max(owed, self.last_sent + self.gap))
+        return min(self.world.next_time(), max(owed, self.last_sent + self.gap),
+                   min(self.watch.values(), default=math.inf))
 
     def _broadcast(self, message: dict) -> None:
         """One message to every client; an ev message without its events to those that asked

@@ -11,6 +11,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from max2code.engine.limits import CONTACT_STEP
 from max2code.engine.scenefile import build_world, load
 from max2code.server import protocol, wire
 from max2code.server.room import Room
@@ -68,18 +69,23 @@ def test_a_falling_pile_sends_fall_segments_that_give_the_engines_poses():
     c = Client(None)
     c.start(world)
     reference = build_world(load(PILE))      # a world of its own: the oracle
+    # a body the contact solver holds is sent as its chord, within the hop and the slop
+    # (docs/server.md, "Bodies the contact solver holds"); every other body exactly
+    held = reference.contact_slop + 9.81 * CONTACT_STEP ** 2 / 8
     falls = explicit = 0
     for m in messages:
         c.apply(m)
-        falls += len(m.get("fall", []))
-        explicit += len(m["seg"])
+        if m["t"] <= 0.5:    # (falling: then the solver holds its bodies, whose chords do not)
+            falls += len(m.get("fall", []))
+            explicit += len(m["seg"])
         reference.step_to(m["t"], events=False)
         for body in c.bodies:
-            assert c.pose(body, m["t"]) == pytest.approx(reference.pose(body, m["t"]), abs=1e-7)
-    assert falls > 2 * explicit > 0, (falls, explicit)
-    # what it saves the page (no event lists): the same messages with every segment
-    # explicit, as version 3 sent them
-    page = [{k: v for k, v in m.items() if k != "ev"} for m in messages]
+            bound = held * (1 + 1e-9) if reference.solving(body) else 1e-7
+            assert c.pose(body, m["t"]) == pytest.approx(reference.pose(body, m["t"]), abs=bound)
+    assert falls > 2 * explicit and falls > 0, (falls, explicit)
+    # what it saves the page (no event lists) while the pile falls: the same messages with
+    # every segment explicit, as version 3 sent them
+    page = [{k: v for k, v in m.items() if k != "ev"} for m in messages if m["t"] <= 0.5]
     old = sum(len(protocol.encode({k: v for k, v in m.items() if k != "fall"}
                                   | {"seg": wire.expanded(m, world["g"])})) for m in page)
     new = sum(len(protocol.encode(m)) for m in page)
