@@ -55,7 +55,9 @@
                                  column of 10 boxes met CONVERGED in 1,500-2,000 sweeps a
                                  tick with 1.0 (a chain's slow mode), in 300-450 with 1.8 */
 #define CERT_WAIT_BODIES 25   /* a failed certificate waits 0.125 s more per this many bodies */
-#define WORK_BUDGET 200000    /* PGS contact updates per tick (iterations = budget / contacts) */
+#define WORK_BUDGET 50000     /* PGS contact updates per tick (iterations = budget / contacts):
+                                 a dense pile never meets CONVERGED (its slow mode), so this
+                                 is its cost; 200,000 slept no sooner (bench/contact.py) */
 #define MIN_ITERATIONS 10
 #define MAX_ITERATIONS 2000
 #define CONVERGED 1e-9        /* a sweep that changes no impulse by more than this of m |g| h */
