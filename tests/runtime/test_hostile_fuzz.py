@@ -401,15 +401,13 @@ def test_never_later_on_the_other_paths(c_exe: Path) -> None:
     assert not late, f"{len(late)} late:\n" + "\n".join(late[:6])
 
 
-# A touch inside the rounding band stands (never_late: a touch stands unless p is certainly
-# negative at it, so that an exact multiple root such as (t - 1000)^4 keeps its answer): the
-# doubles of this cubic (a triple root at 1, rounded; drawn by test_never_later_on_the_other_paths
-# at WINDOW_FUZZ_COUNT=20000 with a negligible t^4 term, which step 3 drops) have roots at
-# 1 - 1.3e-15 and exactly 1, p(1) = 0, compensated Horner's band about |t - 1| < 2e-10 around
-# them; the runtimes answer the touch 1.0, 12 u after the exact first root.  Walking such a touch
-# to the band's left edge (the issue's "earliest point that cannot be excluded") would answer
-# 1 - 2e-10 here and move (t - 1000)^4's 1000 by its band, 3e-8..1e-7 relative (band_side of
-# the Python port): not done; pinned here.
+# A touch inside the rounding band: the doubles of this cubic (a triple root at 1, rounded; drawn
+# by test_never_later_on_the_other_paths at WINDOW_FUZZ_COUNT=20000 with a negligible t^4 term,
+# which step 3 drops) have roots at 1 - 1.3e-15 and exactly 1, p(1) = 0, compensated Horner's band
+# about |t - 1| < 2e-10 around them. While a touch inside the band stood, every runtime answered
+# the touch 1.0, 12 u after the exact first root. Now a touch stands only where p is certainly
+# positive just before it, and inside the band the sign is exact (exact_sign): the answer is
+# the crossing, 1 - 9e-16 (within never_late's r 2^-50 of it).
 IN_BAND_TOUCH = [((-1.7684076812891022e+303, 5.305223043867309e+303, -5.3052230438673115e+303,
                    1.7684076812891046e+303), 1.0001)]
 
@@ -432,8 +430,7 @@ def test_a_crossing_on_the_sliced_path_is_not_missed(runtime: str, tmp_path: Pat
     assert _wrong_or_late(SLICED_MISSED, _run(runtime, SLICED_MISSED, tmp_path, request)) == []
 
 
-@pytest.mark.xfail(strict=True, reason="a touch inside the rounding band stands (docs/runtimes.md)")
-def test_a_touch_inside_the_band_is_not_late(c_exe: Path, tmp_path: Path) -> None:
-    with pytest.MonkeyPatch.context() as mp:
-        got = er.answers("c", IN_BAND_TOUCH, tmp_path, mp, c_exe=c_exe)
-    assert _wrong_or_late(IN_BAND_TOUCH, got) == []
+@pytest.mark.parametrize("runtime", er.RUNTIMES)
+def test_a_touch_inside_the_band_is_not_late(runtime: str, tmp_path: Path,
+                                             request: pytest.FixtureRequest) -> None:
+    assert _wrong_or_late(IN_BAND_TOUCH, _run(runtime, IN_BAND_TOUCH, tmp_path, request)) == []
