@@ -1301,7 +1301,7 @@ void solver_tick(m2c_world *w)
         s->t_next = t > w->now ? t : w->now + h;
     }
     for (int m = 0; m < s->n; m++)
-        world_predict(w, s->list[m]);
+        world_predict_solver(w, s->list[m]);
     for (int k = 0; k < released; k++)
         world_predict(w, w->woken[k]);
 }

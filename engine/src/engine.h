@@ -292,6 +292,7 @@ void body_reach(const m2c_world *w, body *b);
  * NULL: one rule and one message for add_body and set_kind. */
 const char *moving_vertices_refusal(int kind, long long nvertices);
 void world_predict(m2c_world *w, int i);
+void world_predict_solver(m2c_world *w, int i); /* the tick: a pair of solver bodies once */
 int world_emit(m2c_world *w, const m2c_event *e);
 
 #endif

@@ -421,11 +421,14 @@ static int flush_pending(m2c_world *w)
 typedef struct {
     contact c;
     int partner;
+    int batch;        /* every solver body is predicted now: a pair of them from one side */
 } best_contact;
 
 static void visit(m2c_world *w, int i, int j, void *ctx)
 {
     best_contact *bc = ctx;
+    if (bc->batch && j < i && solver_has(w, j))
+        return; /* j predicts the pair (world_predict_solver) */
     if (predict_pair(w, i, j, &bc->c))
         bc->partner = j;
 }
@@ -459,7 +462,23 @@ static double horizon(double now)
     return now + h < DBL_MAX ? h : DBL_MAX - now;
 }
 
+static void predict_body(m2c_world *w, int i, int batch);
+
 void world_predict(m2c_world *w, int i)
+{
+    predict_body(w, i, 0);
+}
+
+/* Body i, one of the contact solver's bodies, all of which the tick predicts again at once:
+ * a pair of two of them is searched from its lower id's side alone (the other would find the
+ * same contact; the searches were a quarter of a dense 200-disc pile's time). When either
+ * body's motion changes later, world_predict searches all its pairs again. */
+void world_predict_solver(m2c_world *w, int i)
+{
+    predict_body(w, i, 1);
+}
+
+static void predict_body(m2c_world *w, int i, int batch)
 {
     body *b = &w->b[i];
     w->st.predictions++;
@@ -528,6 +547,7 @@ void world_predict(m2c_world *w, int i)
     bc.c.rate = -INFINITY;
     bc.c.window = INFINITY;
     bc.partner = -1;
+    bc.batch = batch && b->state == SOLVING;
     grid_neighbours(w, i, visit, &bc);
     set_contact(w, &ev, &bc);
     if (capped && ev.kind == EV_NONE)
