@@ -57,6 +57,10 @@
 #define TICK_OMEGA 1.8        /* over-relaxation of the tick's normal impulses: a jittered
                                  column of 10 boxes met CONVERGED in 1,500-2,000 sweeps a
                                  tick with 1.0 (a chain's slow mode), in 300-450 with 1.8 */
+#define PLAIN_SWEEPS 50       /* pgs: sweeps before the over-relaxation (at most a quarter of
+                                 the limit): over-relaxed from the first, a box tipping onto a
+                                 floor (two contacts, which plain sweeps meet in a few) needed
+                                 5-56x the sweeps (0.8 a sweep at best) */
 #define CERT_WAIT_BODIES 25   /* a failed certificate waits 0.125 s more per this many bodies */
 #define WORK_BUDGET 50000     /* PGS contact updates per tick (iterations = budget / contacts):
                                  a dense pile never meets CONVERGED (its slow mode), so this
@@ -744,14 +748,15 @@ static double push_sweep(struct solver *s, const m2c_world *w, cp *c, int nc)
     return worst;
 }
 
-/* Iterate until the largest impulse change is below eps or `limit` sweeps; omega
- * over-relaxes the normal impulses (sweep). */
+/* Iterate until the largest impulse change is below eps or `limit` sweeps: the first
+ * min(PLAIN_SWEEPS, limit / 4) plain, then with omega over-relaxing the normal impulses
+ * (sweep). */
 static int pgs(struct solver *s, const m2c_world *w, cp *c, int nc, int limit, double eps,
                double omega)
 {
-    int it;
+    int plain = limit / 4 < PLAIN_SWEEPS ? limit / 4 : PLAIN_SWEEPS, it;
     for (it = 0; it < limit; it++)
-        if (sweep(s, w, c, nc, 1, omega) <= eps)
+        if (sweep(s, w, c, nc, 1, it < plain ? 1.0 : omega) <= eps)
             break;
     return it;
 }
