@@ -406,8 +406,8 @@ def test_never_later_on_the_other_paths(c_exe: Path) -> None:
 # which step 3 drops) have roots at 1 - 1.3e-15 and exactly 1, p(1) = 0, compensated Horner's band
 # about |t - 1| < 2e-10 around them. While a touch inside the band stood, every runtime answered
 # the touch 1.0, 12 u after the exact first root. Now a touch stands only where p is certainly
-# positive just before it, and inside the band the sign is exact (exact_sign): the answer is
-# the crossing, 1 - 9e-16 (within never_late's r 2^-50 of it).
+# positive just before it (or at it: a near miss); this one is walked to the band's left edge,
+# the earliest point that cannot be excluded (item 11): 1 - 1.9e-10, a touch.
 IN_BAND_TOUCH = [((-1.7684076812891022e+303, 5.305223043867309e+303, -5.3052230438673115e+303,
                    1.7684076812891046e+303), 1.0001)]
 
@@ -422,6 +422,23 @@ IN_BAND_TOUCH = [((-1.7684076812891022e+303, 5.305223043867309e+303, -5.30522304
 SLICED_MISSED = [((1.27522373e-315, 7.375330973145643, -40.89367228170775, 91.07994702249495,
                    -100.11761183636594, 49.40799401036338, 0.20535343851918428, -9.829259794885488,
                    2.7719184684360205), 1.0116806122053246)]
+
+
+# A crossing just before a slice's end, found by test_never_later_on_the_other_paths at
+# WINDOW_FUZZ_COUNT=10000: real roots (mpmath) 0.99999999611408295 and 1.0000000039117157, a pair
+# split by the boundary of the slices u = t / 2^-16 and u = t / 2^16 at t = 1, where p is 4.9e-19
+# against a fma noise far above it. The first slice took the fma sign at its end (no crossing);
+# the second started from the precise one; every runtime answered 1.0000000039117156, 7.8e-9
+# late. A slice's end now takes the precise sign too.
+SLICE_END_MISSED = [((-1.293069123e-314, -0.00017417165613203177, -0.00544679610068352,
+                      -0.004458130127580139, 0.015700065640797217, 0.004632301783712171,
+                      -0.010253269540113696), 2.0)]
+
+
+@pytest.mark.parametrize("runtime", er.RUNTIMES)
+def test_a_crossing_before_a_slices_end_is_not_missed(runtime: str, tmp_path: Path,
+                                                      request: pytest.FixtureRequest) -> None:
+    assert _wrong_or_late(SLICE_END_MISSED, _run(runtime, SLICE_END_MISSED, tmp_path, request)) == []
 
 
 @pytest.mark.parametrize("runtime", er.RUNTIMES)

@@ -271,9 +271,16 @@ fn exact_double_root_quadratic() {
     // an exact zero is a root for every method
     assert_eq!(first_root_status(&[1.0, -2.0, 1.0], INF, Method::IntervalNoGraze), Status::Root { t: 1.0, graze: true });
     // exact double root at a critical point of a cubic: (t - 1)^2 (t - 4)
+    // (the graze-checking method answers the left edge of compensated Horner's band, where a
+    // crossing of rounded coefficients could hide: a few ulps early, never late, issue 33)
     let c = from_roots(&[1.0, 1.0, 4.0], &[]);
     for m in ALL {
-        assert_eq!(first_root_status(&c, INF, m), Status::Root { t: 1.0, graze: true }, "{m:?}");
+        match first_root_status(&c, INF, m) {
+            Status::Root { t, graze: true } if m == Method::Interval => {
+                assert!(t <= 1.0 && rel(t, 1.0) < 1e-14, "{m:?}: {t}")
+            }
+            s => assert_eq!(s, Status::Root { t: 1.0, graze: true }, "{m:?}"),
+        }
     }
     // (t - 0.1)^2 + tiny: negative discriminant within rounding -> graze at the vertex
     let c = [0.01 + 1e-18, -0.2, 1.0];

@@ -4,7 +4,6 @@
 from __future__ import annotations
 
 import math
-from fractions import Fraction
 from typing import Sequence
 
 from .shared import MAX_SPREAD, U, fma, ilogb, ldexp
@@ -15,33 +14,11 @@ from .derivative import half_curvature_floor, noise_chains
 from .interval import first_root_interval
 
 
-def _exact_sign(c: Sequence[float], n: int, tail: Sequence[float], x: float) -> int:
-    """C exact_sign: p(x)'s exact sign inside the band (1, -1, 0 where p(x) = 0 exactly), or 2
-    where C's a priori test fails (a partial sum of |a_i| x^(i-k) above 2^1000, or a term's
-    last bit ulp(a_i) ulp(x)^i below 2^-1000: C's expansions could overflow or lose bits there).
-    The test alone decides, so rationals give C's answers."""
-    a = list(c[:n + 1]) + list(tail)
-    if not (0 < x < math.inf):
-        return 2
-    lx = ilogb(x) - 52
-    bound = 0.0
-    for i in range(len(a) - 1, -1, -1):
-        bound = bound * x + abs(a[i])
-        if not bound <= 2.0**1000:
-            return 2
-        if a[i] != 0 and ilogb(a[i]) - 52 + i * lx < -1000:
-            return 2
-    xf, v = Fraction(x), Fraction(0)
-    for ai in reversed(a):
-        v = v * xf + Fraction(ai)
-    return (v > 0) - (v < 0)
-
-
 def _band_side(c: Sequence[float], n: int, tail: Sequence[float], x: float) -> int:
     """C band_side: 1 where p(x) > 0 certainly, -1 where p(x) < 0 certainly, 0 within the
     rounding band, for p = c_0..c_n plus the terms reduce dropped, tail[j] x^(n+1+j): p's own
     by compensated Horner, the tail's by plain Horner, each within its error bound, taken
-    twice; inside that band the exact sign where _exact_sign can tell."""
+    twice."""
     g = 0.5 * noise_factor(n)  # gamma_{2n}
     v = horner_compensated(c, n, x)
     a = horner_abs(c, n, x, 0)
@@ -58,12 +35,7 @@ def _band_side(c: Sequence[float], n: int, tail: Sequence[float], x: float) -> i
         v += tv * xp
         et = noise_factor(n + m) * (ta * xp)
     eb = 2 * (U * abs(v) + g * g * a) + et
-    if v > eb:
-        return 1
-    if v < -eb:
-        return -1
-    s = _exact_sign(c, n, tail, x)  # inside the band: exactly, where it can
-    return 0 if s == 2 else s
+    return 1 if v > eb else -1 if v < -eb else 0
 
 
 def _two_sum(a: float, b: float) -> tuple[float, float]:
@@ -184,8 +156,9 @@ def never_late(c: Sequence[float], n: int, tail: Sequence[float], hit: tuple[flo
     given (c and the dropped terms, tail).  A root or a touch stands where p is certainly
     positive just before it, at r (1 - 2^-50), a touch also where p is certainly positive at it
     (a near miss, looked at again inside the noise); else (inside the band: a rounded multiple
-    root's exact first root may lie anywhere in it before r) the earliest point that cannot be excluded (steps to the left, doubling, then bisection): a
-    crossing where p is certainly negative there, else a touch."""
+    root's exact first root may lie anywhere in it before r) the earliest point that cannot be
+    excluded (steps to the left, doubling, then bisection): a crossing where p is certainly
+    negative there, else a touch."""
     r, g = hit
     if not 0 < r <= 2.0**60:
         return hit

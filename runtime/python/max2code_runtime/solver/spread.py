@@ -8,7 +8,7 @@ from typing import Sequence
 
 from .shared import DBL_MIN, TRUE_MIN, div, ldexp
 from .prepare import exponents
-from .evaluate import sign_at, within_noise
+from .evaluate import scale_exponent, sign_at, within_noise
 from .newton import horner_compensated
 from .quadratic import first_root_quadratic
 from .derivative import derivative_method
@@ -81,6 +81,11 @@ def first_root_sliced(c: Sequence[float], n: int, tmax: float, eps: float,
                 if s < 0:
                     q = [-x for x in q]
                 hit = (_LO, False) if s == 0 else derivative_method(q, m, _LO, T, 0.0, skin)
+                # and at the slice's end: the next slice starts from the precise sign there
+                # (C says why)
+                if (hit is None and s != 0 and scale_exponent(T, m) == 0
+                        and within_noise(q, m, T, 0.0) and horner_compensated(q, m, T) < 0):
+                    hit = (T, False)
                 # never later than the first root, as unsliced (C says why)
                 if hit is not None and s != 0 and skin >= 0:
                     hit = (late_sliced_tail(q, m, n, dropped, k, top, -1.0 if s < 0 else 1.0, hit)

@@ -7,126 +7,6 @@ use super::*;
 const TWO_M50: f64 = 1.0 / 1_125_899_906_842_624.0;
 const TWO_60: f64 = 1_152_921_504_606_846_976.0;
 
-/// C `exact_sign`: p(x)'s exact sign inside the band (1, -1, 0 where p(x) = 0 exactly) by
-/// Horner in floating-point expansions (each product split by fma, each sum by two_sum, the
-/// running sum compressed after each step), or 2 where the a priori test fails (a partial sum
-/// of |a_i| x^(i-k) above 2^1000, or a term's last bit ulp(a_i) ulp(x)^i below 2^-1000): only
-/// under that test is no bit lost.
-fn exact_sign(c: &[f64], n: usize, tail: &[f64], x: f64) -> i32 {
-    const LEN: usize = 128;
-    let top = n + tail.len();
-    let coef = |i: usize| if i <= n { c[i] } else { tail[i - n - 1] };
-    if !(x > 0.0 && x < f64::INFINITY) {
-        return 2;
-    }
-    let lx = ilogb(x) - 52;
-    let mut bound = 0.0f64;
-    for i in (0..=top).rev() {
-        let a = coef(i);
-        bound = bound * x + a.abs();
-        if !(bound <= TWO_1000) {
-            return 2;
-        }
-        if a != 0.0 && ilogb(a) - 52 + (i as i32) * lx < -1000 {
-            return 2;
-        }
-    }
-    let (mut e, mut h) = ([0.0f64; LEN], [0.0f64; LEN]);
-    let mut len = 0;
-    if coef(top) != 0.0 {
-        e[0] = coef(top);
-        len = 1;
-    }
-    for i in (0..top).rev() {
-        let mut k = 0;
-        let mut q = 0.0;
-        // scale: e * x, each product split, summed from the smallest up
-        for j in 0..len {
-            let p1 = e[j] * x;
-            let p0 = e[j].mul_add(x, -p1);
-            if j == 0 {
-                push_nonzero(&mut h, &mut k, p0);
-                q = p1;
-                continue;
-            }
-            let (s, err) = two_sum(q, p0);
-            push_nonzero(&mut h, &mut k, err);
-            let q2 = p1 + s;
-            let err = s - (q2 - p1);
-            push_nonzero(&mut h, &mut k, err);
-            q = q2;
-        }
-        push_nonzero(&mut h, &mut k, q);
-        // grow: + a_i
-        q = coef(i);
-        len = 0;
-        for j in 0..k {
-            let (s, err) = two_sum(q, h[j]);
-            push_nonzero(&mut e, &mut len, err);
-            q = s;
-        }
-        push_nonzero(&mut e, &mut len, q);
-        // compress: largest first, then back up from the smallest
-        if len > 1 {
-            let mut bottom = len - 1;
-            let mut big = e[len - 1];
-            for j in (0..len - 1).rev() {
-                let s = big + e[j];
-                let small = e[j] - (s - big);
-                if small != 0.0 {
-                    h[bottom] = s;
-                    bottom -= 1;
-                    big = small;
-                } else {
-                    big = s;
-                }
-            }
-            h[bottom] = big;
-            let mut out = 0;
-            let mut acc = h[bottom];
-            for j in bottom + 1..len {
-                let s = h[j] + acc;
-                let small = acc - (s - h[j]);
-                push_nonzero(&mut e, &mut out, small);
-                acc = s;
-            }
-            e[out] = acc;
-            len = out + 1;
-        }
-        if 2 * len + 2 > LEN {
-            return 2; // (cannot happen under the test: at most ~40 components)
-        }
-    }
-    if len == 0 {
-        return 0;
-    }
-    let lead = e[len - 1];
-    if lead > 0.0 {
-        1
-    } else if lead < 0.0 {
-        -1
-    } else {
-        0
-    }
-}
-
-/// Appends v to h (at k) unless it is 0: expansions keep no zero components.
-fn push_nonzero(h: &mut [f64], k: &mut usize, v: f64) {
-    if v != 0.0 {
-        h[*k] = v;
-        *k += 1;
-    }
-}
-
-/// Knuth's two_sum: a + b rounded and its exact rounding error.
-fn two_sum(a: f64, b: f64) -> (f64, f64) {
-    let s = a + b;
-    let bb = s - a;
-    (s, (a - (s - bb)) + (b - bb))
-}
-
-const TWO_1000: f64 = 1.0715086071862673e301; // 2^1000
-
 /// C `band_side`: which side of the rounding band x is on, for p = c_0..c_n plus the terms
 /// reduce dropped, tail[j] x^(n+1+j) (scaled as c): p's own by compensated Horner (its error
 /// within u |v| + gamma_{2n}^2 sum |c_i| x^i), the tail's by plain Horner (within 2 gamma_{2(n+m)}
@@ -157,11 +37,7 @@ fn band_side(c: &[f64], n: usize, tail: &[f64], x: f64) -> i32 {
     } else if v < -eb {
         -1
     } else {
-        // inside the band: exactly, where it can
-        match exact_sign(c, n, tail, x) {
-            2 => 0,
-            s => s,
-        }
+        0
     }
 }
 
@@ -331,8 +207,8 @@ fn inside_the_noise(c: &[f64], n: usize, touch: bool, hit: (f64, bool)) -> (f64,
 /// given (c and the dropped terms, tail).  A root or a touch stands where p is certainly
 /// positive just before it, at r (1 - 2^-50), a touch also where p is certainly positive at it
 /// (a near miss); else (inside the band, where a rounded multiple root's exact first root may
-/// lie anywhere before r) the earliest point that cannot be excluded (steps to the left, doubling, then bisection), a crossing
-/// where p is certainly negative there, else a touch.
+/// lie anywhere before r) the earliest point that cannot be excluded (steps to the left,
+/// doubling, then bisection), a crossing where p is certainly negative there, else a touch.
 pub(crate) fn never_late(c: &[f64], n: usize, tail: &[f64], hit: (f64, bool)) -> (f64, bool) {
     let (r, g) = hit;
     if !(r > 0.0 && r <= TWO_60) {
@@ -442,47 +318,4 @@ pub(crate) fn dropped_terms(coef: &[f64], n: usize) -> &[f64] {
     let low = coef.iter().position(|&v| v != 0.0).unwrap_or(0);
     let top = coef.iter().rposition(|&v| v != 0.0).unwrap_or(0).max(low + n);
     &coef[low + n + 1..=top]
-}
-
-#[cfg(test)]
-mod exact_sign_tests {
-    use super::exact_sign;
-
-    /// p(x) 2^(s N) in i128 for integer coefficients and x = (2^s + k) / 2^s: exact where it fits.
-    fn exact_scaled(a: &[i64], s: u32, k: i64) -> i128 {
-        let num = (1i128 << s) + i128::from(k);
-        let n = a.len() - 1;
-        let mut w: i128 = 0;
-        let mut pw: i128 = 1;
-        for (i, &ai) in a.iter().enumerate() {
-            w += i128::from(ai) * pw * (1i128 << (s * (n - i) as u32));
-            pw *= num;
-        }
-        w
-    }
-
-    #[test]
-    fn exact_sign_agrees_with_integer_arithmetic_near_clusters() {
-        // (x - 1)^3 (x - 3), (x - 1)^4, (x - 1)^2 (x + 2) (x - 1 - 2^-18): roots clustered at 1
-        let polys: [&[i64]; 3] = [&[-3, 10, -12, 6, -1], &[1, -4, 6, -4, 1], &[2, -3, 0, 1]];
-        let s = 20;
-        for a in polys {
-            let c: Vec<f64> = a.iter().map(|&v| v as f64).collect();
-            for k in -40i64..=40 {
-                let x = 1.0 + (k as f64) / f64::from(1u32 << s);
-                let want = exact_scaled(a, s, k).signum() as i32;
-                for n in 1..c.len() {
-                    // the rest as never_late's tail (dropped terms): the same polynomial
-                    assert_eq!(exact_sign(&c[..=n], n, &c[n + 1..], x), want, "{a:?} k={k} n={n}");
-                }
-            }
-        }
-    }
-
-    #[test]
-    fn exact_sign_refuses_what_could_lose_bits() {
-        assert_eq!(exact_sign(&[1.0, 1e300, 1e300], 2, &[], 8.0), 2); // a partial sum above 2^1000
-        assert_eq!(exact_sign(&[1.0, 1e-300, 1.0], 2, &[], 1.0), 2); // a last bit below 2^-1000
-        assert_eq!(exact_sign(&[1.0, -2.0, 1.0], 2, &[], 1.0), 0); // (x - 1)^2 at 1: exactly 0
-    }
 }

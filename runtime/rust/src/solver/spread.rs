@@ -103,7 +103,15 @@ pub(crate) fn first_root_sliced(c: &[f64], n: usize, tmax: f64, eps: f64, nograz
                     } else {
                         // never later than the first root, as unsliced (C says why)
                         let sign = if s < 0 { -1.0 } else { 1.0 };
-                        derivative_method(&q, m, lo, t_end, 0.0, skin).map(|h| {
+                        // and at the slice's end: the next slice starts from the precise
+                        // sign there (C says why)
+                        derivative_method(&q, m, lo, t_end, 0.0, skin).or_else(|| {
+                            (scale_exponent(t_end, m) == 0
+                                && within_noise(&q, m, t_end, 0.0)
+                                && horner_compensated(&q, m, t_end) < 0.0)
+                                .then_some((t_end, false))
+                        })
+                        .map(|h| {
                             if skin < 0.0 {
                                 h
                             } else if dropped.is_empty() {
