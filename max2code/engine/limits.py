@@ -16,12 +16,14 @@ floor a NaN pose, and a capsule 1e15 long at a tolerance of 1e-9 never finished 
 from __future__ import annotations
 
 import math
+import numbers
 
 LARGEST = 1e30          # a given number's magnitude at most this ...
 SMALLEST = 1e-30        # ... and 0 or at least this
 SPAN = 2.0 ** 45        # lengths from the origin: at most SPAN tolerances
 MASS = (1e-30, 1e30)    # a dynamic body's mass, given or derived (density x area)
 INERTIA = (1e-90, 1e90)  # its moment of inertia, given or derived (mass x length^2)
+MAX_EVENTS = 2**62       # World(max_events=) and a scene's engine.max_events: at most this
 CONTACT_STEP = 1 / 240  # the contact solver's default step h (docs/engine-contact.md): World's
                         # and scene files'; 0 turns it off (exact impacts and the rest rule)
 
@@ -32,6 +34,32 @@ def finite(v: object) -> bool:
         return math.isfinite(v)  # type: ignore[arg-type]
     except (OverflowError, TypeError):
         return False
+
+
+def shown(v: object, limit: int = 80) -> str:
+    """repr cut to a length a message can carry (an int of a thousand digits is data too)."""
+    text = repr(v)
+    return text if len(text) <= limit else text[:limit - 3] + "..."
+
+
+def number_problem(v: object, *, positive: bool = False, nonneg: bool = False,
+                   lo: float | None = None, hi: float | None = None) -> str | None:
+    """Why `v` is not a number the engine can take, or None: a real number (not a bool, not a
+    string), finite, within magnitude_problem's range and the quantity's own bounds. One rule
+    for scene files (Checker.number) and the Python API (World's arguments)."""
+    if isinstance(v, bool) or not isinstance(v, numbers.Real) or not finite(v):
+        return f"expected a finite number, got {shown(v)}"
+    x = float(v)
+    problem = magnitude_problem(x)
+    if problem:
+        return problem
+    if positive and not x > 0:
+        return f"must be positive, got {x:g}"
+    if nonneg and x < 0:
+        return f"must not be negative, got {x:g}"
+    if lo is not None and hi is not None and not lo <= x <= hi:
+        return f"must be between {lo:g} and {hi:g}, got {x:g}"
+    return None
 
 
 def magnitude_problem(v: float) -> str | None:

@@ -139,10 +139,7 @@ def path_text(path: tuple) -> str:
     return out or "(top level)"
 
 
-def _shown(v: object, limit: int = 80) -> str:
-    """repr cut to a length a message can carry (an int of a thousand digits is data too)."""
-    text = repr(v)
-    return text if len(text) <= limit else text[:limit - 3] + "..."
+_shown = limits.shown
 
 
 @dataclass
@@ -182,25 +179,11 @@ class Checker:
                 self.error(path, f"missing field '{key}'")
             return default
         v = table[key]
-        p = path + (key,)
-        if isinstance(v, bool) or not isinstance(v, (int, float)) or not limits.finite(v):
-            self.error(p, f"expected a finite number, got {_shown(v)}")
-            return default
-        v = float(v)
-        problem = limits.magnitude_problem(v)
+        problem = limits.number_problem(v, positive=positive, nonneg=nonneg, lo=lo, hi=hi)
         if problem:
-            self.error(p, problem)
+            self.error(path + (key,), problem)
             return default
-        if positive and not v > 0:
-            self.error(p, f"must be positive, got {v:g}")
-            return default
-        if nonneg and v < 0:
-            self.error(p, f"must not be negative, got {v:g}")
-            return default
-        if lo is not None and (v < lo or v > hi):
-            self.error(p, f"must be between {lo:g} and {hi:g}, got {v:g}")
-            return default
-        return v
+        return float(v)
 
     def vector(self, value: object, path: tuple) -> Vec | None:
         if (not isinstance(value, list) or len(value) != 2 or
@@ -612,7 +595,7 @@ MAX_ERRORS = 20
 
 # max_events goes to the core as a long long: a whole number below 2^62 (a limit that large
 # is no limit in practice, and no closer to overflowing its count)
-MAX_EVENTS_LIMIT = 2**62
+MAX_EVENTS_LIMIT = limits.MAX_EVENTS
 
 # The largest scene file read: a scene is data a person or a tool wrote, and a device such as
 # /dev/zero must end in an error, not in all the memory there is.
