@@ -3,11 +3,14 @@
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass, replace
 from typing import Callable, Iterable, Iterator, Sequence
 
+from . import limits
 from .binding import load
 from .handlers import FLAG_SENSOR, CollisionHandler, Handlers
+from .geometry import transform
 from .inputs import Input
 from .limits import CONTACT_STEP
 from .shapes import MassProperties, compound_mass_properties, mass_properties, polygon_area
@@ -109,31 +112,91 @@ def _anticlockwise(vertices: Sequence[Vec]) -> list[Vec]:
     return verts
 
 
+def _shape(where: str, vertices: Sequence[Vec], radius: object) -> tuple[list[Vec], float]:
+    """One shape as (anticlockwise vertices, radius), every number checked (_number) before
+    any conversion: float() would take "1" and overflow on 10**400."""
+    try:
+        points = list(vertices)
+    except TypeError:
+        raise EngineError(f"{where}vertices: expected (x, y) pairs, got "
+                          f"{limits.shown(vertices)}") from None
+    for j, p in enumerate(points):
+        _vector(f"{where}vertices[{j}]", p)
+    return _anticlockwise(points), _number(f"{where}radius", radius, nonneg=True)
+
+
 def _parts(parts: Sequence[tuple[Sequence[Vec], float]]) -> list[tuple[list[Vec], float]]:
     """A compound's parts as (anticlockwise vertices, radius), a malformed one named (part k
     of n) rather than left to an unpacking error."""
     shapes = []
     for k, part in enumerate(parts):
+        where = f"part {k} of {len(parts)}: "
         try:
             v, r = part
-            shapes.append((_anticlockwise(v), float(r)))
+            if any(len(p) != 2 for p in v):
+                raise ValueError
         except (TypeError, ValueError):
-            shown = repr(part)
-            shown = shown if len(shown) <= 60 else shown[:57] + "..."
-            raise EngineError(f"part {k} of {len(parts)}: expected (vertices, radius) with "
+            shown = limits.shown(part, 60)
+            raise EngineError(f"{where}expected (vertices, radius) with "
                               f"vertices (x, y) pairs, got {shown}") from None
+        shapes.append(_shape(where, v, r))
     return shapes
 
 
-def _finite(shapes: list[tuple[list[Vec], float]], compound: bool) -> None:
-    """The core's finiteness checks, said before the mass properties (which a NaN or an inf
-    would turn into a misleading "needs a positive mass"), naming the part."""
-    for k, (v, r) in enumerate(shapes):
-        where = f"part {k} of {len(shapes)}: " if compound else ""
-        if not all(math.isfinite(c) for p in v for c in p):
-            raise EngineError(where + "a vertex is not finite")
-        if not math.isfinite(r):
-            raise EngineError(where + "a number of the body is not finite")
+def _number(name: str, v: object, **bounds: bool | float) -> float:
+    """`v` as a float, or an EngineError naming the argument: the scene files' rule
+    (limits.number_problem: finite, 0 or 1e-30 to 1e30 in magnitude, the quantity's own
+    bounds), so that the API takes nothing a scene file refuses (issue 33)."""
+    problem = limits.number_problem(v, **bounds)  # type: ignore[arg-type]
+    if problem:
+        raise EngineError(f"{name}: {problem}")
+    return float(v)  # type: ignore[arg-type]
+
+
+def _vector(name: str, v: object, check: Callable[[str, object], float] | None = None) -> Vec:
+    """(x, y) as floats, each checked as _number (or `check`; named `name[0]`, `name[1]`)."""
+    try:
+        x, y = v  # type: ignore[misc]
+    except (TypeError, ValueError):
+        raise EngineError(f"{name}: expected (x, y), two numbers, got {limits.shown(v)}") from None
+    check = check or _number
+    return (check(f"{name}[0]", x), check(f"{name}[1]", y))
+
+
+def _now(v: float) -> float:
+    """A body's state (position, angle, velocity, omega, acceleration, an impulse: add_body,
+    set_velocity, set_pose, set_acceleration, apply_impulse) with a magnitude below
+    limits.SMALLEST is taken as 0 (the sign kept) rather than refused: games compute these
+    every frame and feed the engine's own values back (PGE rebuilds its World from them), and
+    a damped spring's speed passes 1e-30 after some 70 time constants; refusing it then would
+    end the game, and to the engine's arithmetic it is 0."""
+    return math.copysign(0.0, v) if abs(v) < limits.SMALLEST else v
+
+
+def _now_number(name: str, v: object) -> float:
+    """_number for a body's state: a magnitude below 1e-30 is 0 (_now)."""
+    if isinstance(v, numbers.Real) and not isinstance(v, bool) and limits.finite(v):
+        v = _now(float(v))
+    return _number(name, v)
+
+
+def _mask(name: str, bits: object) -> int:
+    if (isinstance(bits, bool) or not isinstance(bits, numbers.Integral)
+            or not 0 <= bits <= 0xFFFFFFFF):
+        raise EngineError(f"{name}: a 32-bit mask (0 to 0xFFFFFFFF), not {limits.shown(bits)}")
+    return int(bits)
+
+
+def _mass_range(name: str, m: float, inertia: float, derived: bool, inertia_name: str) -> None:
+    """A dynamic body's mass and inertia within what the engine's arithmetic holds
+    (limits.MASS, limits.INERTIA: a mass of 1e308 once gave an infinite impulse), named by
+    the argument they come from."""
+    problem = limits.range_problem("mass (density x area)" if derived else "mass", m, limits.MASS)
+    if problem:
+        raise EngineError(f"{name}: {problem}")
+    problem = limits.range_problem("moment of inertia", inertia, limits.INERTIA)
+    if problem:
+        raise EngineError(f"{inertia_name}: {problem}")
 
 
 def _shape_mass(shapes: list[tuple[list[Vec], float]], compound: bool) -> MassProperties:
@@ -160,22 +223,30 @@ class World:
     def __init__(self, *, gravity: Vec = (0.0, 0.0), tolerance: float = 1e-9,
                  cell_size: float = 0.0, rest_speed: float = 0.0, collapse_time: float = 0.0,
                  max_events: int = 0, contact_step: float = CONTACT_STEP) -> None:
-        if not (isinstance(contact_step, (int, float)) and 0 <= contact_step < math.inf):
-            raise EngineError(f"contact_step is a step in seconds (> 0; 0: the contact solver "
-                              f"off), not {contact_step!r}")
+        # every number checked before anything is made (scene files' rules: limits.py)
+        gravity = _vector("gravity", gravity)
+        tolerance = _number("tolerance", tolerance, positive=True)
+        cell_size = _number("cell_size", cell_size)
+        rest_speed = _number("rest_speed", rest_speed)
+        collapse_time = _number("collapse_time", collapse_time)
+        contact_step = _number("contact_step", contact_step, nonneg=True)
+        if (isinstance(max_events, bool) or not isinstance(max_events, numbers.Integral)
+                or not 0 <= max_events <= limits.MAX_EVENTS):
+            raise EngineError(f"max_events: a whole number of events from 0 (no limit) to "
+                              f"{limits.MAX_EVENTS}, not {limits.shown(max_events)}")
         self._ffi, self._lib = load()
         cfg = self._ffi.new("m2c_config *")
         cfg.tolerance = tolerance
         cfg.cell_size = cell_size
         cfg.rest_speed = rest_speed
         cfg.collapse_time = collapse_time
-        cfg.max_events = max_events
+        cfg.max_events = int(max_events)
         cfg.contact_step = contact_step
         ptr = self._lib.m2c_world_new(cfg)
         if ptr == self._ffi.NULL:
             raise MemoryError("m2c_world_new")
         self._attach(ptr)
-        self.gravity = (float(gravity[0]), float(gravity[1]))
+        self.gravity = gravity
         self.tolerance = tolerance
         # the contact solver's step h (0: off): its ticks are at the multiples of h, and a
         # server models a held body's hop from it (max2code/server/room.py)
@@ -237,6 +308,16 @@ class World:
         self.__dict__.clear()
         self.__setstate__(copy.deepcopy(snapshot.__getstate__()))
 
+    def _span(self, shapes: list[tuple[list[Vec], float]], pose: tuple[float, float, float],
+              name: str = "position") -> None:
+        """A body placed at `pose` reaches no farther from the origin than 2^45 tolerances
+        (limits.span_problem: farther, its coordinates round by more than the contact slack)."""
+        reach = max((max(abs(x), abs(y)) + r for v, r in shapes for x, y in transform(v, pose)),
+                    default=0.0)
+        problem = limits.span_problem(reach, self.tolerance)
+        if problem:
+            raise EngineError(f"{name}: the body {problem}")
+
     # -- building ---------------------------------------------------------------------------
 
     def add_body(self, vertices: Sequence[Vec] = (), *, radius: float = 0.0, kind: str = "dynamic",
@@ -270,12 +351,21 @@ class World:
                 raise EngineError("a compound body needs at least one part")
             shapes = _parts(parts)
         else:
-            shapes = [(_anticlockwise(vertices), float(radius))]
-        _finite(shapes, parts is not None)
-        for bits in (category, mask):
-            if not (isinstance(bits, int) and 0 <= bits <= 0xFFFFFFFF):
-                raise EngineError(f"category and mask are 32-bit masks, not {bits!r}")
-        px, py = float(position[0]), float(position[1])
+            shapes = [_shape("", vertices, radius)]
+        _mask("category", category)
+        _mask("mask", mask)
+        # every number checked before anything changes (scene files' rules: limits.py)
+        px, py = _vector("position", position, _now_number)
+        angle = _now_number("angle", angle)
+        vx, vy = _vector("velocity", velocity, _now_number)
+        omega = _now_number("omega", omega)
+        own = self.gravity if gravity is None else _vector("gravity", gravity, _now_number)
+        mass = None if mass is None else _number("mass", mass, positive=True)
+        density = _number("density", density, positive=True)
+        inertia = None if inertia is None else _number("inertia", inertia, positive=True)
+        restitution = _number("restitution", restitution, lo=0.0, hi=1.0)
+        friction = _number("friction", friction, nonneg=True)
+        self._span(shapes, (px, py, angle))
         m = I = 0.0
         if kind == "dynamic":
             props = _shape_mass(shapes, parts is not None)
@@ -284,26 +374,25 @@ class World:
                 shapes = [([(x - cx, y - cy) for x, y in v], r) for v, r in shapes]
                 c, s = math.cos(angle), math.sin(angle)
                 px, py = px + c * cx - s * cy, py + s * cx + c * cy
-            m = float(mass) if mass is not None else density * props.area
-            I = float(inertia) if inertia is not None else m * props.inertia_per_mass
+            m = mass if mass is not None else density * props.area
+            I = inertia if inertia is not None else m * props.inertia_per_mass
             if not (m > 0):
                 raise EngineError("a dynamic body needs a positive mass (give mass=, or an area)")
             if not (I > 0):  # a point mass (a segment's rod with no length cannot happen)
                 I = m * 1e-12
-        g = self.gravity if gravity is None else (float(gravity[0]), float(gravity[1]))
-        own = g  # what it falls with when dynamic (set_kind)
+            _mass_range("mass" if mass is not None else "density", m, I, mass is None,
+                        "inertia" if inertia is not None else "the shape")
+        g = own  # own: what it falls with when dynamic (set_kind)
         if kind == "static":
             g = (0.0, 0.0)
         if kind == "kinematic" and gravity is None:
             g = (0.0, 0.0)
-        gid = -1
-        if group is not None:
-            gid = self._groups.setdefault(group, len(self._groups))
+        gid = -1 if group is None else self._groups.get(group, len(self._groups))
         d = self._ffi.new("m2c_body_def *", self._lib.m2c_default_body_def())
         flats = [self._ffi.new("double[]", [c for p in v for c in p]) for v, _ in shapes]
         d.kind = KINDS[kind]
-        d.x, d.y, d.angle = px, py, float(angle)
-        d.vx, d.vy, d.omega = float(velocity[0]), float(velocity[1]), float(omega)
+        d.x, d.y, d.angle = px, py, angle
+        d.vx, d.vy, d.omega = vx, vy, omega
         d.ax, d.ay = g
         d.mass, d.inertia = m, I
         d.restitution = float(restitution)
@@ -326,6 +415,8 @@ class World:
         i = self._lib.m2c_world_add_body(self._w, d)
         if i < 0:
             raise EngineError(self.error())
+        if group is not None:
+            self._groups.setdefault(group, gid)
         name = name if name is not None else f"body{i}"
         verts = tuple(p for v, _ in shapes for p in v)
         compound = tuple((tuple(v), r) for v, r in shapes) if parts is not None else ()
@@ -443,7 +534,7 @@ class World:
                   data: object = None) -> int:
         """A timer event at time t (reported, and passed to callback(world, event); the event's
         data is (data, None)); returns its id, for cancel_timer."""
-        k = self._lib.m2c_world_add_timer(self._w, float(t))
+        k = self._lib.m2c_world_add_timer(self._w, _number("t", t))
         if k < 0:
             raise EngineError(self.error())
         self._timers[k] = _Timer(callback, data)
@@ -453,7 +544,7 @@ class World:
         """Queue an input event (a key, the mouse) at its time (>= now): an "input" event then,
         its data (event, None), passed to the on_input callbacks. Equal times keep the order
         they were queued in: the same timed input gives the same run, live or from a script."""
-        k = self._lib.m2c_world_add_timer(self._w, float(event.time))
+        k = self._lib.m2c_world_add_timer(self._w, _number("event.time", event.time))
         if k < 0:
             raise EngineError(self.error())
         self._timers[k] = _Timer(None, event, True)
@@ -472,13 +563,13 @@ class World:
     def step_to(self, t: float, events: bool = True) -> list[Event]:
         """Process every event up to time t (inclusive); returns the reported events (none with
         events=False, which saves making Python objects of them: callbacks still run)."""
-        return list(self._run(t, events))
+        return list(self._run(_number("t", t), events))
 
     def stream_to(self, t: float) -> Iterator[Event]:
         """step_to(t) as a stream: each reported event as the core hands it out, so memory
         stays bounded however many there are (`max2code sim` writes its log this way). The
         world is stepped as far as the stream has been read."""
-        return self._run(t, True)
+        return self._run(_number("t", t), True)
 
     def _run(self, t: float, events: bool) -> Iterator[Event]:
         # with callbacks the core stops after each reported event, so that a callback sees the
@@ -530,8 +621,9 @@ class World:
     def set_velocity(self, body: int, velocity: Vec, omega: float = 0.0) -> None:
         """Change a dynamic or kinematic body's velocity now (an input event: steering a
         kinematic paddle predicts every dynamic body against its new path at once)."""
-        self._call(self._lib.m2c_world_set_velocity(self._w, body, float(velocity[0]),
-                                                    float(velocity[1]), float(omega)))
+        vx, vy = _vector("velocity", velocity, _now_number)
+        self._call(self._lib.m2c_world_set_velocity(self._w, body, vx, vy,
+                                                    _now_number("omega", omega)))
 
     def remove(self, body: int) -> None:
         """Remove a body now, also from inside a callback: nothing collides with it from now
@@ -546,15 +638,16 @@ class World:
         """Move a body (any kind) to `position` (its reference point: a dynamic body's centre
         of mass) and `angle` (default: unchanged) now. An overlap with a body it can collide
         with at the new place is an EngineError naming that body, and nothing moves."""
-        a = self.pose(body)[2] if angle is None else float(angle)
-        self._call(self._lib.m2c_world_set_pose(self._w, body, float(position[0]),
-                                                float(position[1]), a))
+        x, y = _vector("position", position, _now_number)
+        a = self.pose(body)[2] if angle is None else _now_number("angle", angle)
+        self._span([(list(v), r) for v, r in self.bodies[body].shapes], (x, y, a))
+        self._call(self._lib.m2c_world_set_pose(self._w, body, x, y, a))
 
     def set_acceleration(self, body: int, acceleration: Vec) -> None:
         """The body's own constant acceleration (its gravity; PGE's put_xaccel/put_yaccel)."""
-        self._call(self._lib.m2c_world_set_acceleration(self._w, body, float(acceleration[0]),
-                                                        float(acceleration[1])))
-        self._gravity[body] = (float(acceleration[0]), float(acceleration[1]))
+        ax, ay = _vector("acceleration", acceleration, _now_number)
+        self._call(self._lib.m2c_world_set_acceleration(self._w, body, ax, ay))
+        self._gravity[body] = (ax, ay)
 
     def acceleration(self, body: int) -> Vec:
         """The body's own constant acceleration: what it moves with while dynamic (add_body's
@@ -568,13 +661,16 @@ class World:
         the old one scaled with the mass). A static or kinematic body keeps them for when it
         becomes dynamic (set_kind)."""
         info = self.bodies[body]
+        mass = _number("mass", mass, positive=True)
+        given = inertia is not None
         if inertia is None:
             inertia = (info.inertia * mass / info.mass if math.isfinite(info.mass)
                        else mass * info.mass_properties().inertia_per_mass)
+        else:
+            inertia = _number("inertia", inertia, positive=True)
         if not (inertia > 0):
             inertia = mass * 1e-12  # a point mass
-        if not (mass > 0 and math.isfinite(mass) and math.isfinite(inertia)):
-            raise EngineError("set_mass: mass and inertia must be positive and finite")
+        _mass_range("mass", mass, inertia, False, "inertia" if given else "mass")
         if info.kind != "dynamic":
             self._dormant[body] = (float(mass), float(inertia))
             return
@@ -599,6 +695,7 @@ class World:
             I = I or m * props.inertia_per_mass or m * 1e-12
             if not (m > 0):
                 raise EngineError("set_kind: a dynamic body needs a positive mass (set_mass first)")
+            _mass_range("set_kind", m, I, body not in self._dormant, "set_kind")
             cx, cy = props.centroid if props.area > 0 else (0.0, 0.0)
             self._call(self._lib.m2c_world_set_mass(self._w, body, m, I, cx, cy))
             self._call(self._lib.m2c_world_set_kind(self._w, body, KINDS[kind]))
@@ -613,9 +710,9 @@ class World:
     def apply_impulse(self, body: int, impulse: Vec, point: Vec | None = None) -> None:
         """Apply an impulse to a dynamic body now, at a world point (default: its centre of
         mass, which gives no spin)."""
-        x, y, _ = self.pose(body) if point is None else (point[0], point[1], 0.0)
-        self._call(self._lib.m2c_world_apply_impulse(self._w, body, float(impulse[0]),
-                                                     float(impulse[1]), float(x), float(y)))
+        jx, jy = _vector("impulse", impulse, _now_number)
+        x, y = self.pose(body)[:2] if point is None else _vector("point", point, _now_number)
+        self._call(self._lib.m2c_world_apply_impulse(self._w, body, jx, jy, x, y))
 
     def _sync(self, body: int, **changes) -> None:
         """BodyInfo after a change: the core's vertices (set_mass may move the reference
@@ -635,14 +732,14 @@ class World:
 
     def pose(self, body: int, t: float | None = None) -> tuple[float, float, float]:
         """(x, y, angle) of the body's reference point at time t (default: now), exactly."""
-        if self._lib.m2c_world_pose(self._w, body, self.time if t is None else float(t),
+        if self._lib.m2c_world_pose(self._w, body, self.time if t is None else _number("t", t),
                                     self._pose) < 0:
             raise EngineError(f"pose of body {body} at {t}: no such body, or before its last event")
         return (self._pose[0], self._pose[1], self._pose[2])
 
     def velocity(self, body: int, t: float | None = None) -> tuple[float, float, float]:
         """(vx, vy, omega) at time t (default: now)."""
-        if self._lib.m2c_world_velocity(self._w, body, self.time if t is None else float(t),
+        if self._lib.m2c_world_velocity(self._w, body, self.time if t is None else _number("t", t),
                                         self._pose) < 0:
             raise EngineError(f"velocity of body {body} at {t}: no such body, or before its last event")
         return (self._pose[0], self._pose[1], self._pose[2])
@@ -665,7 +762,8 @@ class World:
         n = len(self.bodies)
         if len(self._poses) != 3 * n:
             self._poses = self._ffi.new("double[]", 3 * n)
-        if self._lib.m2c_world_poses(self._w, self.time if t is None else float(t), self._poses) < 0:
+        if self._lib.m2c_world_poses(self._w, self.time if t is None else _number("t", t),
+                                     self._poses) < 0:
             raise EngineError(f"poses at {t}: before some body's last event")
         return self._poses
 
@@ -701,26 +799,26 @@ class World:
     def query_point(self, point: Vec, t: float | None = None, mask: int = 0xFFFFFFFF) -> list[int]:
         """The bodies whose shape contains `point` at time t (default now), in id order;
         only those whose category meets `mask`."""
-        at = self.time if t is None else float(t)
+        at = self.time if t is None else _number("t", t)
         return self._ids(lambda out, cap: self._lib.m2c_world_query_point(
-            self._w, at, float(point[0]), float(point[1]), mask, out, cap))
+            self._w, at, *_vector("point", point), _mask("mask", mask), out, cap))
 
     def query_box(self, lower: Vec, upper: Vec, t: float | None = None,
                   mask: int = 0xFFFFFFFF) -> list[int]:
         """The bodies whose shape meets the axis-aligned box [lower, upper] at time t."""
-        at = self.time if t is None else float(t)
+        at = self.time if t is None else _number("t", t)
         return self._ids(lambda out, cap: self._lib.m2c_world_query_box(
-            self._w, at, float(lower[0]), float(lower[1]), float(upper[0]), float(upper[1]), mask,
+            self._w, at, *_vector("lower", lower), *_vector("upper", upper), _mask("mask", mask),
             out, cap))
 
     def cast_ray(self, start: Vec, end: Vec, t: float | None = None,
                  mask: int = 0xFFFFFFFF) -> RayHit | None:
         """The first shape the segment start -> end enters at time t (exact: the smallest root
         of each feature's crossing), or None. A shape containing `start` is not hit."""
-        at = self.time if t is None else float(t)
+        at = self.time if t is None else _number("t", t)
         f, b, n = self._ffi.new("double *"), self._ffi.new("int *"), self._ffi.new("double[2]")
-        r = self._lib.m2c_world_cast_ray(self._w, at, float(start[0]), float(start[1]),
-                                         float(end[0]), float(end[1]), mask, f, b, n)
+        start, end = _vector("start", start), _vector("end", end)
+        r = self._lib.m2c_world_cast_ray(self._w, at, *start, *end, _mask("mask", mask), f, b, n)
         if r < 0:
             raise EngineError(self.error())
         if r == 0:
@@ -733,14 +831,14 @@ class World:
         """When bodies a and b would first touch within `horizon` from now, were they alone
         and nothing changed (any kinds: kinematic orbits too); None when they would not."""
         t = self._ffi.new("double *")
-        r = self._lib.m2c_world_first_contact(self._w, a, b, float(horizon), t)
+        r = self._lib.m2c_world_first_contact(self._w, a, b, _number("horizon", horizon), t)
         if r < 0:
             raise EngineError(self.error())
         return t[0] if r == 1 else None
 
     def energy(self, t: float | None = None) -> float:
         """Kinetic plus potential energy (-m a.x) of the dynamic bodies."""
-        return float(self._lib.m2c_world_energy(self._w, self.time if t is None else float(t)))
+        return float(self._lib.m2c_world_energy(self._w, self.time if t is None else _number("t", t)))
 
     def asleep(self, body: int) -> bool:
         return bool(self._lib.m2c_world_asleep(self._w, body))

@@ -80,3 +80,30 @@ def assert_apart(world, t: float | None = None, tol: float | None = None) -> flo
                 assert g >= -tol, f"{a.name} and {b.name} overlap by {-g} at t = {world.time if t is None else t}"
                 worst = min(worst, g)
     return worst
+
+
+def engine_floats(lo: float, hi: float):
+    """hypothesis' floats in [lo, hi], a magnitude below 1e-30 drawn as 0: the API refuses such
+    a number as a scene file does (limits.magnitude_problem), and hypothesis likes to draw them
+    (subnormals near 0) where a test means an ordinary coordinate, angle or time."""
+    from hypothesis import strategies as st
+
+    from max2code.engine import limits
+    return st.floats(lo, hi).map(lambda x: x if abs(x) >= limits.SMALLEST else 0.0)
+
+
+def core_body(w, vertices, radius: float = 0.0, kind: int = 2, position=(0.0, 0.0),
+              velocity=(0.0, 0.0), omega: float = 0.0, gravity=(0.0, 0.0), mass: float = 1.0,
+              inertia: float = 1.0) -> int:
+    """Add a body to World w's core through the core's own C API (m2c_world_add_body),
+    bypassing the Python API's checks (limits.py refuses a mass of 1e308, an omega of 1e308):
+    how the tests reach the core's own guards (stuck, overflow) with numbers only a C caller
+    can still give. The body is not in w.bodies; pose(id) and velocity(id) read it."""
+    d = w._ffi.new("m2c_body_def *", w._lib.m2c_default_body_def())
+    flat = w._ffi.new("double[]", [c for p in vertices for c in p])
+    d.kind, (d.x, d.y), (d.vx, d.vy), d.omega = kind, position, velocity, omega
+    (d.ax, d.ay), d.mass, d.inertia = gravity, mass, inertia
+    d.nvertices, d.vertices, d.radius = len(vertices), flat, radius
+    i = w._lib.m2c_world_add_body(w._w, d)
+    assert i >= 0, w.error()
+    return i

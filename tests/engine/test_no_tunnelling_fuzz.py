@@ -19,6 +19,7 @@ from hypothesis import HealthCheck, Phase, example, given, settings
 from hypothesis import strategies as st
 
 from max2code.engine.world import EngineError
+from .scenes import engine_floats
 
 HALF = 5.0                    # the box is [-HALF, HALF]^2
 TOL = Q(1, 10**6)             # allowed overlap (the engine's tolerance is 1e-9 relative)
@@ -95,14 +96,14 @@ def shape(draw) -> tuple[list[tuple[float, float]], float, float]:
     """(vertices, radius, reach): a circle, a capsule or a convex polygon (a regular polygon of
     3-6 sides, stretched), at most 0.6 across."""
     kind = draw(st.sampled_from(["circle", "capsule", "polygon"]))
-    size = draw(st.floats(0.05, 0.3))
+    size = draw(engine_floats(0.05, 0.3))
     if kind == "circle":
         return [(0.0, 0.0)], size, size
     if kind == "capsule":
-        r = draw(st.floats(0.02, size / 2))
+        r = draw(engine_floats(0.02, size / 2))
         return [(-size + r, 0.0), (size - r, 0.0)], r, size
     n = draw(st.integers(3, 6))
-    stretch = draw(st.floats(0.5, 1.0))
+    stretch = draw(engine_floats(0.5, 1.0))
     verts = [(size * math.cos(2 * math.pi * k / n), stretch * size * math.sin(2 * math.pi * k / n))
              for k in range(n)]
     return verts, 0.0, size
@@ -116,22 +117,22 @@ def worlds(draw):
     for _ in range(n):
         verts, radius, reach = shape(draw)
         for _attempt in range(40):   # a free spot, reach + 0.01 from the walls and the others
-            x = draw(st.floats(-HALF + reach + 0.01, HALF - reach - 0.01))
-            y = draw(st.floats(-HALF + reach + 0.01, HALF - reach - 0.01))
+            x = draw(engine_floats(-HALF + reach + 0.01, HALF - reach - 0.01))
+            y = draw(engine_floats(-HALF + reach + 0.01, HALF - reach - 0.01))
             if all(math.hypot(x - a, y - b) > reach + r + 0.01 for a, b, r in placed):
                 break
         else:
             continue
         placed.append((x, y, reach))
         speed = draw(st.sampled_from([1.0, 30.0, 1000.0]))
-        heading = draw(st.floats(0, 2 * math.pi))
+        heading = draw(engine_floats(0, 2 * math.pi))
         bodies.append(dict(vertices=verts, radius=radius, position=(x, y),
-                           angle=draw(st.floats(0, 2 * math.pi)),
+                           angle=draw(engine_floats(0, 2 * math.pi)),
                            velocity=(speed * math.cos(heading), speed * math.sin(heading)),
                            omega=draw(st.sampled_from([0.0, 0.0, 3.0, -40.0])),
                            restitution=draw(st.sampled_from([1.0, 0.9, 0.5]))))
     gravity = draw(st.sampled_from([(0.0, 0.0), (0.0, -9.81)]))
-    checkpoints = sorted(draw(st.lists(st.floats(0.001, 1.0), min_size=1, max_size=4)))
+    checkpoints = sorted(draw(st.lists(engine_floats(0.001, 1.0), min_size=1, max_size=4)))
     return gravity, bodies, checkpoints
 
 

@@ -10,6 +10,7 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 from max2code.engine.geometry import gap, transform
+from .scenes import engine_floats
 
 
 def _world(engine):
@@ -56,9 +57,9 @@ def test_ray_casts(engine) -> None:
 
 
 @settings(max_examples=60, deadline=None)
-@given(n=st.integers(1, 6), size=st.floats(0.2, 2.0), radius=st.floats(0.0, 0.5),
-       angle=st.floats(0.0, 6.3), sx=st.floats(-6.0, 6.0), sy=st.floats(-6.0, 6.0),
-       heading=st.floats(0.0, 6.3))
+@given(n=st.integers(1, 6), size=engine_floats(0.2, 2.0), radius=engine_floats(0.0, 0.5),
+       angle=engine_floats(0.0, 6.3), sx=engine_floats(-6.0, 6.0), sy=engine_floats(-6.0, 6.0),
+       heading=engine_floats(0.0, 6.3))
 def test_ray_hit_is_the_first_touch(engine, n, size, radius, angle, sx, sy, heading) -> None:
     """The hit point touches the shape (gap 0 within rounding) and the ray before it is apart
     (gap > 0 at 200 points): the first root, exactly."""

@@ -2,7 +2,9 @@
 
 The core is built again with -fsanitize=address,undefined -fno-sanitize-recover=all (from the
 equation headers of the ordinary build) and scenes run through it, hostile ones included:
-any finding aborts the run (compound bodies too). Found before: memmove(NULL, ..., 0) on every step (world.c), and
+any finding aborts the run (compound bodies too). The hostile numbers the Python API refuses
+(limits.py) reach the core through its C API (cffi), as a C program could give them. Found
+before: memmove(NULL, ..., 0) on every step (world.c), and
 coordinates or a tolerance of +-1e308 reaching (int)NaN and a signed overflow in grid.c.
 """
 
@@ -47,25 +49,77 @@ SCENES = textwrap.dedent("""
     for k in range(30):
         w.add_circle((-4 + 0.27 * k, 1 + 0.3 * (k % 5)), 0.12, restitution=0.5)
     run(w, 3.0)
+    # Hostile numbers the Python API refuses (limits.py, as scene files do) go to the core
+    # through its own C API, as a C program could give them: the core must hold them too.
+    from max2code.engine.binding import load
+    ffi, lib = load()
+
+    def core_world(tolerance=1e-9, max_events=20000, contact_step=1 / 240):
+        cfg = ffi.new("m2c_config *")
+        cfg.tolerance, cfg.max_events, cfg.contact_step = tolerance, max_events, contact_step
+        return ffi.gc(lib.m2c_world_new(cfg), lib.m2c_world_free)
+
+    def core_body(w, vertices=(), radius=0.0, kind=2, position=(0, 0), velocity=(0, 0),
+                  omega=0.0, gravity=(0, 0), parts=(), mass=1.0, inertia=1.0):
+        d = ffi.new("m2c_body_def *", lib.m2c_default_body_def())
+        d.kind, (d.x, d.y), (d.vx, d.vy), d.omega = kind, position, velocity, omega
+        (d.ax, d.ay), d.mass, d.inertia = (gravity if kind else (0, 0)), mass, inertia
+        flats = [ffi.new("double[]", [c for p in v for c in p]) for v, _ in parts or [(vertices, radius)]]
+        if parts:
+            cparts = ffi.new("m2c_part[]", len(parts))
+            for k, ((v, r), flat) in enumerate(zip(parts, flats)):
+                cparts[k].nvertices, cparts[k].vertices, cparts[k].radius = len(v), flat, r
+            d.nparts, d.parts = len(parts), cparts
+        else:
+            d.nvertices, d.vertices, d.radius = len(vertices), flats[0], radius
+        if lib.m2c_world_add_body(w, d) < 0:
+            print("refused:", ffi.string(lib.m2c_world_error(w)).decode())
+
+    def core_run(w, t=2.0):
+        buf, n = ffi.new("m2c_event[]", 64), ffi.new("int *")
+        while True:
+            status = lib.m2c_world_step(w, t, buf, 64, n)
+            if status < 0:
+                print("refused:", ffi.string(lib.m2c_world_error(w)).decode())
+            if status <= 0:
+                return
+
+    def core_scene(tolerance=1e-9):
+        w = core_world(tolerance)
+        for a, b in (((-5, 0), (5, 0)), ((-5, 0), (-5, 10)), ((5, 0), (5, 10))):
+            core_body(w, (a, b), kind=0)
+        return w
+
+    G = (0, -9.81)
     for big in (1e308, -1e308, 1e300):              # hostile coordinates and tolerances
-        w = scene()
-        w.add_circle((big, 1), 1.0, velocity=(0, 3))
-        w.add_circle((0, 3), 1.0)
-        run(w)
-        w = scene(tolerance=abs(big))
-        w.add_circle((0, 3), 1.0)
-        run(w)
-    w = World(gravity=(0, -1e308))                  # huge gravity, spin, length
-    w.add_segment((-5, 0), (5, 0))
-    w.add_circle((0, 2), 0.5)
-    run(w)
-    w = World(max_events=20000)
-    w.add_segment((-5, 0), (5, 0))
-    w.add_polygon([(-1, -1), (1, -1), (1, 1), (-1, 1)], position=(0, 3), omega=1e308)
-    run(w)
-    w = scene()
-    w.add_segment((-5e14, 0), (5e14, 0), radius=0.5, kind="dynamic", position=(0, 3), omega=1)
-    run(w)
+        try:
+            World().add_circle((big, 1), 1.0)
+            raise SystemExit("the API took a coordinate of %g" % big)
+        except EngineError:
+            pass
+        w = core_scene()
+        core_body(w, [(0, 0)], 1.0, position=(big, 1), velocity=(0, 3), gravity=G)
+        core_body(w, [(0, 0)], 1.0, position=(0, 3), gravity=G)
+        core_run(w)
+        w = core_scene(tolerance=abs(big))
+        core_body(w, [(0, 0)], 1.0, position=(0, 3), gravity=G)
+        core_run(w)
+    w = core_world()                                # huge gravity, spin, length
+    core_body(w, [(-5, 0), (5, 0)], kind=0)
+    core_body(w, [(0, 0)], 0.5, position=(0, 2), gravity=(0, -1e308))
+    core_run(w)
+    w = core_world()
+    core_body(w, [(-5, 0), (5, 0)], kind=0)
+    core_body(w, [(-1, -1), (1, -1), (1, 1), (-1, 1)], position=(0, 3), omega=1e308)
+    core_run(w)
+    w = core_scene()
+    core_body(w, [(-5e14, 0), (5e14, 0)], 0.5, position=(0, 3), omega=1, gravity=G)
+    core_run(w)
+    w = core_world()                                # a mass beyond doubles lands
+    core_body(w, [(-5, 0), (5, 0)], kind=0)
+    core_body(w, [(0, 0)], 0.5, position=(0, 2), gravity=G, mass=1e308, inertia=1e308)
+    core_body(w, [(0, 0)], 0.5, position=(3, 2), gravity=G, mass=1e-300, inertia=1e-300)
+    core_run(w)
     w = World()                                     # a piston crushing a ball
     w.add_segment((0, -1), (0, 1))
     w.add_circle((1, 0), 0.1, velocity=(-3, 0))
@@ -82,14 +136,17 @@ SCENES = textwrap.dedent("""
         run(w, 1.0)
         w2 = pickle.loads(pickle.dumps(w)); run(w2, 3.0)
         w.query_point((0, 1)); w.query_box((-5, 0), (5, 5)); w.cast_ray((-5, 1), (5, 1))
-    for parts, kw in [([([(1e300, 0.0)], 0.5), ([(-1e300, 0.0)], 0.5)], dict(mass=1.0, inertia=1.0)),
+    for parts, kw in [([([(1e300, 0.0)], 0.5), ([(-1e300, 0.0)], 0.5)], dict()),
                       ([([(-5e14, 0.0), (5e14, 0.0)], 0.1), ([(0.0, 0.0)], 0.5)], dict(omega=1)),
-                      ([([(0.01 * k, 0.0)], 0.1) for k in range(128)], dict(omega=3)),   # (the most)
                       ([([(-0.5, 0.0)], 0.2), ([(0.5, 0.0)], 0.2)], dict(omega=1e308))]:
-        w = World(gravity=(0, -9.81), max_events=20000)   # hostile compounds: far, long, many
-        w.add_segment((-100, 0), (100, 0))                 # parts, spin; one a world
-        w.add_compound(parts, position=(0, 3), **kw)
-        run(w, 1.0)
+        w = core_world()                              # hostile compounds: far, long, spin
+        core_body(w, [(-100, 0), (100, 0)], kind=0)
+        core_body(w, parts=parts, position=(0, 3), gravity=G, **kw)
+        core_run(w, 1.0)
+    w = World(gravity=(0, -9.81), max_events=20000)   # the most parts, through the API
+    w.add_segment((-100, 0), (100, 0))
+    w.add_compound([([(0.01 * k, 0.0)], 0.1) for k in range(128)], position=(0, 3), omega=3)
+    run(w, 1.0)
     print("ok")
 """)
 

@@ -158,7 +158,7 @@ def test_engine_refusal_is_located(tmp_path: Path) -> None:
     with pytest.raises(SceneError) as info:
         build_world(broken)
     assert info.value.diagnostics == [f"{path}:9:3: error: bodies[1]: the engine refused this "
-                                      f"body: restitution must be between 0 and 1"]
+                                      f"body: restitution: must be between 0 and 1, got 2"]
 
 
 def test_many_overlaps_bounded(tmp_path: Path) -> None:

@@ -23,6 +23,8 @@ import pytest
 
 from conftest import ROOT
 
+from .scenes import core_body
+
 PISTON = """
 w = World()
 w.add_segment((0, -1), (0, 1))
@@ -32,19 +34,21 @@ w.add_body([(0, -1), (0, 1)], kind="kinematic", position=(2, 0), velocity=(-1, 0
 HEAVY_ON_LIGHT = """
 w = World()
 w.add_segment((-5, 0), (5, 0))
-w.add_circle((0, 0.5), 0.5, mass=1e-300, inertia=1e-300)
-w.add_circle((0, 1.6), 0.5, mass=1e300, inertia=1e300, velocity=(0, -1))
+core_body(w, [(0, 0)], 0.5, position=(0, 0.5), mass=1e-300, inertia=1e-300)
+core_body(w, [(0, 0)], 0.5, position=(0, 1.6), mass=1e300, inertia=1e300, velocity=(0, -1))
 w.add_body([(-5, 0), (5, 0)], kind="kinematic", position=(0, 3), velocity=(0, -0.5))
 """
 FAST_SPIN = """
 w = World()
 w.add_segment((-5, 0), (5, 0))
-w.add_polygon([(-1, -1), (1, -1), (1, 1), (-1, 1)], position=(0, 3), omega=1e308)
+core_body(w, [(-1, -1), (1, -1), (1, 1), (-1, 1)], position=(0, 3), omega=1e308,
+          inertia=2 / 3)
 """
 
 
 def run(script: str, timeout: float = 120) -> subprocess.CompletedProcess:
-    code = "from max2code.engine import World, EngineError\n" + script + textwrap.dedent("""
+    code = ("from max2code.engine import World, EngineError\n"
+            "from tests.engine.scenes import core_body\n" + script) + textwrap.dedent("""
         try:
             w.step_to(10.0, events=False)
             print("done", w.time)
@@ -66,14 +70,17 @@ def test_impossible_scene_ends_in_a_named_error(engine, scene):
 
 
 def test_an_impulse_beyond_doubles_is_a_named_error_not_nan(engine):
-    """Issue 33 item 5 through the Python API (scene files refuse such masses with a location):
+    """Issue 33 item 5 in the core (scene files and the Python API refuse such masses):
     a 1e308 kg ball landing on a floor needs an impulse of about 9e308, beyond doubles. It used
     to be applied: the static floor's pose became NaN (0 * inf), the heavy ball's speed inf,
     and an unrelated ball then fell through the NaN floor. Now the step fails with a named
     error at that contact and nothing non-finite is left in the world."""
     w = engine.World(gravity=(0.0, -9.81))
     floor = w.add_segment((-10.0, 0.0), (10.0, 0.0))
-    heavy = w.add_circle((0.0, 1.0), 0.5, mass=1e308)
+    with pytest.raises(engine.EngineError, match=r"^mass: 1e\+308 is too large"):
+        w.add_circle((0.0, 1.0), 0.5, mass=1e308)     # the API refuses it; the core's guard:
+    heavy = core_body(w, [(0.0, 0.0)], 0.5, position=(0.0, 1.0), gravity=(0.0, -9.81),
+                      mass=1e308, inertia=1e308 * 0.125)
     other = w.add_circle((3.0, 1.0), 0.5)
     with pytest.raises(engine.EngineError, match=r"^overflow: the impulse between bodies"):
         w.step_to(3.0, events=False)
