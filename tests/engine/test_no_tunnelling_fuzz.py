@@ -174,9 +174,16 @@ def run_world(World, world) -> dict:
     def check(k: int, others, when: str) -> None:
         pts, r = shape_of(ids[k])
         s = slop if held(ids[k]) else 0
-        for x, y in pts:   # inside the box, the radius included
-            assert lo - s + Q(r) <= x <= hi + s - Q(r) and lo - s + Q(r) <= y <= hi + s - Q(r), \
-                f"body {k} left the box {when}: ({float(x)}, {float(y)}) r = {r}"
+        # inside the box: its reference point inside, and no wall overlapped by more than the
+        # pair's allowance (the walls meet at the corners, so a body that overlaps none and has
+        # a point inside is inside; a held body may sit the slop deep in a wall's end point,
+        # which at a tilted corner puts a vertex past both wall lines by more than the slop)
+        x0, y0 = w.pose(ids[k])[:2]
+        assert lo <= Q(x0) <= hi and lo <= Q(y0) <= hi, \
+            f"body {k} left the box {when}: its position ({x0}, {y0})"
+        for a, b in WALLS:
+            assert not too_close(pts, r, [(Q(a[0]), Q(a[1])), (Q(b[0]), Q(b[1]))], 0.0, TOL + s), \
+                f"body {k} overlaps the wall {a}-{b} {when}: {w.pose(ids[k])} r = {r}"
         for j in others:
             if j != k:
                 pair = TOL + (slop if held(ids[k]) and held(ids[j]) else 0)
@@ -241,7 +248,10 @@ LEFT_THE_SOLVER = (
     [0.2705272904655855, 0.7009123627274464, 1.0])
 
 
+# derandomized: the same 25 worlds each run (CI must not flicker); the long run
+# (tests/engine/tunnelling_long.py, `make fuzz`, --seed) draws new ones
 @settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow],
+          derandomize=True, database=None,
           phases=(Phase.explicit, Phase.reuse, Phase.generate))   # (a failure prints its world)
 @given(world=worlds())
 @example(world=LEFT_THE_SOLVER)
@@ -389,15 +399,58 @@ HELD_IN_A_CORNER = ((0.0, -9.81),
  [0.08052297957995569, 1.0])
 
 
-@pytest.mark.xfail(strict=True, raises=AssertionError,
-                   reason="a held body's slop at a wall's end point: see the docstring")
 def test_a_body_held_in_a_corner_stays_within_the_slop_of_each_wall(engine):
     """Not tunnelling: each wall's overlap with the pentagon (exact separating axes) is within
     the slop, 1.0000e-5 m against the floor, 6.7e-6 m against the left wall. But its vertex lies
     beyond the floor's end (x < -5), so the floor's line is no contact there (on_edge); the
     floor's end point against the pentagon's edge is, and the slop lets that point sit 1e-5 m
     inside the edge, which lets the vertex sit 1.25e-5 m below y = -5 at the tilt. run_world
-    checks a held body per coordinate. Either the check measures each wall's overlap (the
-    engine's promise for a pair), or a wall's end point gets no slop (issue 34's bursts at the
-    ticks may come back): undecided, left for the engine's owner."""
+    checked a held body per coordinate (it failed here, and in about 1 of 600 drawn worlds);
+    it now measures each wall's overlap, the engine's promise for a pair (docs/engine.md)."""
     run_world(engine.World, HELD_IN_A_CORNER)
+
+
+# Drawn by the long run (`python -m tests.engine.tunnelling_long --count 300 --seed 2`, world 294)
+# once walls were checked by overlap: the triangle (spec 2), struck by the rhombus at 1000 m/s,
+# reaches the box's corner (5, -5); at its collision at t = 0.0534772 a vertex is 1.52e-5 m past
+# the right wall's line (exact separating axes), beyond the tolerance and the solver's slop.
+CORNER_STRUCK = ((0.0, -9.81), [
+    {'vertices': [(-0.04046637028744522, 0.0), (0.04046637028744522, 0.0)],
+     'radius': 0.024713121519477074, 'position': (2.6234552963908504, -3.412611340392095),
+     'angle': 2.3973802386560643, 'velocity': (30.0, 3.1692920895214016e-50), 'omega': 0.0,
+     'restitution': 1.0},
+    {'vertices': [(0.0, 0.0)], 'radius': 0.05,
+     'position': (5.949241053843218e-196, -3.0178080412486725), 'angle': 2.2250738585e-313,
+     'velocity': (0.8548698046927414, 0.5188425744140454), 'omega': -40.0, 'restitution': 1.0},
+    {'vertices': [(0.07193537518221889, 0.0), (-0.03596768759110943, 0.046246226649175805),
+                  (-0.03596768759110948, -0.046246226649175784)],
+     'radius': 0.0, 'position': (2.685268320358972, 1.9762718878721008),
+     'angle': 6.283185307179586, 'velocity': (0.09027250822731751, 0.9959171021015498),
+     'omega': 3.0, 'restitution': 0.5},
+    {'vertices': [(-0.03046486402200158, 0.0), (0.03046486402200158, 0.0)],
+     'radius': 0.027602159047169377, 'position': (1.9175835179667014e-222, 2.8388013595556156),
+     'angle': 5.5877507849311865, 'velocity': (19.74612547853689, 22.585183828914836),
+     'omega': 3.0, 'restitution': 0.5},
+    {'vertices': [(0.0, 0.0)], 'radius': 0.1992226516337069,
+     'position': (3.8600885342089244, -6.103515625e-05), 'angle': 1.516613311280849,
+     'velocity': (-0.19713264137730116, -0.9803768263803507), 'omega': -40.0,
+     'restitution': 1.0},
+    {'vertices': [(0.2590059086950643, 0.0), (1.5859537852183106e-17, 0.24938441278428444),
+                  (-0.2590059086950643, 3.054078228735162e-17),
+                  (-4.7578613556549314e-17, -0.24938441278428444)],
+     'radius': 0.0, 'position': (0.36004936350582817, 0.7996952253661718),
+     'angle': 2.6008806791746686, 'velocity': (-879.5339924972435, 475.8360600478475),
+     'omega': -40.0, 'restitution': 0.9},
+    {'vertices': [(0.0, 0.0)], 'radius': 0.08812820518576472,
+     'position': (9.585097921405113e-178, 0.5), 'angle': 5.814807234001405,
+     'velocity': (0.4810807792923089, 0.8766762708066785), 'omega': 3.0, 'restitution': 0.5}],
+    [0.14262172962958897, 0.99999])
+
+
+@pytest.mark.xfail(strict=True, raises=AssertionError,
+                   reason="open: a body struck into a corner ends 1.52e-5 m in a wall")
+def test_a_body_struck_into_a_corner_stays_out_of_the_walls(engine):
+    """A world nobody designed where a struck triangle's collision leaves a vertex 1.52e-5 m
+    past the right wall's line near the corner (5, -5): more than the tolerance and the slop.
+    Open (issue 33): not diagnosed yet."""
+    run_world(engine.World, CORNER_STRUCK)
