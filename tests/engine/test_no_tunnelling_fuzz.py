@@ -447,10 +447,31 @@ CORNER_STRUCK = ((0.0, -9.81), [
     [0.14262172962958897, 0.99999])
 
 
-@pytest.mark.xfail(strict=True, raises=AssertionError,
-                   reason="open: a body struck into a corner ends 1.52e-5 m in a wall")
 def test_a_body_struck_into_a_corner_stays_out_of_the_walls(engine):
-    """A world nobody designed where a struck triangle's collision leaves a vertex 1.52e-5 m
-    past the right wall's line near the corner (5, -5): more than the tolerance and the slop.
-    Open (issue 33): not diagnosed yet."""
+    """A world nobody designed: the triangle, spinning at 15,700 rad/s after the rhombus's
+    strike, chattered against the ball (spec 4) in a Zeno burst, and the burst rule made that
+    a soft contact; the soft response parted the pair at the gap's curvature times h / 2,
+    with the spin's curvature (omega^2 r ~ 1.7e7 m/s^2) 91,000 m/s, and the triangle hit the
+    corner (5, -5) 1.52e-5 m past the right wall's line. A contact whose rotation curves it in
+    faster than a soft contact closes is no sustained contact now (response.c, soft_contact):
+    an exact impact, as without the solver (issue 33)."""
     run_world(engine.World, CORNER_STRUCK)
+
+
+def test_a_fast_spinning_edge_on_a_held_ball_is_parted_by_the_rest_rule(engine):
+    """The corner world's cause, alone (issue 33): a triangle spinning at 15,000 rad/s whose
+    edge faces a static ball 1e-12 m away touches it at once with no approach; its rotation
+    curves the edge into the ball at a_n = omega^2 D (D the centres' distance, the gap being
+    D cos(omega t) - e - R). A soft contact parted it at a_n h / 2 (64 km/s, h = 1/240); an
+    exact contact parts at a_n t_c / 2 at most, the rest rule's bound (docs/engine.md): the
+    kinetic energy gained is at most m (a_n t_c / 2)^2 / 2 (closed form, t_c = 1e-3)."""
+    verts = CORNER_STRUCK[1][2]['vertices']
+    e = -verts[1][0]                    # the left edge's distance from the centre
+    w = engine.World(gravity=(0.0, -9.81))
+    w.add_body([(0.0, 0.0)], radius=0.1, kind="static")
+    omega = 15000.0
+    tri = w.add_body(verts, position=(0.1 + e + 1e-12, 0.0), angle=0.0, omega=omega)
+    e0, m = w.energy(), w.bodies[tri].mass
+    w.step_to(1e-6)
+    a_n = omega ** 2 * (0.1 + e)
+    assert w.energy() - e0 <= m * (a_n * T_C / 2) ** 2 / 2 * (1 + 1e-6) + 1e-9
