@@ -342,7 +342,7 @@ def test_fast_spinning_compounds_pass_no_thin_wall(engine, world):
 
 
 # Found by test_fast_spinning_compounds_pass_no_thin_wall (issue 33): "body 9 part 1 in body 0
-# at t = 0.055538167537842666" (the same at 12fadd3 and before 0aa0ee3; passes with
+# at t = 0.055538167537842666" (the same at b2ce12a and before 79b547c; passes with
 # contact_step=0, without the paddle, or with either other compound alone).
 SPUN_OFF_A_THIN_WALL = ((0.0, -9.81),
  [{'parts': [([(-0.0635597026103285, -0.09107889985578954), (0.3524381456315846, -0.09107889985578954)], 0.06933297470698552), ([(-0.18096291530737374, 0.38822921718562964)], 0.08022344681894823), ([(-0.10908955925903624, 0.0), (0.10908955925903624, 0.0)], 0.03636318641967875)], 'position': (-2.0, -2.5), 'angle': 0.0, 'velocity': (1000.0, 0.0), 'omega': 0.0, 'restitution': 1.0},
@@ -352,7 +352,7 @@ SPUN_OFF_A_THIN_WALL = ((0.0, -9.81),
 
 
 def test_a_compound_spun_off_a_thin_wall_stays_out_of_the_floor(engine):
-    """Issue 33 (a strict xfail in 1013395; passes since 26bdbe3: a shape turning more than a
+    """Issue 33 (a strict xfail in 1c40b37; passes since b6aced5: a shape turning more than a
     radian a tick gets no soft contact, so the chatter below is parted by the rest rule). The
     third compound (body 9) chatters on the thin wall's lower end (a
     Zeno series, closing 0.28 to 0.067 m/s, 23 events in 3e-8 s) spinning at 2,218 rad/s and
