@@ -169,10 +169,8 @@ def never_late(c: Sequence[float], n: int, tail: Sequence[float], hit: tuple[flo
     hs = _band_side(c, n, tail, r if g else before)
     if g and hs == 1 and n >= 3 and not tail:
         return _inside_the_noise(c, n, hit, True)
-    if g and hs == 0 and _band_side(c, n, tail, before) == 1:
-        return hit  # a touch at the band's left edge: p certainly positive just before it
-    if hs == 1 and not g:
-        return hit
+    if hs == 1 or (g and hs == 0 and _band_side(c, n, tail, before) == 1):
+        return hit  # p certainly positive before it, or at a touch (a near miss)
     return _band_walk(c, n, tail, r, d, hs, g)
 
 

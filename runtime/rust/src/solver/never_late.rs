@@ -222,11 +222,8 @@ pub(crate) fn never_late(c: &[f64], n: usize, tail: &[f64], hit: (f64, bool)) ->
     if g && hs == 1 && n >= 3 && tail.is_empty() {
         return inside_the_noise(c, n, true, hit);
     }
-    if g && hs == 0 && band_side(c, n, tail, r - d) == 1 {
-        return hit; // a touch at the band's left edge: p certainly positive before it
-    }
-    if !g && hs == 1 {
-        return hit;
+    if hs == 1 || (g && hs == 0 && band_side(c, n, tail, r - d) == 1) {
+        return hit; // p certainly positive before it, or at a touch (a near miss)
     }
     band_walk(c, n, tail, r, d, hs, g)
 }
