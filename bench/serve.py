@@ -466,12 +466,17 @@ def main() -> int:
     ap.add_argument("--bytes", action="store_true",
                     help="only the exact bytes table (every scene and game, seconds): print it, "
                          "write nothing")
+    ap.add_argument("--tolerance", type=float, default=0.0,
+                    help="with --bytes: the rooms' tolerance in metres (0: exact, the default; "
+                         "-1: a quarter of a pixel of the page's canvas, as `serve --tolerance -1`)")
     args = ap.parse_args()
     if args.bytes:   # (the smallest run that gives every scene's ratio and exact bound)
         load0 = os.getloadavg()
-        b_lines, b_rows = bytes_table(args.quick, 0.0)
+        tol = None if args.tolerance == -1 else args.tolerance
+        b_lines, b_rows = bytes_table(args.quick, tol)
         print(f"{time.strftime('%Y-%m-%d %H:%M')} UTC; load average {load0[0]:.1f} before, "
-              f"{os.getloadavg()[0]:.1f} after; {'--quick' if args.quick else 'full'} bytes table",
+              f"{os.getloadavg()[0]:.1f} after; {'--quick' if args.quick else 'full'} bytes table, "
+              f"tolerance {args.tolerance:g}",
               "", *b_lines, "", *dense_text(b_rows), sep="\n")
         return 0
     b_lines, b_rows = bytes_table(args.quick, 0.0)
