@@ -26,7 +26,8 @@ def _at(m: Motion, t: float) -> tuple[float, ...]:
 
 def _first_exceed(c: float, b: float, a: float, e: float) -> float:
     """The least s >= 0 with |c + b s + a s^2/2| > e (inf if never, 0 if already)."""
-    if abs(c) > e or (abs(c) == e and (c * b > 0 or (b == 0 and c * a > 0))):
+    out = (lambda v: v > 0) if c > 0 else (lambda v: v < 0)   # (signs, not products: a
+    if abs(c) > e or (abs(c) == e and (out(b) or (b == 0 and out(a)))):  # product underflows)
         return 0.0      # beyond already, or on the edge and going out
     best = math.inf
     for level in (e, -e):

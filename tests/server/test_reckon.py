@@ -63,3 +63,13 @@ def test_deadline_counts_angles_a_turn_apart_as_equal():
     held = (0.0, 0, 0, math.pi - 1e-3, 0, 0, 0, 0, 0)
     wrapped = (0.0, 0, 0, -math.pi - 1e-3 + 2e-9, 0, 0, 0, 0, 0)   # the engine wrapped it
     assert deadline(held, wrapped, 0.0, 1e-6, 1.0) == math.inf
+
+
+def test_first_exceed_on_the_edge_going_out_by_a_subnormal_rate():
+    """|c| = e and a rate of the least subnormal outwards: beyond at once (0). c * b underflowed
+    to 0 and the edge was taken as not going out: inf, never (hypothesis found c = 0.5,
+    b = 5e-324, a = 1, e = 0.5)."""
+    assert _first_exceed(0.5, 5e-324, 1.0, 0.5) == 0.0
+    assert _first_exceed(-0.5, -5e-324, -1.0, 0.5) == 0.0
+    assert _first_exceed(0.5, 0.0, 5e-324, 0.5) == 0.0
+    assert _first_exceed(0.5, -5e-324, 1.0, 0.5) > 0.0      # (inwards first)
