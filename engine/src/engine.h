@@ -253,8 +253,9 @@ void solver_save(const m2c_world *w, void (*put)(void *, const void *, size_t), 
 int solver_load(m2c_world *w, int (*get)(void *, void *, size_t), void *ctx);  /* 0 or -1 */
 void solver_wedged(m2c_world *w, int k);
 int solver_rest_at_once(m2c_world *w, int i, int j);     /* put to sleep at once */
-int solver_soft_response(m2c_world *w, int i, int j, const event *ev, double closing, m2c_event *out,
-                         int *moved, int cap, int *nmoved);  /* moved: solver neighbours changed */
+int solver_soft_response(m2c_world *w, int i, int j, const event *ev, double closing, int pair_only,
+                         m2c_event *out, int *moved, int cap,
+                         int *nmoved);  /* moved: solver neighbours changed */
 
 /* motion.c */
 double first_crossing(double x, double v, double a, double edge, int dir, double tmax);

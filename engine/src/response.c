@@ -209,13 +209,15 @@ int respond(m2c_world *w, int i, int j, const event *ev)
                 solver_adopt(w, w->woken[k]);
     }
     if (soft) { /* sustained contact: both go to the solver (rest.c's rules do not apply) */
+        /* two bodies the last tick solved together: their pair alone (solver_soft_response) */
+        int pair_only = A->state == SOLVING && B->kind == M2C_DYNAMIC && B->state == SOLVING;
         solver_adopt(w, i);
         if (B->kind == M2C_DYNAMIC)
             solver_adopt(w, j);
         m2c_event out;
         int moved = 0;
-        if (solver_soft_response(w, i, j, ev, closing, &out, w->woken + woken, w->cap - woken,
-                                 &moved) == 0) {
+        if (solver_soft_response(w, i, j, ev, closing, pair_only, &out, w->woken + woken,
+                                 w->cap - woken, &moved) == 0) {
             woken += moved; /* the caller predicts them again */
             A->counter++;
             if (B->kind == M2C_DYNAMIC)
