@@ -252,6 +252,7 @@ void solver_forget(m2c_world *w, int k);                /* k flies again (an edi
 void solver_save(const m2c_world *w, void (*put)(void *, const void *, size_t), void *ctx);
 int solver_load(m2c_world *w, int (*get)(void *, void *, size_t), void *ctx);  /* 0 or -1 */
 void solver_wedged(m2c_world *w, int k);
+int centred_circle(const m2c_world *w, const body *B);  /* no torque from a normal impulse */
 int solver_rest_at_once(m2c_world *w, int i, int j);     /* put to sleep at once */
 int solver_soft_response(m2c_world *w, int i, int j, const event *ev, double closing, int pair_only,
                          m2c_event *out, int *moved, int cap,

@@ -251,7 +251,9 @@ int respond(m2c_world *w, int i, int j, const event *ev)
         e = 1.0; /* the collapse rule (rest.c, rule 2) */
     double ima = A->inv_mass, imb = awake_b ? B->inv_mass : 0.0;
     double iia = ca ? 0.0 : A->inv_inertia, iib = (awake_b && !cb) ? B->inv_inertia : 0.0;
-    double rna = cross(ra, n), rnb = cross(rb, n);
+    /* 0 for a circle about its reference point, not cross(ra, n)'s rounding (centred_circle) */
+    double rna = centred_circle(w, A) ? 0.0 : cross(ra, n);
+    double rnb = centred_circle(w, B) ? 0.0 : cross(rb, n);
     /* the relative normal velocity gained per unit impulse */
     double k = ima * -(ua[0] * n[0] + ua[1] * n[1]) + imb * (ub[0] * n[0] + ub[1] * n[1])
                + iia * rna * rna + iib * rnb * rnb;

@@ -489,6 +489,19 @@ def test_dense_pile_of_200_discs_sleeps_certified(engine, mu: float) -> None:
     assert all(0 < w.pose(i)[0] < 10 and w.pose(i)[1] > 0 for i in discs)
 
 
+def test_frictionless_discs_never_turn(engine) -> None:
+    """A frictionless contact's force passes through a circle's centre: no torque, so a disc
+    that starts without spin keeps its angle exactly (the angular momentum about its centre is
+    conserved), in the solver's ticks, its soft contacts and exact impacts alike. The rounding
+    of cross(r, n) turned every disc of bench/contact.py's pile (up to 2e-12 rad/s)."""
+    w = _dense_collapse(engine, 60, 0.0)
+    discs = [b.id for b in w.bodies if b.kind == "dynamic"]
+    w.step_to(3.0, events=False)
+    assert any(w.solving(i) or w.asleep(i) for i in discs)
+    assert [w.velocity(i)[2] for i in discs] == [0.0] * len(discs)
+    assert [w.pose(i)[2] for i in discs] == [0.0] * len(discs)
+
+
 # -- snapshots and scene files ---------------------------------------------------------------------
 
 def test_snapshot_in_sustained_contact_reproduces_the_future(engine) -> None:
