@@ -1550,10 +1550,21 @@ int solver_soft_response(m2c_world *w, int i, int j, const event *ev, double clo
     double ag = ((moves ? B->m.ax : 0.0) - A->m.ax) * n[0] + ((moves ? B->m.ay : 0.0) - A->m.ay) * n[1];
     double acc = contact_gap_accel(w, i, j, ev, NULL) - ag;
     double want = acc < 0 ? -0.5 * acc * s->h : 0.0;
-    if (sep < want && q.mn > 0)
+    /* ... out of the pair's own energy (part_within_energy): no more than the solve left it
+     * (in the centre-of-mass frame, or the wall's when b stands still) */
+    int frame = fb || part_frame_still(B), parted = sep < want && q.mn > 0;
+    double e_solved = 0.0;
+    if (parted && frame) {
+        for (int m = 0; m < nid; m++)
+            store_mean(w, ids[m], H);
+        e_solved = pair_energy(A, B, fb);
+    }
+    if (parted)
         apply(s, w, &q, (want - sep) * q.mn, 0.0);
     for (int m = 0; m < nid; m++)
         store_mean(w, ids[m], H);
+    if (parted && frame)
+        part_within_energy(A, B, fb, n, q.ra, q.rb, e_solved);
     /* the impulse reported: the change of the pair's normal momentum at a's side */
     double dv = (A->m.vx - sa.vx) * n[0] + (A->m.vy - sa.vy) * n[1];
     *out = (m2c_event){w->now, M2C_EVENT_COLLISION, i, j, n[0], n[1], p[0], p[1], closing,
