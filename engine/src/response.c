@@ -364,15 +364,21 @@ int respond(m2c_world *w, int i, int j, const event *ev)
      * without gravity). Without the rotation's part the prediction reported the pressed
      * pair again at the same instant, no impulse parted it, and the step ended "stuck"
      * (tests/engine/test_snapshot.py). Rotation's pressing is parted only there, with no
-     * approach (an impact's bounce parts the pair already), and against a fixed body only
-     * where gravity does not press (the rest rule's case). What the curvature's part adds
-     * comes out of the pair's own energy (part_within_energy, below). */
+     * approach (an impact's bounce parts the pair already) or in a burst, and against a fixed
+     * body only where gravity does not press (the rest rule's case). What the curvature's
+     * part adds comes out of the pair's own energy (part_within_energy, below). */
     double an = (b.ax - a.ax) * n[0] + (b.ay - a.ay) * n[1];
     int press = awake_b && an < 0;
     /* what gravity's part of a minimum parting may add: sep^2 / (2 k), sep = a_n t_c / 2 */
     double ag = an, allow = an < 0 && k > 0 ? 0.5 * (0.5 * an * tc) * (0.5 * an * tc) / k : 0.0;
     int parted = 0;
-    if ((A->m.w != 0.0 || B->m.w != 0.0) && !(closing > 0)) { /* no approach: J = 0 above */
+    /* ... or in a burst (16 contacts in a row, each within t_c of the last: rest.c, rule 2),
+     * where the bounce may part the pair slower than the rotation curves it back: a capsule
+     * pair at 587 rad/s bounced elastically (rule 2) at a closing speed of 8e-5 m/s every
+     * 3.8e-10 s, 1.26 million events (test_nothing_tunnels_in_random_worlds, once
+     * part_within_energy had changed its path) */
+    int chatter = tc > 0 && w->now - A->last_contact < tc && A->burst >= BURST;
+    if ((A->m.w != 0.0 || B->m.w != 0.0) && (!(closing > 0) || chatter)) {
         int rotates; /* (only rotation's part presses here: a spinning ball's centre adds none) */
         double curve = contact_gap_accel(w, i, j, ev, &rotates);
         if (rotates && curve < 0 && (awake_b || !(an < 0))) {
