@@ -1557,14 +1557,14 @@ int solver_soft_response(m2c_world *w, int i, int j, const event *ev, double clo
     if (parted && frame) {
         for (int m = 0; m < nid; m++)
             store_mean(w, ids[m], H);
-        e_solved = pair_energy(A, B, fb);
+        e_solved = pair_energy(w, A, B, fb);
     }
     if (parted)
         apply(s, w, &q, (want - sep) * q.mn, 0.0);
     for (int m = 0; m < nid; m++)
         store_mean(w, ids[m], H);
     if (parted && frame)
-        part_within_energy(A, B, fb, n, q.ra, q.rb, e_solved);
+        part_within_energy(w, A, B, fb, n, q.ra, q.rb, e_solved);
     /* the impulse reported: the change of the pair's normal momentum at a's side */
     double dv = (A->m.vx - sa.vx) * n[0] + (A->m.vy - sa.vy) * n[1];
     *out = (m2c_event){w->now, M2C_EVENT_COLLISION, i, j, n[0], n[1], p[0], p[1], closing,

@@ -220,9 +220,9 @@ int respond(m2c_world *w, int i, int j, const event *ev);
 void contact_geometry(const m2c_world *w, int i, int j, const event *ev, double n[2], double p[2]);
 void contact_event(const m2c_world *w, int i, int j, const event *ev, int kind, m2c_event *out);
 int part_frame_still(const body *B);
-double pair_energy(const body *A, const body *B, int free_b);
-int part_within_energy(body *A, body *B, int free_b, const double n[2], const double ra[2],
-                       const double rb[2], double target);
+double pair_energy(const m2c_world *w, const body *A, const body *B, int free_b);
+int part_within_energy(const m2c_world *w, body *A, body *B, int free_b, const double n[2],
+                       const double ra[2], const double rb[2], double target);
 #define M2C_EVENT_PRESOLVE 0 /* (internal: the kind of the event handed to the pre-solve) */
 
 #define BURST 16 /* collisions in a row, each within t_c of the last: rules 2 and 4 of rest.c */

@@ -97,8 +97,8 @@ int part_frame_still(const body *B)
 /* The pair's generalized velocity (A's, and B's if free_b) in its frame: the centre of mass's
  * when B moves under the impulses (free_b), else B's (it stands still); im: the inverse masses
  * and inertias (0: a degree of freedom no impulse changes). */
-static void pair_frame(const body *A, const body *B, int free_b, double q[6], double im[6],
-                       double vc[2])
+static void pair_frame(const m2c_world *w, const body *A, const body *B, int free_b, double q[6],
+                       double im[6], double vc[2])
 {
     vc[0] = vc[1] = 0.0;
     if (free_b) {
@@ -113,16 +113,17 @@ static void pair_frame(const body *A, const body *B, int free_b, double q[6], do
     q[4] = free_b ? B->m.vy - vc[1] : 0.0;
     q[5] = free_b ? B->m.w : 0.0;
     im[0] = im[1] = A->inv_mass;
-    im[2] = A->inv_inertia;
+    /* (a circle about its reference point: no contact turns it, none takes its spin) */
+    im[2] = centred_circle(w, A) ? 0.0 : A->inv_inertia;
     im[3] = im[4] = free_b ? B->inv_mass : 0.0;
-    im[5] = free_b ? B->inv_inertia : 0.0;
+    im[5] = free_b && !centred_circle(w, B) ? B->inv_inertia : 0.0;
 }
 
 /* The pair's kinetic energy in its frame (pair_frame), of the motions the impulses change. */
-double pair_energy(const body *A, const body *B, int free_b)
+double pair_energy(const m2c_world *w, const body *A, const body *B, int free_b)
 {
     double q[6], im[6], vc[2], e = 0.0;
-    pair_frame(A, B, free_b, q, im, vc);
+    pair_frame(w, A, B, free_b, q, im, vc);
     for (int d = 0; d < 6; d++)
         if (im[d] > 0)
             e += 0.5 * q[d] * q[d] / im[d];
@@ -139,11 +140,11 @@ double pair_energy(const body *A, const body *B, int free_b)
  * kept. When the parting alone needs more than `target` (k: the normal speed per unit
  * impulse, it costs sep^2 / (2 k)), the pair parts at the speed `target` pays for and keeps
  * nothing else. Momentum is kept (the frame's). Returns 1 when the motion changed. */
-int part_within_energy(body *A, body *B, int free_b, const double n[2], const double ra[2],
-                       const double rb[2], double target)
+int part_within_energy(const m2c_world *w, body *A, body *B, int free_b, const double n[2],
+                       const double ra[2], const double rb[2], double target)
 {
     double q[6], im[6], vc[2];
-    pair_frame(A, B, free_b, q, im, vc);
+    pair_frame(w, A, B, free_b, q, im, vc);
     double c[6] = {-n[0], -n[1], -cross(ra, n), n[0], n[1], cross(rb, n)};
     double e = 0.0, k = 0.0, sep = 0.0;
     for (int d = 0; d < 6; d++)
@@ -338,7 +339,7 @@ int respond(m2c_world *w, int i, int j, const event *ev)
     /* the frame in which the pair's energy is measured (part_within_energy): none when B is
      * kinematic and moving (it may do work) */
     int frame = awake_b || part_frame_still(B);
-    double e0 = frame && !ca && !cb ? pair_energy(A, B, awake_b) : NAN;
+    double e0 = frame && !ca && !cb ? pair_energy(w, A, B, awake_b) : NAN;
     double e = soft ? 0.0 : A->restitution * B->restitution;
     double tc = collapse_time(w);
     int fixed = !awake_b;
@@ -427,7 +428,7 @@ int respond(m2c_world *w, int i, int j, const event *ev)
                          imb, iia, iib);
     /* the curvature's part of the parting comes out of the pair's own energy */
     if (parted && isfinite(e0))
-        part_within_energy(A, B, awake_b, n, ra, rb, e0 + allow);
+        part_within_energy(w, A, B, awake_b, n, ra, rb, e0 + allow);
     A->counter++;
     if (awake_b)
         B->counter++;
