@@ -498,9 +498,10 @@ static void gen_parts(m2c_world *w, int i, int j, const body *P0, const body *P1
     int id[2] = {i, j}, off[2] = {o0, o1};
     snap sn[2] = {motion_at(&B[0]->m, w->now), motion_at(&B[1]->m, w->now)};
     double R = B[0]->radius + B[1]->radius;
-    /* quick reject on the bounding circles */
-    double dx = sn[1].x - sn[0].x, dy = sn[1].y - sn[0].y;
-    if (B[1]->kind == M2C_DYNAMIC && hypot(dx, dy) > B[0]->bound + B[1]->bound + margin)
+    /* quick reject on the bounding circles (squared: glibc's hypot was 11% of a 500-disc
+     * pile's time, most of it here and below) */
+    double dx = sn[1].x - sn[0].x, dy = sn[1].y - sn[0].y, reach = B[0]->bound + B[1]->bound + margin;
+    if (B[1]->kind == M2C_DYNAMIC && dx * dx + dy * dy > reach * reach)
         return;
     for (int side = 0; side < 2; side++) {
         const body *P = B[side], *E = B[1 - side];
@@ -548,10 +549,10 @@ static void gen_parts(m2c_world *w, int i, int j, const body *P0, const body *P1
             for (int u = 0; u < B[1]->nvert; u++) {
                 double Y[2];
                 world_point(&sn[1], &w->verts[2 * (B[1]->vert + u)], Y);
-                double d[2] = {Y[0] - X[0], Y[1] - X[1]}, dist = hypot(d[0], d[1]);
-                if (!(dist > 0))
+                double d[2] = {Y[0] - X[0], Y[1] - X[1]}, d2 = d[0] * d[0] + d[1] * d[1];
+                if (!(d2 > 0) || d2 > (R + margin) * (R + margin) * (1 + 1e-12))
                     continue;
-                double gap = dist - R;
+                double dist = sqrt(d2), gap = dist - R;
                 if (gap > margin)
                     continue;
                 double n[2] = {d[0] / dist, d[1] / dist}, m[2] = {-n[0], -n[1]};
@@ -606,14 +607,14 @@ static void gen_pair(m2c_world *w, int i, int j, double margin)
 
 static double body_speed(const body *b, const double *v)
 {
-    return hypot(v[0], v[1]) + fabs(v[2]) * b->rho;
+    return sqrt(v[0] * v[0] + v[1] * v[1]) + fabs(v[2]) * b->rho;
 }
 
 /* The fastest point of the body's surface (a ball's rim too: a ball spinning on the spot is
  * not calm, whatever its centre does). */
 static double surface_speed(const body *b, const double *v)
 {
-    return hypot(v[0], v[1]) + fabs(v[2]) * fmax(b->rho, b->bound);
+    return sqrt(v[0] * v[0] + v[1] * v[1]) + fabs(v[2]) * fmax(b->rho, b->bound);
 }
 
 static void gen_visit(m2c_world *w, int i, int j, void *ctx)
