@@ -1,13 +1,15 @@
 """Dense inelastic collapse (issue 34): the contact solver on and off against pymunk, one run.
 
     python bench/contact.py [--discs N] [--seconds S] [--large M] [--large_seconds T] [--seed K]
+                            [--off 0|1]
 
 N discs (radius 0.15, restitution 0.8 for every contact: sqrt(0.8) on each side, as both
 engines multiply) dropped into a 10 m wide bin under gravity settle for S simulated seconds;
 then M discs (the large case, 0: none) for T seconds, fewer than S so that its time stays
 bounded (M = 2,000 start up to 180 m high and take about 6 s to land).
 Rows: ours with the solver off (the rest rule decides), ours with it on (contact_step 1/240 s),
-pymunk at dt = 1/60 (10 iterations, its defaults). Reported: wall and CPU (process) time
+pymunk at dt = 1/60 (10 iterations, its defaults); --off 0 leaves out the solver-off row (it costs
+the most: a quicker measurement of the solver). Reported: wall and CPU (process) time
 and their ratios to pymunk's, events, the discs that left the bin (through its floor or walls), the worst overlap
 at the end among those in it (exact: centre distances), the energy at the end over the start,
 how many discs sleep, and whether contact forces can hold the sleepers (the residual of
@@ -35,7 +37,7 @@ G = 9.81
 RADIUS = 0.15
 E = math.sqrt(0.8)          # per side: a contact's restitution is the product, 0.8
 WIDTH = 10.0
-DEFAULTS = {"discs": 200, "seconds": 20.0, "large": 2000, "large_seconds": 8.0, "seed": 1}
+DEFAULTS = {"discs": 200, "seconds": 20.0, "large": 2000, "large_seconds": 8.0, "seed": 1, "off": 1}
 
 
 @dataclass(frozen=True)
@@ -152,9 +154,10 @@ def theirs(discs, seconds: float) -> Row:
                sum(not inside(p) for p in pos), deepest(pos), energy(pos, vel) / e0, None, None)
 
 
-def table(discs, seconds: float) -> list[str]:
-    """One size: ours with the solver off and on, and pymunk, in one run."""
-    rows = [ours(discs, seconds, 0.0), ours(discs, seconds, 1 / 240), theirs(discs, seconds)]
+def table(discs, seconds: float, off: bool = True) -> list[str]:
+    """One size: ours with the solver off (unless not `off`) and on, and pymunk, in one run."""
+    rows = ([ours(discs, seconds, 0.0)] if off else []) + [ours(discs, seconds, 1 / 240),
+                                                           theirs(discs, seconds)]
     base, cbase = rows[-1].wall, rows[-1].cpu
     lines = [f"**{len(discs)} discs, {seconds:g} s**", "",
              "| engine | wall s | x pymunk | CPU s | x pymunk | events | left the bin | worst overlap m | "
@@ -177,6 +180,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--large", type=int, default=DEFAULTS["large"])
     ap.add_argument("--large_seconds", type=float, default=DEFAULTS["large_seconds"])
     ap.add_argument("--seed", type=int, default=DEFAULTS["seed"])
+    ap.add_argument("--off", type=int, choices=(0, 1), default=DEFAULTS["off"],
+                    help="1: the solver-off row too (the default); 0: not")
     args = ap.parse_args(argv)
     if smoke():
         args.discs, args.seconds, args.large, args.large_seconds = 12, 1.0, 20, 0.5
@@ -186,9 +191,9 @@ def main(argv: list[str] | None = None) -> int:
              f"e = 0.8 per contact) settling in a {WIDTH:g} m bin; {machine_and_date()}. "
              "Wall and CPU (process) times on a shared machine: read the ratios, measured in one "
              "run; the CPU ones move least with its load.", ""]
-    lines += table(starts(args.discs, args.seed), args.seconds)
+    lines += table(starts(args.discs, args.seed), args.seconds, bool(args.off))
     if args.large > 0:
-        lines += table(starts(args.large, args.seed), args.large_seconds)
+        lines += table(starts(args.large, args.seed), args.large_seconds, bool(args.off))
     out = results_dir(ROOT / "bench" / "results")
     if smoke() and out == ROOT / "bench" / "results":
         print("\n".join(lines))
