@@ -27,7 +27,8 @@
  *    cluster is left to rule 4 instead, since elastic contacts between two supports would
  *    never end). Two dynamic bodies pressed together with (almost) no approach speed (their
  *    accelerations push them into each other: a ball sliding on the floor under one falling
- *    onto it) part at least as fast as an elastic bounce of period t_c (a_n t_c / 2).
+ *    onto it) part at least as fast as an elastic bounce of period t_c (a_n t_c / 2); so
+ *    does a spinning pair in a burst, approaching or not (response.c).
  *    A body sliding on an edge (rule 1b) and pushed into it by another moves only along the
  *    edge: the edge takes the normal part of the impulse. Contacts due at the same instant
  *    are taken fastest first.
@@ -51,9 +52,10 @@
  *    jam); else the cluster's contacts become elastic (rule 2).
  * Parameters: t_c = collapse_time (default 1e-3 s; < 0: rules 2 and 4 off), v_r = rest_speed,
  * by default max(sqrt(2 g_n tolerance), g_n t_c) (< 0: rules 1, 3 and 4 off): below it a bounce
- * rises less than max(tolerance, g_n t_c^2 / 2). No rule adds energy except the minimum
- * parting speeds of 1c and 2 (at most m (g_n t_c / 2)^2 / 2 per pressing contact); the others
- * only remove motion.
+ * rises less than max(tolerance, g_n t_c^2 / 2). No rule adds energy except gravity's part of
+ * the minimum parting speeds of 1c and 2 (at most m (g_n t_c / 2)^2 / 2 per pressing contact:
+ * the curvature's part is taken out of the pair's own energy, response.c part_within_energy);
+ * the others only remove motion.
  */
 #include <float.h>
 #include <math.h>
