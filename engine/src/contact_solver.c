@@ -1474,7 +1474,7 @@ int solver_soft_response(m2c_world *w, int i, int j, const event *ev, double clo
      * row of balls one contact per event, back and forth, against a kinematic ball pressing
      * it: 'stuck'. Beyond the cap, a wall moving at its velocity again.
      *
-     * Two bodies both in the solver already (pair_only) are solved alone: the ticks solve their
+     * Two circles both in the solver already (pair_only) are solved alone: the ticks solve their
      * contacts with their neighbours, and what meets here is mostly that solve's residual (a
      * dense pile's slow mode, which no tick's budget meets), not a body arriving.
      * Two free bodies and no walls: an inelastic pairwise impulse, which keeps their momentum
