@@ -1,4 +1,4 @@
-"""The wire protocol of `max2code serve` (docs/server.md): JSON text frames, version 4, or
+"""The wire protocol of `max2code serve` (docs/server.md): JSON text frames, version 5, or
 MessagePack binary frames when hello asks for them (`enc: "msgpack"`).
 
 Why JSON: the client is a static page with no build step and no library, and a browser parses
@@ -28,8 +28,9 @@ from dataclasses import dataclass
 
 import msgpack
 
-VERSION = 4   # 2: bodies removed (rm) and added (add); 3: events once per (kind, a, b) with a count;
-#               4: segments falling with the world's g in `fall`, without it
+VERSION = 5   # 2: bodies removed (rm) and added (add); 3: events once per (kind, a, b) with a count;
+#               4: segments falling with the world's g in `fall`, without it;
+#               5: a segment's 9th number, alpha (angle + omega s + alpha s^2/2)
 NUMBER_DIGITS = 10
 MAX_MESSAGE = 1024          # bytes of one client frame (our own limit: an error frame, then close)
 HARD_MAX_MESSAGE = 65536    # the WebSocket library's limit (close 1009 without reading it)

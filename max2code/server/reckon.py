@@ -1,8 +1,9 @@
 """Dead reckoning with a drawn tolerance: when a client's segment of a body stops being good
 enough. IEEE 1278 (DIS) re-sends an entity's state when the receivers' motion model drifts
 from the truth beyond a threshold; here both the model and the truth are exact segments
-(c + v s + a s^2/2, angle + omega s), so the time the drift reaches the threshold is the first
-root of a quadratic per axis, and the threshold may be 0 (every change is sent: exact).
+(c + v s + a s^2/2, angle + omega s, and for a held body's quadratic + alpha s^2/2), so the
+time the drift reaches the threshold is the first root of a quadratic per axis, and the
+threshold may be 0 (every change is sent: exact).
 
 With tolerance eps, a body's new segment is not sent while the one clients hold stays within
 eps/2 per axis (so within eps / sqrt(2) of the truth, rotation included at the body's bounding
@@ -13,15 +14,19 @@ that becomes visible within SOON is sent at once, at its event's exact time, wit
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
-Motion = tuple[float, ...]   # (t0, x, y, angle, vx, vy, omega, ax, ay)
+Motion = tuple[float, ...]   # (t0, x, y, angle, vx, vy, omega, ax, ay[, alpha])
 
 
 def _at(m: Motion, t: float) -> tuple[float, ...]:
-    t0, x, y, th, vx, vy, w, ax, ay = m
+    """(x, y, angle, vx, vy, omega, ax, ay, alpha) at t; alpha (the angular acceleration of a
+    held body's quadratic, `fitted`) is 0 in the core's motions, which have none."""
+    t0, x, y, th, vx, vy, w, ax, ay = m[:9]
+    al = m[9] if len(m) > 9 else 0.0
     s = t - t0
-    return (x + s * (vx + 0.5 * ax * s), y + s * (vy + 0.5 * ay * s), th + w * s,
-            vx + ax * s, vy + ay * s, w, ax, ay)
+    return (x + s * (vx + 0.5 * ax * s), y + s * (vy + 0.5 * ay * s), th + s * (w + 0.5 * al * s),
+            vx + ax * s, vy + ay * s, w + al * s, ax, ay, al)
 
 
 def _first_exceed(c: float, b: float, a: float, e: float) -> float:
@@ -84,7 +89,8 @@ def deadline(held: Motion, truth: Motion, now: float, eps: float, reach: float,
     turn -= 2 * math.pi * round(turn / (2 * math.pi))
     s = min(_first_exceed(g[0] - h[0], g[3] - h[3], g[6] - h[6], e),
             _first_exceed(g[1] - h[1], g[4] - h[4], g[7] - h[7], e),
-            _first_exceed(reach * turn, reach * (g[5] - h[5]), 0.0, e) if reach > 0 else math.inf)
+            _first_exceed(reach * turn, reach * (g[5] - h[5]), reach * (g[8] - h[8]), e)
+            if reach > 0 else math.inf)
     return now if s < soon or s == 0 else now + s
 
 
@@ -106,7 +112,7 @@ def chord(truth: Motion, t: float, h: float) -> Motion:
     positions), at most |a| (T - t)^2 / 8 from its flight in between (the hop), and a body at
     rest or rolling steadily keeps the same chord from tick to tick, so that clients need no
     new one (room.py: re-sent only when the truth leaves `hop_bound`)."""
-    x, y, th, vx, vy, w, ax, ay = _at(truth, t)
+    x, y, th, vx, vy, w, ax, ay, _ = _at(truth, t)
     half = (next_tick(t, h) - t) / 2
     return (t, x, y, th, vx + ax * half, vy + ay * half, w, 0.0, 0.0)
 
@@ -117,3 +123,95 @@ def hop_bound(truth: Motion, h: float, slop: float) -> float:
     from its chord at most), plus the solver's slop (a held pair may overlap that much: the
     solver itself places such a body only to within it)."""
     return slop + math.hypot(truth[7], truth[8]) * h * h / 8
+
+
+
+HISTORY = 6     # a held body's past tick poses its quadratic is fitted to (`fitted`)
+SMOOTH = 0.25   # of the bound: the fit's largest residual for that history to count as smooth
+# a quadratic is sent only when its bytes a second, by the estimated lives, are below this
+# fraction of the chord's: the estimate is optimistic (tipping-box's quadratics lasted 4.5 ticks,
+# median, where 6.7 were estimated; 8.5 where 12 at a quarter pixel)
+CHEAPER = 0.8
+
+
+def _taylor(d: list[tuple[float, float]], degree: int) -> tuple[list[float], float]:
+    """The least-squares c_1 s + c_2 s^2/2 + ... + c_n s^n/n! (degree n) through the points
+    (s, d) (a curve through (0, 0)), and its largest residual: the derivatives at 0 of the
+    polynomial nearest a held body's recent poses, relative to its pose now."""
+    basis = [lambda s, k=k: s ** k / math.factorial(k) for k in range(1, degree + 1)]
+    n = len(basis)
+    m = [[sum(f(s) * g(s) for s, _ in d) for g in basis] + [sum(f(s) * v for s, v in d)]
+         for f in basis]
+    for c in range(n):     # (Gauss-Jordan with partial pivoting on an n x n system, n <= 3)
+        p = max(range(c, n), key=lambda r: abs(m[r][c]))
+        if m[p][c] == 0:
+            return [0.0] * n, math.inf
+        m[c], m[p] = m[p], m[c]
+        for r in range(n):
+            if r != c:
+                f = m[r][c] / m[c][c]
+                m[r] = [a - f * b for a, b in zip(m[r], m[c])]
+    coef = [m[k][n] / m[k][k] for k in range(n)]
+    return coef, max(abs(sum(c * f(s) for c, f in zip(coef, basis)) - v) for s, v in d)
+
+
+@dataclass(frozen=True)
+class Fit:
+    """A held body's quadratic (`fitted`) and how long it and the chord would each stay within
+    the bound if the body went on as its recent poses do: the chord drifts from them as
+    |a| s^2 / 2, the quadratic as |jerk| s^3 / 6 (a and jerk of the polynomials nearest them)."""
+    motion: Motion
+    life: float          # seconds the quadratic lasts, estimated
+    chord_life: float    # seconds the chord lasts, estimated
+
+
+def fitted(poses: list[tuple[float, float, float, float]], truth: Motion, t: float, h: float,
+           bound: float, reach: float) -> Fit | None:
+    """Second-order dead reckoning for a body the contact solver holds, from its own history:
+    the quadratic (position and angle: c + v s + a s^2/2, angle + omega s + alpha s^2/2) from
+    its pose at t, least-squares fitted to its last tick poses `poses` ((time, x, y, angle),
+    oldest first) and its pose at the solver's next tick (its free flight gets there); None
+    when fewer than four such poses, or when the history is not smooth: the fit misses one of
+    them by more than SMOOTH x bound (along x or y, or through rotation at `reach`). Why only
+    then: a box tipping over its corner turns with a growing spin and its centre moves on a
+    circle, which the quadratic follows for several ticks where the chord fails within one;
+    the solve's tick-to-tick jitter (a pile's) would make a quadratic drift, and the chord,
+    which extrapolates nothing, is better there."""
+    now = _at(truth, t)
+    tick = next_tick(t, h)
+    samples = [(tk - t, x, y, th) for tk, x, y, th in poses if tk < t]
+    samples.append((tick - t, *_at(truth, tick)[:3]))
+    if len(samples) < 4:
+        return None
+    rates, life, chord_life = [], math.inf, math.inf
+    for k in range(3):      # x, y, angle, each relative to its value now
+        d = [(s, p[k] - now[k]) for s, *p in samples]
+        if k == 2:          # (angles a whole turn apart draw the same: the engine wraps them)
+            d = [(s, dv - 2 * math.pi * round(dv / (2 * math.pi))) for s, dv in d]
+        scale = reach if k == 2 else 1.0
+        (v, a), miss = _taylor(d, 2)
+        if miss * scale > SMOOTH * bound:
+            return None
+        jerk = _taylor(d, 3)[0][2]
+        rates.append((v, a))
+        if a:
+            chord_life = min(chord_life, math.sqrt(2 * bound / (abs(a) * scale)))
+        if jerk:
+            life = min(life, (6 * (bound - miss * scale) / (abs(jerk) * scale)) ** (1 / 3))
+    # the accelerations with the fewest digits that move the quadratic by at most 1/16 of the
+    # bound over its estimated life (a fit's 10 digits are its noise; clients hold the rounded
+    # numbers, and the room checks those against the truth at every tick)
+    span = min(life, 1.0)
+    (vx, ax), (vy, ay), (w, al) = rates
+    ax, ay = (_short(a, bound / (8 * span * span)) for a in (ax, ay))
+    al = _short(al, bound / (8 * span * span * reach)) if reach > 0 else al
+    return Fit((t, now[0], now[1], now[2], vx, vy, w, ax, ay, al), life, chord_life)
+
+
+def _short(v: float, within: float) -> float:
+    """The number of fewest significant digits (at most 10) within `within` of v."""
+    for digits in range(1, 10):
+        r = float(f"{v:.{digits}g}")
+        if abs(r - v) <= within:
+            return r
+    return v

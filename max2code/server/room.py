@@ -98,6 +98,8 @@ class Room:
         self.slop = self.world.contact_slop if self.step > 0 else 0.0
         self.modelled: set[int] = set()
         self.watch: dict[int, float] = {}
+        # each held body's last tick poses (time, x, y, angle), for its quadratic (reckon.fitted)
+        self.history: dict[int, list[tuple[float, float, float, float]]] = {}
         self.reach: list[float] = []
         self.gravity: list[tuple[float, float]] = []
         self._grow()
@@ -201,6 +203,7 @@ class Room:
             self.due.pop(i, None)
             self.watch.pop(i, None)
             self.modelled.discard(i)
+            self.history.pop(i, None)
         for i, d in list(self.watch.items()):   # a held body's chord about to leave its bound
             if d <= now:
                 del self.watch[i]
@@ -210,6 +213,10 @@ class Room:
         for i in changed:
             if (extra is None or extra[1] != i) and self.step > 0 and self.world.solving(i):
                 self.modelled.add(i)   # (entering and leaving the solver bump the counter)
+                poses = self.history.setdefault(i, [])
+                if not poses or poses[-1][0] < motions[i][0]:
+                    poses.append(tuple(motions[i][:4]))
+                    del poses[:-reckon.HISTORY]
                 d = self._held_deadline(i, motions[i], now)
                 if d is None:
                     self.due[i] = now
@@ -219,6 +226,7 @@ class Room:
                     self.due.pop(i, None)
                 continue
             self.modelled.discard(i)
+            self.history.pop(i, None)
             self.watch.pop(i, None)
             self.due[i] = (reckon.deadline(self.held[i], motions[i], now, self.tolerance, self.reach[i])
                            if extra is None or extra[1] != i else now)
@@ -252,7 +260,7 @@ class Room:
         # (t exact: rounded, it could fall before a removal the message carries)
         t = (max([motions[i][0] for i in send] + [e.time for e in drawn], default=now)
              if extra is None else now)
-        segs = [wire.segment(i, reckon.chord(motions[i], t, self.step) if i in self.modelled
+        segs = [wire.segment(i, self._held_motion(i, motions[i], t) if i in self.modelled
                              else motions[i], t, self.zero) for i in send]
         # a segment equal to what clients hold (re-expressed from t: a contact with no impulse,
         # a rest or wake that moved nothing) is not sent again, unless the body is new
@@ -283,10 +291,29 @@ class Room:
             message["add"] = [wire.body(self.world, i) for i in added]
         self._broadcast(message)
 
+    def _held_motion(self, i: int, truth: tuple[float, ...], t: float) -> tuple[float, ...]:
+        """What clients get from t for body i, which the solver holds: the quadratic fitted to
+        its recent tick poses (reckon.fitted) when that history is smooth, the quadratic stays
+        within the bound until the solver's next tick (as a chord does), and it costs fewer
+        bytes a second than the chord by their estimated lives, by reckon.CHEAPER (each re-sent
+        at most once a rate interval: a longer segment must last that much longer), else its
+        chord."""
+        chord = reckon.chord(truth, t, self.step)
+        now = self.world.time
+        eps = max(self.tolerance, 2 * reckon.hop_bound(truth, self.step, self.slop))
+        fit = reckon.fitted(self.history.get(i, []), truth, t, self.step, eps / 2, self.reach[i])
+        if fit is None or reckon.deadline(fit.motion, truth, now, eps, self.reach[i], soon=0.0) <= \
+                reckon.next_tick(now, self.step):
+            return chord
+        cost = [len(protocol.encode(wire.segment(i, m, t, self.zero)))
+                / max(life, self.gap, self.step)
+                for m, life in ((fit.motion, fit.life), (chord, fit.chord_life))]
+        return fit.motion if cost[0] < reckon.CHEAPER * cost[1] else chord
+
     def _held_deadline(self, i: int, truth: tuple[float, ...], now: float) -> float | None:
-        """For a body the contact solver holds: when the chord clients hold leaves the truth by
-        more than reckon.hop_bound (or the room's tolerance, if larger), None when that comes
-        before the solver's next tick (send it now: the change is real). Checked at every change
+        """For a body the contact solver holds: when the chord (or quadratic) clients hold leaves
+        the truth by more than reckon.hop_bound (or the room's tolerance, if larger), None when
+        that comes before the solver's next tick (send it now: the change is real). Checked at every change
         of the truth (every tick), so clients stay within that bound at every instant."""
         eps = max(self.tolerance, 2 * reckon.hop_bound(truth, self.step, self.slop))
         d = reckon.deadline(self.held[i], truth, now, eps, self.reach[i], soon=0.0)

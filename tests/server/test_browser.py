@@ -52,8 +52,11 @@ class Served:
         self.watcher: Client | None = None
         self.done = threading.Event()
         self.thread = None
-        if not watch:
-            return
+        if watch:
+            self.watch()
+
+    def watch(self) -> None:
+        """Join the watcher (at once, or later: a room's world starts at its first join)."""
         self.failure: BaseException | None = None
         self.thread = threading.Thread(target=self._main, daemon=True)
         self.thread.start()
@@ -303,6 +306,69 @@ def test_page_draws_compound_bodies(browser):
         x, y, _ = served.watcher.pose(i, t, n)
         px, py = page.evaluate(f"m2c.toPixel({x!r}, {y!r})")
         assert image.getpixel((int(px), int(py))) == hex_rgb(fill), (t, x, y)
+        page.evaluate("m2c.thaw()")
+        assert errors == []
+    finally:
+        served.stop()
+
+
+TIPPERS = """name = "tippers"
+gravity = [0.0, -1.0]
+view = [-0.5, -0.1, 5.0, 3.0]
+
+[engine]
+contact_step = 0.004166666666666667
+
+[[bodies]]
+name = "floor"
+kind = "static"
+shape = "segment"
+points = [[-0.5, 0], [5.0, 0]]
+friction = 0.5
+""" + "".join(f"""
+[[bodies]]
+name = "box{k}"
+shape = "box"
+size = [0.5, 0.5]
+position = [{0.9 * k}, {0.36 + 0.4 * k}]
+angle = 0.6
+restitution = 0.0
+friction = 0.5
+color = "#d0602a"
+""" for k in range(6))
+
+
+def test_page_draws_held_quadratics_where_the_server_says(browser, tmp_path):
+    """Six boxes (the tipping-box scene's, under g = 1 m/s^2 so that each tips for some 1.5 s)
+    dropped one after another onto a corner: while the solver holds one tipping, its smooth
+    history gets it a quadratic (protocol version 5: angle + omega s + alpha s^2/2). Once the
+    page holds one, its pose 0.2 s on (where alpha's term, alpha s^2/2, is at least 1e-3 rad)
+    is the server's (the watcher's, tests/server/client.py); and the box's fill is drawn there."""
+    scene = tmp_path / "tippers.toml"
+    scene.write_text(TIPPERS)
+    served = Served(scene, watch=False)
+    try:
+        page, errors = open_page(browser, served)   # (the world starts at the page's join, the
+        served.watch()                              # boxes tip from 0 to some 4 s)
+        first = served.watcher.n
+        # (found, frozen 0.2 s on and evaluated in one turn of the page's loop: no message
+        # between them)
+        found = page.wait_for_function(f"""(() => {{ if (m2c.state.n <= {first}) return null;
+            for (const [id, g] of Object.entries(m2c.state.segs))
+                if (Math.abs(g.v[8]) > 0.05) {{
+                    const t = m2c.freeze(g.t + 0.2);
+                    return [Number(id), t, m2c.poseAt(Number(id), t), g.v[8], m2c.state.n];
+                }}
+            return null; }})()""", polling=5, timeout=30000).json_value()
+        i, t, pose, alpha, n = found
+        served.catch_up(n)
+        assert len(served.watcher.history[n][i][0]) == 10
+        assert pose == pytest.approx(served.watcher.pose(i, t, n), abs=1e-9)
+        assert abs(alpha) * 0.2 ** 2 / 2 >= 1e-3
+        from PIL import Image
+        image = Image.open(io.BytesIO(page.locator("#view").screenshot())).convert("RGB")
+        px, py = page.evaluate(f"m2c.toPixel({pose[0]!r}, {pose[1]!r})")
+        assert image.getpixel((int(px), int(py))) == hex_rgb("#d0602a"), (t, pose)
         page.evaluate("m2c.thaw()")
         assert errors == []
     finally:

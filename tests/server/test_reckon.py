@@ -7,7 +7,8 @@ import math
 import pytest
 from hypothesis import given, settings, strategies as st
 
-from max2code.server.reckon import SOON, _at, _first_exceed, chord, deadline, hop_bound, next_tick
+from max2code.server.reckon import (SMOOTH, SOON, _at, _first_exceed, chord, deadline, fitted, hop_bound,
+                                    next_tick)
 
 small = st.floats(-3, 3, allow_nan=False)
 
@@ -73,3 +74,80 @@ def test_first_exceed_on_the_edge_going_out_by_a_subnormal_rate():
     assert _first_exceed(-0.5, -5e-324, -1.0, 0.5) == 0.0
     assert _first_exceed(0.5, 0.0, 5e-324, 0.5) == 0.0
     assert _first_exceed(0.5, -5e-324, 1.0, 0.5) > 0.0      # (inwards first)
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.floats(-1, 1), st.floats(-20, 20), st.floats(0.05, 1), st.floats(1e-5, 1e-3))
+def test_deadline_of_a_held_quadratic_against_sampling(w, alpha, reach, eps):
+    """A quadratic's angle (angle + omega s + alpha s^2/2, protocol version 5) against a truth
+    turning at a constant spin from the same pose: the drift at the reach first reaches eps/2 at
+    the deadline, in closed form the least s > 0 with reach |dw s + alpha s^2/2| = eps/2 (dw
+    the truth's spin less the quadratic's). A sign error in alpha moves it."""
+    held = (0.9, 0.0, 0.0, 0.3, 0.0, 0.0, 0.0, 0.0, 0.0, alpha)    # (held since 0.9: at 1.0 it
+    truth = (1.0, 0.0, 0.0, 0.3 + alpha * 0.01 / 2, 0.0, 0.0, w + alpha * 0.1, 0.0, 0.0)  # is here)
+    d = deadline(held, truth, 1.0, eps, reach, soon=0.0) - 1.0
+    e = eps / 2 / reach
+    roots = [s for level in (e, -e) for s in _roots(-alpha / 2, w, -level) if s > 0]
+    assert d == pytest.approx(min(roots, default=math.inf), rel=1e-9)
+
+
+def _roots(a: float, b: float, c: float) -> list[float]:
+    """Real roots of a s^2 + b s + c: the textbook formula in mpmath at 700 digits (an
+    independent oracle; enough that no cancellation matters even for a subnormal a)."""
+    import mpmath
+
+    with mpmath.workdps(700):
+        a, b, c = mpmath.mpf(a), mpmath.mpf(b), mpmath.mpf(c)
+        if a == 0:
+            return [float(-c / b)] if b else []
+        disc = b * b - 4 * a * c
+        if disc < 0:
+            return []
+        return [float((-b - mpmath.sqrt(disc)) / (2 * a)), float((-b + mpmath.sqrt(disc)) / (2 * a))]
+
+
+H = 1 / 240
+
+
+def _history(p, t: float, k: int) -> list[tuple[float, float, float, float]]:
+    return [(t - j * H, *p(t - j * H)) for j in range(k, 0, -1)]
+
+
+def _truth(p, t: float, g: float = -9.81) -> tuple[float, ...]:
+    """The free flight from p(t) under g that meets p at the next tick (as the solver's is)."""
+    (x, y, a), (x1, y1, a1) = p(t), p(t + H)
+    return (t, x, y, a, (x1 - x) / H, (y1 - y) / H - g * H / 2, (a1 - a) / H, 0.0, g)
+
+
+def test_fitted_recovers_a_quadratic_history_and_refuses_jitter():
+    """Tick poses on a closed-form quadratic (x, y and angle): the fit's velocities and
+    accelerations are its derivatives at t, and its estimated life is long (no jerk); the same
+    poses jittered by the bound at alternate ticks are not smooth (None); three poses are too
+    few."""
+    vx, vy, w, ax, ay, al = 0.4, -0.2, -1.5, 2.0, -1.0, -6.0
+    p = lambda s: (0.1 + vx * s + ax * s * s / 2, 0.3 + vy * s + ay * s * s / 2,  # noqa: E731
+                   0.5 + w * s + al * s * s / 2)
+    t = 30 * H
+    bound, reach = 3.1e-5, 0.35
+    fit = fitted(_history(p, t, 5), _truth(p, t), t, H, bound, reach)
+    m = fit.motion
+    assert m[:4] == pytest.approx((t, *p(t)), abs=1e-12)
+    v_t = (vx + ax * t, vy + ay * t, w + al * t)
+    assert m[4:7] == pytest.approx(v_t, abs=1e-6)
+    assert m[7:] == pytest.approx((ax, ay, al), rel=1e-3)
+    assert fit.life > 0.1 and fit.chord_life < 0.01    # the chord drifts as |a| s^2 / 2
+    jitter = [(tk, x + bound * (-1) ** k, y, a) for k, (tk, x, y, a) in enumerate(_history(p, t, 5))]
+    assert fitted(jitter, _truth(p, t), t, H, bound, reach) is None
+    assert fitted(_history(p, t, 2), _truth(p, t), t, H, bound, reach) is None
+    assert SMOOTH < 1
+
+
+def test_fitted_life_is_the_cubic_closed_form():
+    """A history on a cubic angle (jerk j, nothing else moving): the quadratic's estimated life
+    is (6 bound / (|j| reach))^(1/3), where the cubic's term alone reaches the bound."""
+    j, reach, bound = 40.0, 0.35, 3.1e-5
+    p = lambda s: (0.0, 0.0, 0.2 + 0.5 * s + 2 * s * s + j * s ** 3 / 6)  # noqa: E731
+    t = 0.5
+    fit = fitted(_history(p, t, 6), _truth(p, t, 0.0), t, H, bound, reach)
+    assert fit is not None
+    assert fit.life == pytest.approx((6 * bound / (j * reach)) ** (1 / 3), rel=0.05)
