@@ -116,8 +116,9 @@ def probe(page, server, bodies, ahead: float = 0.0):
     """Freeze the page's drawing at its server time T (`ahead` seconds after now), once it and
     the watcher hold the same messages, and return per body: the canvas pixel where the
     server's segments put the body at T, and that pixel's colour in the page's canvas."""
-    t = page.evaluate(f"m2c.freeze(m2c.serverNow() + {ahead!r})")
-    n = page.evaluate("m2c.state.n")
+    # (frozen and n read in one turn of the page's loop: a message between two evaluates
+    # left the drawn frame older than the n it was compared at)
+    t, n = page.evaluate(f"(() => [m2c.freeze(m2c.serverNow() + {ahead!r}), m2c.state.n])()")
     server.catch_up(n)
     # (the world goes on: the watcher may already hold a later message than the page did)
     assert server.watcher.n >= n
@@ -298,8 +299,7 @@ def test_page_draws_compound_bodies(browser):
         assert sorted((name, n) for name, _, n in shapes) == [("L", 2), ("dumbbell", 3), ("post", 2)]
         (i, fill), = page.evaluate("""Object.values(m2c.state.bodies)
             .filter((b) => b.name === 'dumbbell').map((b) => [b.id, b.fill])""")
-        t = page.evaluate("m2c.freeze(m2c.serverNow())")
-        n = page.evaluate("m2c.state.n")
+        t, n = page.evaluate("(() => [m2c.freeze(m2c.serverNow()), m2c.state.n])()")
         served.catch_up(n)
         from PIL import Image
         image = Image.open(io.BytesIO(page.locator("#view").screenshot())).convert("RGB")
