@@ -99,7 +99,7 @@ def replay(scene, until: float, listeners: int = 1, tolerance: float | None = No
     for _ in range(listeners - 1):
         room.join(lambda text: None, "bench")
     cpu = time.process_time()
-    while True:
+    while room.failed is None:   # (a failed room wakes at once for ever: stop with it)
         t = room.next_wake()
         if t > until:
             break
