@@ -291,6 +291,12 @@ class Room:
             message["add"] = [wire.body(self.world, i) for i in added]
         self._broadcast(message)
 
+    def _held_bound(self, truth: tuple[float, ...]) -> float:
+        """How far what clients hold of a body the solver holds may be from its truth: twice
+        reckon.hop_bound, or the room's tolerance if larger (one bound for choosing its segment
+        and for when to send it again)."""
+        return max(self.tolerance, 2 * reckon.hop_bound(truth, self.step, self.slop))
+
     def _held_motion(self, i: int, truth: tuple[float, ...], t: float) -> tuple[float, ...]:
         """What clients get from t for body i, which the solver holds: the quadratic fitted to
         its recent tick poses (reckon.fitted) when that history is smooth, the quadratic stays
@@ -300,7 +306,7 @@ class Room:
         chord."""
         chord = reckon.chord(truth, t, self.step)
         now = self.world.time
-        eps = max(self.tolerance, 2 * reckon.hop_bound(truth, self.step, self.slop))
+        eps = self._held_bound(truth)
         fit = reckon.fitted(self.history.get(i, []), truth, t, self.step, eps / 2, self.reach[i])
         if fit is None or reckon.deadline(fit.motion, truth, now, eps, self.reach[i], soon=0.0) <= \
                 reckon.next_tick(now, self.step):
@@ -315,7 +321,7 @@ class Room:
         the truth by more than reckon.hop_bound (or the room's tolerance, if larger), None when
         that comes before the solver's next tick (send it now: the change is real). Checked at every change
         of the truth (every tick), so clients stay within that bound at every instant."""
-        eps = max(self.tolerance, 2 * reckon.hop_bound(truth, self.step, self.slop))
+        eps = self._held_bound(truth)
         d = reckon.deadline(self.held[i], truth, now, eps, self.reach[i], soon=0.0)
         return None if d <= reckon.next_tick(now, self.step) else d
 
