@@ -39,6 +39,11 @@ def _first_exceed(c: float, b: float, a: float, e: float) -> float:
         # a s^2 + 2 b s + 2 (c - level) = 0 (doubled rather than a/2: half the least
         # subnormal a is 0, which would take the linear root of a quadratic)
         qa, qb, qc = a, 2.0 * b, 2.0 * (c - level)
+        if qc == 0 and qa != 0:     # on this edge: back at it at -2 b / a (the formula's
+            s = -2.0 * b / a        # discriminant b^2 underflows for a subnormal b)
+            if s > 0:
+                best = min(best, s)
+            continue
         if qa == 0:
             if qb != 0:
                 s = -qc / qb

@@ -76,6 +76,15 @@ def test_first_exceed_on_the_edge_going_out_by_a_subnormal_rate():
     assert _first_exceed(0.5, -5e-324, 1.0, 0.5) > 0.0      # (inwards first)
 
 
+def test_first_exceed_back_at_the_edge_after_a_subnormal_rate_inwards():
+    """|c| = e, a rate of the least subnormal inwards and an acceleration outwards: back at the
+    edge at -2 b / a = 5e-324 and beyond after. The formula's discriminant b^2 underflowed to 0,
+    its roots to 0, and the first exceed was taken at the other edge, a second later
+    (hypothesis found c = e = 1, b = -5e-324, a = 2)."""
+    assert _first_exceed(1.0, -5e-324, 2.0, 1.0) == 5e-324
+    assert _first_exceed(-1.0, 5e-324, -2.0, 1.0) == 5e-324
+
+
 @settings(max_examples=200, deadline=None)
 @given(st.floats(-1, 1), st.floats(-20, 20), st.floats(0.05, 1), st.floats(1e-5, 1e-3))
 def test_deadline_of_a_held_quadratic_against_sampling(w, alpha, reach, eps):
