@@ -1,4 +1,4 @@
-"""The wire protocol of `max2code serve` (docs/server.md): JSON text frames, version 5, or
+"""The wire protocol of `max2code serve` (docs/server.md): JSON text frames, version 6, or
 MessagePack binary frames when hello asks for them (`enc: "msgpack"`).
 
 Why JSON: the client is a static page with no build step and no library, and a browser parses
@@ -28,9 +28,10 @@ from dataclasses import dataclass
 
 import msgpack
 
-VERSION = 5   # 2: bodies removed (rm) and added (add); 3: events once per (kind, a, b) with a count;
+VERSION = 6   # 2: bodies removed (rm) and added (add); 3: events once per (kind, a, b) with a count;
 #               4: segments falling with the world's g in `fall`, without it;
-#               5: a segment's 9th number, alpha (angle + omega s + alpha s^2/2)
+#               5: a segment's 9th number, alpha (angle + omega s + alpha s^2/2);
+#               6: its 10th to 12th, the jerks jx, jy, ja (+ j s^3/6: a held body's cubic)
 NUMBER_DIGITS = 10
 MAX_MESSAGE = 1024          # bytes of one client frame (our own limit: an error frame, then close)
 HARD_MAX_MESSAGE = 65536    # the WebSocket library's limit (close 1009 without reading it)

@@ -298,26 +298,36 @@ class Room:
         return max(self.tolerance, 2 * reckon.hop_bound(truth, self.step, self.slop))
 
     def _held_motion(self, i: int, truth: tuple[float, ...], t: float) -> tuple[float, ...]:
-        """What clients get from t for body i, which the solver holds: the quadratic fitted to
-        its recent tick poses (reckon.fitted) when that history is smooth, the quadratic stays
-        within the bound until the solver's next tick (as a chord does), and it costs fewer
-        bytes a second than the chord by their estimated lives, by reckon.CHEAPER (each re-sent
-        at most once a rate interval: a longer segment must last that much longer), else its
-        chord."""
+        """What clients get from t for body i, which the solver holds: the cheapest in bytes a
+        second, by their estimated lives, of its chord, the quadratic and the cubic fitted to
+        its recent tick poses (reckon.fitted, when that history is smooth), each fit only when
+        it stays within the bound until the solver's next tick (as a chord does) and counted
+        at 1/reckon.CHEAPER of its bytes (their lives are estimated optimistically), each
+        re-sent at most once a rate interval (a longer segment must last that much longer)."""
         chord = reckon.chord(truth, t, self.step)
         now = self.world.time
         eps = self._held_bound(truth)
         fit = reckon.fitted(self.history.get(i, []), truth, t, self.step, eps / 2, self.reach[i])
-        if fit is None or reckon.deadline(fit.motion, truth, now, eps, self.reach[i], soon=0.0) <= \
-                reckon.next_tick(now, self.step):
+        if fit is None:
             return chord
-        cost = [len(protocol.encode(wire.segment(i, m, t, self.zero)))
-                / max(life, self.gap, self.step)
-                for m, life in ((fit.motion, fit.life), (chord, fit.chord_life))]
-        return fit.motion if cost[0] < reckon.CHEAPER * cost[1] else chord
+        best, cost = chord, self._bytes_a_second(i, chord, t, fit.chord_life)
+        tick = reckon.next_tick(now, self.step)
+        for m, life, cheaper in ((fit.motion, fit.life, reckon.CHEAPER),
+                                 (fit.cubic, fit.cubic_life, reckon.CUBIC_CHEAPER)):
+            if m is None or reckon.deadline(m, truth, now, eps, self.reach[i], soon=0.0) <= tick:
+                continue
+            c = self._bytes_a_second(i, m, t, life) / cheaper
+            if c < cost:
+                best, cost = m, c
+        return best
+
+    def _bytes_a_second(self, i: int, m: tuple[float, ...], t: float, life: float) -> float:
+        """Body i's segment m (from t) in bytes over its estimated life (at least the rate's
+        interval and a tick: it is re-sent at most that often)."""
+        return len(protocol.encode(wire.segment(i, m, t, self.zero))) / max(life, self.gap, self.step)
 
     def _held_deadline(self, i: int, truth: tuple[float, ...], now: float) -> float | None:
-        """For a body the contact solver holds: when the chord (or quadratic) clients hold leaves
+        """For a body the contact solver holds: when the chord (quadratic, cubic) clients hold leaves
         the truth by more than reckon.hop_bound (or the room's tolerance, if larger), None when
         that comes before the solver's next tick (send it now: the change is real). Checked at every change
         of the truth (every tick), so clients stay within that bound at every instant."""

@@ -3,14 +3,14 @@
 Shapes and styles are max2code.render's (engine.frames.render_body), so the page draws what
 `max2code sim --png` draws. A segment is the body's exact motion from a time t on:
 
-    [id, x, y, angle, vx, vy, omega, ax, ay, alpha]
-    pose(t') = (x, y) + v s + a s^2/2, angle + omega s + alpha s^2/2
+    [id, x, y, angle, vx, vy, omega, ax, ay, alpha, jx, jy, ja]
+    pose(t') = (x, y) + v s + a s^2/2 + (jx, jy) s^3/6, angle + omega s + alpha s^2/2 + ja s^3/6
 
 with s = t' - t, and trailing zeros left off (a body at rest is [id, x, y, angle], a body
 that neither turns nor accelerates [id, x, y, angle, vx, vy]). Every segment of one message is
 given at the message's time, so no segment carries a time of its own. alpha (protocol version
-5) is only ever sent for a body the contact solver holds (reckon.fitted's quadratic): the
-core's motions have no angular acceleration.
+5) and the jerks jx, jy, ja (version 6) are only ever sent for a body the contact solver holds
+(reckon.fitted's quadratic and cubic): the core's motions have neither.
 
 A body falling with the room's gravity g (the `world` message's `g`) has its segment in the
 message's `fall` list instead, without the acceleration: `[id, x, y, angle, vx, vy, omega]`,
@@ -51,9 +51,9 @@ class Zero:
         return cls(ZERO_RELATIVE * side if side < float("inf") else 0.0, ZERO_RELATIVE)
 
     def limits(self) -> tuple[float, ...]:
-        """Per value of a segment (x, y, angle, vx, vy, omega, ax, ay, alpha)."""
+        """Per value of a segment (x, y, angle, vx, vy, omega, ax, ay, alpha, jx, jy, ja)."""
         a, l_ = self.angle, self.length
-        return (l_, l_, a, l_, l_, a, l_, l_, a)
+        return (l_, l_, a, l_, l_, a, l_, l_, a, l_, l_, a)
 
 
 def shape(shape_) -> dict:
@@ -84,15 +84,22 @@ def at(m: Motion, t: float) -> tuple[float, ...]:
     """The motion (from its own time m[0]) re-expressed from time t >= m[0]: the same formula
     the core evaluates (motion.c), so the client's pose is the engine's to rounding."""
     t0, x, y, th, vx, vy, w, ax, ay = m[:9]
-    al = m[9] if len(m) > 9 else 0.0      # (the core's motions have no angular acceleration)
+    al = m[9] if len(m) > 9 else 0.0      # (the core's motions have no angular acceleration,
+    jx, jy, ja = (tuple(m[10:13]) + (0.0, 0.0, 0.0))[:3]   # nor jerks: a held body's cubic)
     s = t - t0
     if s == 0:
-        return (x, y, th, vx, vy, w, ax, ay, al)
+        return (x, y, th, vx, vy, w, ax, ay, al, jx, jy, ja)
+    if jx or jy or ja:
+        return (x + s * (vx + s * (0.5 * ax + jx * s / 6)), y + s * (vy + s * (0.5 * ay + jy * s / 6)),
+                th + s * (w + s * (0.5 * al + ja * s / 6)), vx + s * (ax + 0.5 * jx * s),
+                vy + s * (ay + 0.5 * jy * s), w + s * (al + 0.5 * ja * s),
+                ax + jx * s, ay + jy * s, al + ja * s, jx, jy, ja)
     if al:
         return (x + s * (vx + 0.5 * ax * s), y + s * (vy + 0.5 * ay * s),
-                th + s * (w + 0.5 * al * s), vx + ax * s, vy + ay * s, w + al * s, ax, ay, al)
+                th + s * (w + 0.5 * al * s), vx + ax * s, vy + ay * s, w + al * s, ax, ay, al,
+                0.0, 0.0, 0.0)
     return (x + s * (vx + 0.5 * ax * s), y + s * (vy + 0.5 * ay * s), th + w * s if w else th,
-            vx + ax * s, vy + ay * s, w, ax, ay, al)
+            vx + ax * s, vy + ay * s, w, ax, ay, al, 0.0, 0.0, 0.0)
 
 
 def _trimmed(i: int, values: list) -> list:
@@ -118,8 +125,8 @@ def split(segs: list[list], g: tuple) -> tuple[list[list], list[list]]:
         return segs, []
     explicit, fall = [], []
     for seg in segs:
-        full = (list(seg) + [0] * 10)[:10]
-        if full[7:9] != g or full[9] != 0:
+        full = (list(seg) + [0] * 13)[:13]
+        if full[7:9] != g or any(full[9:]):
             explicit.append(seg)
             continue
         fall.append(_trimmed(seg[0], full[1:7]))
@@ -137,11 +144,12 @@ def expanded(message: dict, g: tuple) -> list[list]:
 
 def pose(seg: list, t: float, t_seg: float) -> tuple[float, float, float]:
     """What the page computes from a segment (client.js poseAt), for tests and the bench."""
-    x, y, th, vx, vy, w, ax, ay, al = (list(seg[1:]) + [0.0] * 9)[:9]
+    x, y, th, vx, vy, w, ax, ay, al, jx, jy, ja = (list(seg[1:]) + [0.0] * 12)[:12]
     s = t - t_seg
-    return (x + s * (vx + 0.5 * ax * s), y + s * (vy + 0.5 * ay * s), th + s * (w + 0.5 * al * s))
+    return (x + s * (vx + s * (0.5 * ax + jx * s / 6)), y + s * (vy + s * (0.5 * ay + jy * s / 6)),
+            th + s * (w + s * (0.5 * al + ja * s / 6)))
 
 
 def motion(seg: list, t: float) -> tuple[float, ...]:
     """A sent segment (from time t) back as the core's motion tuple: what a client holds."""
-    return (t,) + tuple((list(seg[1:]) + [0.0] * 9)[:9])
+    return (t,) + tuple((list(seg[1:]) + [0.0] * 12)[:12])

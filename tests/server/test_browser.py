@@ -341,8 +341,8 @@ color = "#d0602a"
 def test_page_draws_held_quadratics_where_the_server_says(browser, tmp_path):
     """Six boxes (the tipping-box scene's, under g = 1 m/s^2 so that each tips for some 1.5 s)
     dropped one after another onto a corner: while the solver holds one tipping, its smooth
-    history gets it a quadratic (protocol version 5: angle + omega s + alpha s^2/2). Once the
-    page holds one, its pose 0.2 s on (where alpha's term, alpha s^2/2, is at least 1e-3 rad)
+    history gets it a quadratic (protocol version 5: angle + omega s + alpha s^2/2; or a cubic,
+    the next test's). Once the page holds a quadratic, its pose 0.2 s on (where alpha's term, alpha s^2/2, is at least 1e-3 rad)
     is the server's (the watcher's, tests/server/client.py); and the box's fill is drawn there."""
     scene = tmp_path / "tippers.toml"
     scene.write_text(TIPPERS)
@@ -355,7 +355,7 @@ def test_page_draws_held_quadratics_where_the_server_says(browser, tmp_path):
         # between them)
         found = page.wait_for_function(f"""(() => {{ if (m2c.state.n <= {first}) return null;
             for (const [id, g] of Object.entries(m2c.state.segs))
-                if (Math.abs(g.v[8]) > 0.05) {{
+                if (Math.abs(g.v[8]) > 0.05 && !g.v[9] && !g.v[10] && !g.v[11]) {{  // (no jerk)
                     const t = m2c.freeze(g.t + 0.2);
                     return [Number(id), t, m2c.poseAt(Number(id), t), g.v[8], m2c.state.n];
                 }}
@@ -369,6 +369,37 @@ def test_page_draws_held_quadratics_where_the_server_says(browser, tmp_path):
         image = Image.open(io.BytesIO(page.locator("#view").screenshot())).convert("RGB")
         px, py = page.evaluate(f"m2c.toPixel({pose[0]!r}, {pose[1]!r})")
         assert image.getpixel((int(px), int(py))) == hex_rgb("#d0602a"), (t, pose)
+        page.evaluate("m2c.thaw()")
+        assert errors == []
+    finally:
+        served.stop()
+
+
+def test_page_draws_held_cubics_where_the_server_says(browser, tmp_path):
+    """The same tipping boxes: a box whose recent history is smooth gets a cubic (protocol
+    version 6: + (jx, jy) s^3/6 and ja s^3/6 for the angle). Once the page holds one whose
+    angular jerk moves the angle by at least 2e-4 rad 0.2 s on, the page's pose there is the
+    server's evaluation (wire.pose, through the watcher) to 1e-9: a sign or a factor (s^3/2
+    for s^3/6) wrong in client.js's jerk terms moves it by some 1e-4."""
+    scene = tmp_path / "tippers.toml"
+    scene.write_text(TIPPERS)
+    served = Served(scene, watch=False)
+    try:
+        page, errors = open_page(browser, served)
+        served.watch()
+        first = served.watcher.n
+        found = page.wait_for_function(f"""(() => {{ if (m2c.state.n <= {first}) return null;
+            for (const [id, g] of Object.entries(m2c.state.segs))
+                if (Math.abs(g.v[11]) * 0.2 ** 3 / 6 >= 2e-4) {{
+                    const t = m2c.freeze(g.t + 0.2);
+                    return [Number(id), t, m2c.poseAt(Number(id), t), g.v.slice(9), m2c.state.n];
+                }}
+            return null; }})()""", polling=5, timeout=30000).json_value()
+        i, t, pose, jerks, n = found
+        served.catch_up(n)
+        seg = served.watcher.history[n][i][0]
+        assert len(seg) == 13 and seg[10:] == jerks
+        assert pose == pytest.approx(served.watcher.pose(i, t, n), abs=1e-9)
         page.evaluate("m2c.thaw()")
         assert errors == []
     finally:

@@ -65,7 +65,7 @@ def replay(path: Path, until: float) -> tuple[dict, list[dict]]:
 
 def test_a_falling_pile_sends_fall_segments_that_give_the_engines_poses():
     world, messages = replay(PILE, 1.5)
-    assert world["v"] == protocol.VERSION == 5 and world["g"] == [0, -9.81]
+    assert world["v"] == protocol.VERSION == 6 and world["g"] == [0, -9.81]
     c = Client(None)
     c.start(world)
     reference = build_world(load(PILE))      # a world of its own: the oracle

@@ -72,21 +72,21 @@ def off(c: Client, w: World, i: int, t: float) -> tuple[float, float, float]:
     return abs(x - X), abs(y - Y), abs(turn)
 
 
-def within_bound(w: World, reach: dict[int, float], until: float, instants: int) -> tuple[int, int]:
+def within_bound(w: World, reach: dict[int, float], until: float, instants: int) -> tuple[int, int, int]:
     """With every change sent at once (rate 0): at every wake (every tick, every event) and at
     two random instants before the next, a body the solver holds is drawn within
     slop + |g| h^2 / 8 of World's pose along x and y and through rotation at its reach; any
     other body exactly (1e-9 of the view); the same for a client joining at a random wake
     (its world message re-expresses what the others hold at its time). How many held poses
     were checked, and of those how many on a quadratic (a segment with an angular
-    acceleration: reckon.fitted's)."""
+    acceleration: reckon.fitted's) and how many on a cubic (with jerks: protocol 6)."""
     samples = random.Random(instants)
     room, c, inbox, clock = serve(w)
     clients = [(c, inbox)]
     late = samples.random() * until / 2
     bound = w.contact_slop + G * H * H / 8
     exact = 1e-9 * (VIEW[3] - VIEW[1])
-    held_checks = quadratic = 0
+    held_checks = quadratic = cubic = 0
     while (t := room.next_wake()) <= until:
         clock[0] = t
         room.advance(t)
@@ -105,9 +105,10 @@ def within_bound(w: World, reach: dict[int, float], until: float, instants: int)
                     limit = bound * (1 + 1e-9) if w.solving(i) else exact
                     held_checks += w.solving(i)
                     quadratic += w.solving(i) and len(c.segs[i][0]) == 10
+                    cubic += w.solving(i) and len(c.segs[i][0]) > 10
                     assert dx <= limit and dy <= limit and turn * reach[i] <= limit + 1e-15, \
                         (i, s, w.solving(i), len(c.segs[i][0]), dx, dy, turn * reach[i], limit)
-    return held_checks, quadratic
+    return held_checks, quadratic, cubic
 
 
 @settings(max_examples=30, deadline=None)
@@ -116,7 +117,7 @@ def within_bound(w: World, reach: dict[int, float], until: float, instants: int)
 def test_clients_stay_within_the_hop_and_slop_of_the_truth(seed, n, mu, e, instants):
     """Random drops of discs and boxes: held bodies within the bound, the others exact."""
     w, reach = drop(seed, n, mu, e)
-    held_checks, _ = within_bound(w, reach, 2.0, instants)
+    held_checks, _, _ = within_bound(w, reach, 2.0, instants)
     assert held_checks > 0       # (the solver held something: the bound was exercised)
 
 
@@ -144,13 +145,24 @@ def tipping(shape: str, angle: float, size: float, mu: float) -> tuple[World, di
        size=st.floats(0.15, 0.4), mu=st.sampled_from([0.3, 0.6]), instants=st.integers(0, 2**32))
 def test_tipping_bodies_get_quadratics_within_the_bound(shape, angle, size, mu, instants):
     """A box and a dumbbell tipping over: the solver holds them while their spin grows, their
-    smooth history gets them quadratics (angle + omega s + alpha s^2/2: protocol version 5),
-    and those are drawn within the bound at every tick and at random instants. (A sign error
-    in alpha anywhere, on the server or in the client's evaluation, puts the drawn pose some
-    alpha s^2 reach, 1e-3 m over a few ticks, from the truth: far past 3.1e-5 m.)"""
+    smooth history gets them quadratics (angle + omega s + alpha s^2/2: protocol version 5)
+    or cubics (+ j s^3/6: version 6), and those are drawn within the bound at every tick and
+    at random instants. (A sign error in alpha or a jerk anywhere, on the server or in the
+    client's evaluation, puts the drawn pose some alpha s^2 reach, 1e-3 m over a few ticks,
+    or j s^3 reach / 3, some 1e-4 m over ten, from the truth: far past 3.1e-5 m.)"""
     w, reach = tipping(shape, angle, size, mu)
-    held_checks, quadratic = within_bound(w, reach, 1.5, instants)
-    assert quadratic > 0, held_checks
+    held_checks, quadratic, cubic = within_bound(w, reach, 1.5, instants)
+    assert quadratic + cubic > 0, held_checks
+
+
+def test_tipping_boxes_get_cubics():
+    """Of the tipping runs above, the box of the tipping-box scene (0.6 rad, half sides 0.25)
+    and a dumbbell: some of their held poses are drawn from cubics (the bound held on them,
+    above)."""
+    for shape, size in (("box", 0.25), ("dumbbell", 0.3)):
+        w, reach = tipping(shape, 0.6, size, 0.5)
+        held_checks, _, cubic = within_bound(w, reach, 1.5, 7)
+        assert cubic > 0, (shape, held_checks)
 
 
 def column(conveyor: float) -> tuple[World, list[int]]:

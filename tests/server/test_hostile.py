@@ -16,7 +16,7 @@ from max2code.server.protocol import ProtocolError
 
 from .client import Client
 
-HELLO = {"type": "hello", "v": 5, "seq": 0}
+HELLO = {"type": "hello", "v": 6, "seq": 0}
 BAD_FIRST = {
     "not json": "{nope",
     "json array": "[1, 2]",
@@ -24,13 +24,14 @@ BAD_FIRST = {
     "input before hello": json.dumps({"type": "key", "seq": 0, "body": 4, "key": "left", "down": True}),
     "wrong version": json.dumps({"type": "hello", "v": 1, "seq": 0}),
     "version 4 (no alpha)": json.dumps({"type": "hello", "v": 4, "seq": 0}),
+    "version 5 (no jerk)": json.dumps({"type": "hello", "v": 5, "seq": 0}),
     "version as bool": json.dumps({"type": "hello", "v": True, "seq": 0}),
     "seq not zero": json.dumps({**HELLO, "seq": 1}),
     "unknown field": json.dumps({**HELLO, "admin": True}),
     "bad room": json.dumps({**HELLO, "room": "../../etc"}),
     "play not bool": json.dumps({**HELLO, "play": "yes"}),
     "events not bool": json.dumps({**HELLO, "events": 0}),
-    "NaN": '{"type": "hello", "v": 5, "seq": NaN}',
+    "NaN": '{"type": "hello", "v": 6, "seq": NaN}',
     "deep nesting": "[" * 500 + "]" * 500,
     "oversized": json.dumps({**HELLO, "name": "x" * 2000}),
 }

@@ -26,7 +26,7 @@ def test_join_gets_the_world_and_segments_give_the_engines_poses(arena):
     async def go():
         c = await Client.join(arena.url)
         w = c.world
-        assert w["v"] == protocol.VERSION == 5 and w["you"] == [4] and len(w["bodies"]) == 12
+        assert w["v"] == protocol.VERSION == 6 and w["you"] == [4] and len(w["bodies"]) == 12
         assert w["bodies"][4]["name"] == "player1" and w["bodies"][4]["fill"] == "#c44e52"
         assert w["bodies"][4]["shape"] == {"c": [0, 0], "r": 0.12}
         assert w["bodies"][8]["shape"]["p"][0] == [-0.08, -0.08]      # puck3, a box

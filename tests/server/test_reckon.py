@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import assume, given, settings, strategies as st
 
 from max2code.server.reckon import (SMOOTH, SOON, _at, _first_exceed, chord, deadline, fitted, hop_bound,
                                     next_tick)
@@ -160,3 +160,85 @@ def test_fitted_life_is_the_cubic_closed_form():
     fit = fitted(_history(p, t, 6), _truth(p, t, 0.0), t, H, bound, reach)
     assert fit is not None
     assert fit.life == pytest.approx((6 * bound / (j * reach)) ** (1 / 3), rel=0.05)
+
+
+def _cubic_roots(j: float, a: float, b: float, c: float) -> list[float]:
+    """Real roots of j s^3/6 + a s^2/2 + b s + c, by mpmath at 60 digits (an independent
+    oracle: its polynomial root finder, not bisection)."""
+    import mpmath
+
+    with mpmath.workdps(60):
+        coeffs = [mpmath.mpf(j) / 6, mpmath.mpf(a) / 2, mpmath.mpf(b), mpmath.mpf(c)]
+        try:
+            roots = mpmath.polyroots(coeffs[::-1], maxsteps=400, extraprec=400, asc=True)
+        except mpmath.libmp.libhyper.NoConvergence:     # (a double root, a tangent)
+            assume(False)
+        return [float(mpmath.re(r)) for r in roots if abs(mpmath.im(r)) < mpmath.mpf(10) ** -30]
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.floats(-0.99, 0.99), st.floats(-3, 3), st.floats(-3, 3),
+       st.floats(0.05, 30).flatmap(lambda m: st.sampled_from([m, -m])), st.floats(0.01, 1))
+def test_first_exceed_with_a_jerk_against_mpmath(c, b, a, j, e):
+    """A held cubic's drift c + b s + a s^2/2 + j s^3/6 (protocol version 6) first leaves
+    [-e, e] at the least positive root of the cubic less or plus e where it crosses: against
+    mpmath's roots of both. (A jerk is never 0 here; a sign or a factor in its term moves it.)"""
+    c *= e      # (inside: the edges are test_first_exceed_on_the_edge_...'s)
+    s = _first_exceed(c, b, a, e, j)
+    f = lambda t: c + b * t + a * t * t / 2 + j * t ** 3 / 6  # noqa: E731
+    slope = lambda t: b + a * t + j * t * t / 2  # noqa: E731
+    crossings = [r for level in (e, -e) for r in _cubic_roots(j, a, b, c - level) if r > 0
+                 and abs(slope(r)) > 1e-6]                  # (a tangent touches, never leaves)
+    first = min(crossings)                                  # (a cubic always leaves)
+    assume(all(abs(r - first) > 1e-6 for r in _cubic_roots(j, a, b, c - e) + _cubic_roots(j, a, b, c + e)
+               if r > 0 and abs(slope(r)) <= 1e-6))
+    assert s == pytest.approx(first, rel=1e-9, abs=1e-12)
+    assert s <= first * (1 + 1e-12)                        # (never late, to rounding)
+    assert all(abs(f(s * k / 100)) <= e * (1 + 1e-12) for k in range(101))
+
+
+def test_deadline_of_a_held_cubic_against_mpmath():
+    """A cubic's angle (angle + omega s + alpha s^2/2 + ja s^3/6) held from 0.9, against a
+    truth at a constant spin from its pose at 1.0: the drift at the reach reaches eps/2 at the
+    least root of reach (dw s - alpha' s^2/2 - ja s^3/6) = -+eps/2, with alpha' and dw those of
+    the cubic re-expressed at 1.0. With the jerk's sign flipped the deadline moves."""
+    ja, al, reach, eps = 30.0, -2.0, 0.35, 6.2e-5
+    held = (0.9, 0.0, 0.0, 0.3, 0.0, 0.0, 0.5, 0.0, 0.0, al, 0.0, 0.0, ja)
+    at = _at(held, 1.0)
+    assert at[2] == pytest.approx(0.3 + 0.05 + al * 0.01 / 2 + ja * 0.001 / 6, rel=1e-12)
+    assert at[5] == pytest.approx(0.5 + al * 0.1 + ja * 0.01 / 2, rel=1e-12)
+    truth = (1.0, 0.0, 0.0, at[2], 0.0, 0.0, 0.6, 0.0, 0.0)
+    d = deadline(held, truth, 1.0, eps, reach, soon=0.0) - 1.0
+    dw, a2 = 0.6 - at[5], al + ja * 0.1
+    roots = [s for level in (eps / 2, -eps / 2)
+             for s in _cubic_roots(-reach * ja, -reach * a2, reach * dw, -level) if s > 0]
+    assert d == pytest.approx(min(roots), rel=1e-9)
+    flipped = held[:12] + (-ja,)
+    assert deadline(flipped, truth, 1.0, eps, reach, soon=0.0) - 1.0 != pytest.approx(d, rel=1e-3)
+
+
+def test_fitted_cubic_recovers_a_cubic_history():
+    """Tick poses on a closed-form cubic (x, y and angle): the cubic's velocities,
+    accelerations and jerks are its derivatives at t (to the digits the fit keeps), and its
+    estimated life is long (no snap); on a quartic angle (snap q) its life is
+    (24 bound / (|q| reach))^(1/4), where the quartic's term alone reaches the bound."""
+    vx, vy, w, ax, ay, al, jx, jy, ja = 0.4, -0.2, -1.5, 2.0, -1.0, -6.0, 3.0, -5.0, 40.0
+    p = lambda s: (0.1 + vx * s + ax * s * s / 2 + jx * s ** 3 / 6,  # noqa: E731
+                   0.3 + vy * s + ay * s * s / 2 + jy * s ** 3 / 6,
+                   0.5 + w * s + al * s * s / 2 + ja * s ** 3 / 6)
+    t = 30 * H
+    bound, reach = 3.1e-5, 0.35
+    fit = fitted(_history(p, t, 6), _truth(p, t), t, H, bound, reach)
+    m = fit.cubic
+    assert m[:4] == pytest.approx((t, *p(t)), abs=1e-12)
+    assert m[4:7] == pytest.approx((vx + ax * t + jx * t * t / 2, vy + ay * t + jy * t * t / 2,
+                                    w + al * t + ja * t * t / 2), abs=1e-6)
+    assert m[7:10] == pytest.approx((ax + jx * t, ay + jy * t, al + ja * t), rel=1e-3)
+    assert m[10:] == pytest.approx((jx, jy, ja), rel=2e-2)
+    assert fit.cubic_life > 0.1
+    q = 300.0
+    quartic = lambda s: (0.0, 0.0, 0.2 + 0.5 * (s - 0.5) + 2 * (s - 0.5) ** 2  # noqa: E731
+                         + q * (s - 0.5) ** 4 / 24)     # (no jerk at 0.5: its snap alone)
+    fit = fitted(_history(quartic, 0.5, 6), _truth(quartic, 0.5, 0.0), 0.5, H, bound, reach)
+    assert fit.cubic is not None
+    assert fit.cubic_life == pytest.approx((24 * bound / (q * reach)) ** (1 / 4), rel=0.1)

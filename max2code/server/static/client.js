@@ -1,10 +1,10 @@
-// max2code serve: the thin client (protocol version 5, docs/server.md). No build step, no library.
+// max2code serve: the thin client (protocol version 6, docs/server.md). No build step, no library.
 // It holds every body's motion segment and draws any frame from it at the display's own rate;
 // the server sends a segment again only when an event changes it. Drawing follows
 // max2code.render (render/raster.py, render/svg.py): same shapes, colours, time stamp.
 "use strict";
 
-const PROTOCOL = 5;
+const PROTOCOL = 6;
 const KEYS = {ArrowLeft: "left", ArrowRight: "right", ArrowUp: "up", ArrowDown: "down",
               a: "left", d: "right", w: "up", s: "down"};
 const canvas = document.getElementById("view");
@@ -30,10 +30,11 @@ function send(message) {
 }
 
 function setSegment(seg, t, g) {
-  // [id, x, y, angle, vx, vy, omega, ax, ay, alpha] from time t; trailing zeros left off; g
-  // given: a `fall` segment [id, x, y, angle, vx, vy, omega] whose acceleration is the world's g
-  const v = [0, 0, 0, 0, 0, 0, 0, 0, 0];
-  const n = g ? 6 : 9;
+  // [id, x, y, angle, vx, vy, omega, ax, ay, alpha, jx, jy, ja] from time t; trailing zeros
+  // left off; g given: a `fall` segment [id, x, y, angle, vx, vy, omega] whose acceleration is
+  // the world's g
+  const v = [0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0];
+  const n = g ? 6 : 12;
   for (let k = 1; k < seg.length && k <= n; k++) v[k - 1] = seg[k];
   if (g) { v[6] = g[0]; v[7] = g[1]; }
   state.segs[seg[0]] = {t: t, v: v};
@@ -47,9 +48,11 @@ function setSegments(m) {
 function poseAt(id, t) {
   const g = state.segs[id];
   if (!g) return null;
+  // p + v s + a s^2/2 + j s^3/6 (the jerks j only in a held body's cubic: protocol 6)
   const s = t - g.t, v = g.v;
-  return [v[0] + s * (v[3] + 0.5 * v[6] * s), v[1] + s * (v[4] + 0.5 * v[7] * s),
-          v[2] + s * (v[5] + 0.5 * v[8] * s)];
+  return [v[0] + s * (v[3] + s * (0.5 * v[6] + v[9] * s / 6)),
+          v[1] + s * (v[4] + s * (0.5 * v[7] + v[10] * s / 6)),
+          v[2] + s * (v[5] + s * (0.5 * v[8] + v[11] * s / 6))];
 }
 
 function onMessage(text) {
