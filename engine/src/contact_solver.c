@@ -1358,9 +1358,17 @@ static void halt_island(m2c_world *w, int k)
         B->instant = 0;
         B->counter++;
     }
+    /* every member's motion changed: a pair of two members is searched from one side only
+     * (k's, the caller's, searches all its pairs). Predicting them again was half of a
+     * 2,000-disc pile's time, about 300 bodies at a time, 17 times a tick */
+    int *mark = w->solver->mark;
+    for (int m = 0; m < nb; m++)
+        mark[w->members[m]] = 1;
     for (int m = 0; m < nb; m++)
         if (w->members[m] != k)
-            world_predict(w, w->members[m]);
+            world_predict_marked(w, w->members[m], mark);
+    for (int m = 0; m < nb; m++)
+        mark[w->members[m]] = 0;
 }
 
 /* After a soft contact of solver body k: pairwise impulses between contacts at a small angle

@@ -299,6 +299,7 @@ void body_reach(const m2c_world *w, body *b);
 const char *moving_vertices_refusal(int kind, long long nvertices);
 void world_predict(m2c_world *w, int i);
 void world_predict_solver(m2c_world *w, int i); /* the tick: a pair of solver bodies once */
+void world_predict_marked(m2c_world *w, int i, const int *marks); /* a marked set: once */
 int world_emit(m2c_world *w, const m2c_event *e);
 
 #endif

@@ -422,13 +422,14 @@ typedef struct {
     contact c;
     int partner;
     int batch;        /* every solver body is predicted now: a pair of them from one side */
+    const int *marks; /* or: the bodies marked here are predicted now (world_predict_marked) */
 } best_contact;
 
 static void visit(m2c_world *w, int i, int j, void *ctx)
 {
     best_contact *bc = ctx;
-    if (bc->batch && j < i && solver_has(w, j))
-        return; /* j predicts the pair (world_predict_solver) */
+    if (j < i && (bc->marks ? bc->marks[j] != 0 : bc->batch && solver_has(w, j)))
+        return; /* j predicts the pair (world_predict_solver, world_predict_marked) */
     if (predict_pair(w, i, j, &bc->c))
         bc->partner = j;
 }
@@ -462,11 +463,11 @@ static double horizon(double now)
     return now + h < DBL_MAX ? h : DBL_MAX - now;
 }
 
-static void predict_body(m2c_world *w, int i, int batch);
+static void predict_body(m2c_world *w, int i, int batch, const int *marks);
 
 void world_predict(m2c_world *w, int i)
 {
-    predict_body(w, i, 0);
+    predict_body(w, i, 0, NULL);
 }
 
 /* Body i, one of the contact solver's bodies, all of which the tick predicts again at once:
@@ -475,10 +476,18 @@ void world_predict(m2c_world *w, int i)
  * body's motion changes later, world_predict searches all its pairs again. */
 void world_predict_solver(m2c_world *w, int i)
 {
-    predict_body(w, i, 1);
+    predict_body(w, i, 1, NULL);
 }
 
-static void predict_body(m2c_world *w, int i, int batch)
+/* Body i, one of a set whose motions all changed at this instant and which are all predicted
+ * again now (marks[j] != 0 for each of them): a pair of two of them from its lower id's side
+ * alone, as world_predict_solver. */
+void world_predict_marked(m2c_world *w, int i, const int *marks)
+{
+    predict_body(w, i, 0, marks);
+}
+
+static void predict_body(m2c_world *w, int i, int batch, const int *marks)
 {
     body *b = &w->b[i];
     w->st.predictions++;
@@ -548,6 +557,7 @@ static void predict_body(m2c_world *w, int i, int batch)
     bc.c.window = INFINITY;
     bc.partner = -1;
     bc.batch = batch && b->state == SOLVING;
+    bc.marks = marks;
     grid_neighbours(w, i, visit, &bc);
     set_contact(w, &ev, &bc);
     if (capped && ev.kind == EV_NONE)
