@@ -1124,6 +1124,12 @@ int predict_pair(m2c_world *w, int i, int j, contact *c)
     f.B = B;
     f.a = motion_at(&A->m, w->now);
     f.b = motion_at(&B->m, w->now);
+    /* the same translation and no turn (two bodies the wedge rule stopped at one instant, a
+     * body at rest against a static one in zero gravity): every gap between them is constant
+     * in time, so no contact can begin (5% of a 2,000-disc pile's CPU time: bench/contact.py) */
+    if (f.a.w == 0.0 && f.b.w == 0.0 && f.a.vx == f.b.vx && f.a.vy == f.b.vy && f.a.ax == f.b.ax
+        && f.a.ay == f.b.ay)
+        return 0;
     relative_position(A, B, w->now, &f.rx, &f.ry);
     f.no_touch = 0;
     f.ghost = w->nghosts > 0 && ghost_find(w, i, j) >= 0;
