@@ -999,6 +999,21 @@ static void flood_visit(m2c_world *w, int i, int j, void *ctx)
     struct solver *s = w->solver;
     if (s->mark[j] || !f->joins(w, j))
         return;
+    const body *A = &w->b[i], *B = &w->b[j];
+    if (centred_circle(w, A) && centred_circle(w, B)) {
+        /* two circles about their centres: gen_parts' test of vertex against vertex (the
+         * only contact two circles have), without building the contact (gen_pair here was 18%
+         * of a 2,000-disc pile's time: the wedge rule floods about 300 bodies at a time) */
+        snap sa = motion_at(&A->m, w->now), sb = motion_at(&B->m, w->now);
+        double R = A->radius + B->radius, d[2] = {sb.x - sa.x, sb.y - sa.y};
+        double d2 = d[0] * d[0] + d[1] * d[1], reach = A->bound + B->bound + f->gap;
+        if ((B->kind == M2C_DYNAMIC && d2 > reach * reach) || !(d2 > 0)
+            || d2 > (R + f->gap) * (R + f->gap) * (1 + 1e-12) || sqrt(d2) - R > f->gap)
+            return;
+        s->mark[j] = 1;
+        f->members[f->count++] = j;
+        return;
+    }
     int before = s->nc;
     gen_pair(w, i, j, f->gap);
     if (s->nc > before) {
