@@ -1122,6 +1122,9 @@ int predict_pair(m2c_world *w, int i, int j, contact *c)
     f.w = w;
     f.A = A;
     f.B = B;
+    if (A->m.t == B->m.t && A->m.w == 0.0 && B->m.w == 0.0 && A->m.vx == B->m.vx
+        && A->m.vy == B->m.vy && A->m.ax == B->m.ax && A->m.ay == B->m.ay)
+        return 0; /* one translation (below), seen before evaluating the motions */
     f.a = motion_at(&A->m, w->now);
     f.b = motion_at(&B->m, w->now);
     /* the same translation and no turn (two bodies the wedge rule stopped at one instant, a
