@@ -701,7 +701,13 @@ static int solve_rotating(feat *f, double tmax, double tolp, double vthr, double
         if (!after_root && !at_start && !touching) {
             mode = g0 > 0 ? ABOVE : INSIDE;
         } else if (!after_root && fabs(g0) <= tolp && (f->no_touch || f->ghost)) {
-            mode = g1 < 0 ? INSIDE : ABOVE;
+            /* a point touching the other side's face belongs there (no_touch): a speed to this
+             * side within the rounding (vthr) does not bring it over.  Taken as above this
+             * face, a spinning box's corner that had just bounced off the other face (e = 0:
+             * +2.2e-16 m/s, its path curving back at 24.8 m/s^2) crossed this face at once,
+             * and that false contact recurred at one instant until `stuck`
+             * (tests/engine/test_stuck.py) */
+            mode = g1 < 0 || (f->no_touch && !f->ghost && g1 <= vthr) ? INSIDE : ABOVE;
             after_root = 1;
         } else if (!after_root && fabs(g0) <= tolp) {
             if (g1 < -vthr) { /* touching and approaching: a contact now, if on the edge */
