@@ -61,6 +61,11 @@ def _first_exceed(c: float, b: float, a: float, e: float, j: float = 0.0) -> flo
                 if s > 0:
                     best = min(best, s)
             continue
+        # scaled by a power of two (exact) so the largest is about 1: with a subnormal a and
+        # b both products underflowed to 0, the discriminant with them, and the root came out
+        # as qc / 0 = never where it was 1.4e158 s (a = 1e-320, b = 5e-324, e = 1e-4)
+        k = math.frexp(max(abs(qa), abs(qb), abs(qc)))[1]
+        qa, qb, qc = math.ldexp(qa, -k), math.ldexp(qb, -k), math.ldexp(qc, -k)
         disc = qb * qb - 4 * qa * qc
         if disc < 0:
             continue
