@@ -102,7 +102,7 @@ def life(flights, k: int, f, bound: float, reach: float, h: float, most: int = 2
             return j - k
         for frac in np.linspace(0, 1, 9)[1:]:
             t = a + frac * (b - a)
-            p, q = reckon._at(flights[j], t), f(t - t0)
+            p, q = reckon.state_at(flights[j], t), f(t - t0)
             if max(abs(p[0] - q[0]), abs(p[1] - q[1]), abs(p[2] - q[2]) * reach) > bound:
                 return (t - t0) / h
     return most
@@ -115,7 +115,7 @@ def oracle(flights, k: int, kind: str, bound: float, reach: float, h: float, mos
         if k + n > len(flights) or flights[min(k + n, len(flights) - 1)][0] - flights[k][0] > (n + 0.5) * h:
             break
         ts = [flights[j][0] + f * h for j in range(k, k + n) for f in (0, .25, .5, .75)]
-        p = np.array([reckon._at(flights[min(k + int((t - flights[k][0]) / h + 1e-9), len(flights) - 1)], t)[:3]
+        p = np.array([reckon.state_at(flights[min(k + int((t - flights[k][0]) / h + 1e-9), len(flights) - 1)], t)[:3]
                       for t in ts])
         s = np.array(ts) - ts[0]
         f = form(kind, s[1:], p[1:] - p[0], tuple(p[0]))
@@ -129,13 +129,13 @@ def oracle(flights, k: int, kind: str, bound: float, reach: float, h: float, mos
 def from_history(flights, k: int, kind: str, m: int, h: float):
     """The form fitted as the room can at tick k: to the last m tick poses and the next one."""
     t0 = flights[k][0]
-    now = reckon._at(flights[k], t0)[:3]
+    now = reckon.state_at(flights[k], t0)[:3]
     past = range(max(0, k - m), k)
     s = np.array([flights[j][0] - t0 for j in past] + [h])
-    p = np.array([flights[j][1:4] for j in past] + [reckon._at(flights[k], t0 + h)[:3]]) - np.array(now)
+    p = np.array([flights[j][1:4] for j in past] + [reckon.state_at(flights[k], t0 + h)[:3]]) - np.array(now)
     if len(s) <= DEGREE[kind] + 1:
         chord = reckon.chord(flights[k], t0, h)
-        return lambda u: reckon._at(chord, t0 + u)[:3]
+        return lambda u: reckon.state_at(chord, t0 + u)[:3]
     return form(kind, s, p, now)
 
 
@@ -153,7 +153,7 @@ def main() -> int:
                 lives = [oracle(flights, k, kind, bound, reach, h) for k in range(0, len(flights) - 1, 2)]
                 print(f"  oracle {kind}: median {statistics.median(lives):g} ticks, "
                       f"from the first 60 ticks' starts {statistics.median(lives[:30]):g}")
-            chord = lambda k: (lambda c: lambda u: reckon._at(c, c[0] + u)[:3])(  # noqa: E731
+            chord = lambda k: (lambda c: lambda u: reckon.state_at(c, c[0] + u)[:3])(  # noqa: E731
                 reckon.chord(flights[k], flights[k][0], h))
             for kind, m in [("chord", 0)] + [(f, m) for f in ("Q", "C", "D", "PQ", "PC") for m in (4, 6, 12)]:
                 k, lives = 0, []

@@ -19,11 +19,11 @@ from dataclasses import dataclass
 Motion = tuple[float, ...]   # (t0, x, y, angle, vx, vy, omega, ax, ay[, alpha[, jx, jy, ja]])
 
 
-def _at(m: Motion, t: float) -> tuple[float, ...]:
+def state_at(m: Motion, t: float) -> tuple[float, ...]:
     """(x, y, angle, vx, vy, omega, ax, ay, alpha, jx, jy, ja) at t; alpha (the angular
     acceleration of a held body's quadratic, `fitted`) and the jerks (jx, jy and ja, the
     angle's: a held body's cubic, protocol version 6) are 0 in the core's motions, which have
-    none."""
+    none. (wire.at evaluates a held body's fit with this too.)"""
     t0, x, y, th, vx, vy, w, ax, ay = m[:9]
     al = m[9] if len(m) > 9 else 0.0
     jx, jy, ja = (tuple(m[10:13]) + (0.0, 0.0, 0.0))[:3]
@@ -140,7 +140,7 @@ def deadline(held: Motion, truth: Motion, now: float, eps: float, reach: float,
     comes within `soon`."""
     if eps <= 0:
         return now
-    h, g = _at(held, now), _at(truth, now)
+    h, g = state_at(held, now), state_at(truth, now)
     e = eps / 2
     turn = g[2] - h[2]      # (angles a whole turn apart draw the same: the engine wraps them)
     turn -= 2 * math.pi * round(turn / (2 * math.pi))
@@ -170,7 +170,7 @@ def chord(truth: Motion, t: float, h: float) -> Motion:
     positions), at most |a| (T - t)^2 / 8 from its flight in between (the hop), and a body at
     rest or rolling steadily keeps the same chord from tick to tick, so that clients need no
     new one (room.py: re-sent only when the truth leaves `hop_bound`)."""
-    x, y, th, vx, vy, w, ax, ay = _at(truth, t)[:8]
+    x, y, th, vx, vy, w, ax, ay = state_at(truth, t)[:8]
     half = (next_tick(t, h) - t) / 2
     return (t, x, y, th, vx + ax * half, vy + ay * half, w, 0.0, 0.0)
 
@@ -248,10 +248,10 @@ def fitted(poses: list[tuple[float, float, float, float]], truth: Motion, t: flo
     circle, which the quadratic follows for several ticks where the chord fails within one;
     the solve's tick-to-tick jitter (a pile's) would make a quadratic drift, and the chord,
     which extrapolates nothing, is better there."""
-    now = _at(truth, t)
+    now = state_at(truth, t)
     tick = next_tick(t, h)
     samples = [(tk - t, x, y, th) for tk, x, y, th in poses if tk < t]
-    samples.append((tick - t, *_at(truth, tick)[:3]))
+    samples.append((tick - t, *state_at(truth, tick)[:3]))
     if len(samples) < 4:
         return None
     recent = samples[-CUBIC_HISTORY - 1:]

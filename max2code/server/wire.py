@@ -28,6 +28,7 @@ from dataclasses import dataclass
 from ..engine.frames import render_body
 from ..engine.world import World
 from ..render.model import Capsule, Circle, Compound, Polygon, Segment
+from . import reckon
 from .protocol import number
 
 Motion = tuple[float, ...]   # the core's (t0, x, y, angle, vx, vy, omega, ax, ay)
@@ -89,15 +90,8 @@ def at(m: Motion, t: float) -> tuple[float, ...]:
     s = t - t0
     if s == 0:
         return (x, y, th, vx, vy, w, ax, ay, al, jx, jy, ja)
-    if jx or jy or ja:
-        return (x + s * (vx + s * (0.5 * ax + jx * s / 6)), y + s * (vy + s * (0.5 * ay + jy * s / 6)),
-                th + s * (w + s * (0.5 * al + ja * s / 6)), vx + s * (ax + 0.5 * jx * s),
-                vy + s * (ay + 0.5 * jy * s), w + s * (al + 0.5 * ja * s),
-                ax + jx * s, ay + jy * s, al + ja * s, jx, jy, ja)
-    if al:
-        return (x + s * (vx + 0.5 * ax * s), y + s * (vy + 0.5 * ay * s),
-                th + s * (w + 0.5 * al * s), vx + ax * s, vy + ay * s, w + al * s, ax, ay, al,
-                0.0, 0.0, 0.0)
+    if al or jx or jy or ja:
+        return reckon.state_at(m, t)      # a held body's quadratic or cubic: reckon's one formula
     return (x + s * (vx + 0.5 * ax * s), y + s * (vy + 0.5 * ay * s), th + w * s if w else th,
             vx + ax * s, vy + ay * s, w, ax, ay, al, 0.0, 0.0, 0.0)
 

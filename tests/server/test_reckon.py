@@ -7,7 +7,7 @@ import math
 import pytest
 from hypothesis import assume, given, settings, strategies as st
 
-from max2code.server.reckon import (SMOOTH, SOON, _at, _first_exceed, chord, deadline, fitted, hop_bound,
+from max2code.server.reckon import (SMOOTH, SOON, state_at, _first_exceed, chord, deadline, fitted, hop_bound,
                                     next_tick)
 
 small = st.floats(-3, 3, allow_nan=False)
@@ -32,12 +32,12 @@ def test_first_exceed_against_sampling(c, b, a, e):
 def test_deadline_rules():
     held = (0.0, 0, 0, 0, 1.0, 0, 0, 0, 0)
     assert deadline(held, held, 2.0, 0.01, 1.0) == math.inf                 # the same motion
-    faster = (2.0, *_at(held, 2.0)[:3], 1.001, 0, 0, 0, 0)
+    faster = (2.0, *state_at(held, 2.0)[:3], 1.001, 0, 0, 0, 0)
     assert deadline(held, faster, 2.0, 0.0, 1.0) == 2.0                      # exact: at once
     assert deadline(held, faster, 2.0, 0.01, 1.0) == pytest.approx(2.0 + 0.005 / 0.001)  # 5 s of drift
-    visible = (2.0, *_at(held, 2.0)[:3], 2.0, 0, 0, 0, 0)
+    visible = (2.0, *state_at(held, 2.0)[:3], 2.0, 0, 0, 0, 0)
     assert deadline(held, visible, 2.0, 0.01, 1.0) == 2.0                    # within SOON
-    spin = (2.0, *_at(held, 2.0)[:3], 1.0, 0, 1e-3, 0, 0)
+    spin = (2.0, *state_at(held, 2.0)[:3], 1.0, 0, 1e-3, 0, 0)
     assert deadline(held, spin, 2.0, 0.01, 2.0) > 2.0 + SOON                  # slow turn: waits
 
 
@@ -53,9 +53,9 @@ def test_chord_meets_the_flight_at_both_ticks_and_hops_at_most_a_h2_over_8():
     m = chord(truth, t, h)
     assert m[0] == t and m[7:] == (0.0, 0.0) and m[6] == truth[6]
     for s in (0.0, h):
-        a, b = _at(truth, t + s), _at(m, t + s)
+        a, b = state_at(truth, t + s), state_at(m, t + s)
         assert a[:3] == pytest.approx(b[:3], abs=1e-15)
-    mid = _at(truth, t + h / 2)[1] - _at(m, t + h / 2)[1]
+    mid = state_at(truth, t + h / 2)[1] - state_at(m, t + h / 2)[1]
     assert mid == pytest.approx(9.81 * h * h / 8, rel=1e-9)   # (above it: a hop)
     assert hop_bound(truth, h, 1e-5) == pytest.approx(1e-5 + 9.81 * h * h / 8)
 
@@ -220,7 +220,7 @@ def test_deadline_of_a_held_cubic_against_mpmath():
     the cubic re-expressed at 1.0. With the jerk's sign flipped the deadline moves."""
     ja, al, reach, eps = 30.0, -2.0, 0.35, 6.2e-5
     held = (0.9, 0.0, 0.0, 0.3, 0.0, 0.0, 0.5, 0.0, 0.0, al, 0.0, 0.0, ja)
-    at = _at(held, 1.0)
+    at = state_at(held, 1.0)
     assert at[2] == pytest.approx(0.3 + 0.05 + al * 0.01 / 2 + ja * 0.001 / 6, rel=1e-12)
     assert at[5] == pytest.approx(0.5 + al * 0.1 + ja * 0.01 / 2, rel=1e-12)
     truth = (1.0, 0.0, 0.0, at[2], 0.0, 0.0, 0.6, 0.0, 0.0)
