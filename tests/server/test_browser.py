@@ -260,12 +260,18 @@ def test_page_stops_drawing_removed_bricks(browser):
         centres = {i: c for i, _, _, c in start}
         fill = hex_rgb(next(f for i, _, f, _ in start if i in bricks))
         page.wait_for_function(f"Object.keys(m2c.state.bodies).length <= {len(ids) - 4}", timeout=20000)
-        t = page.evaluate("m2c.freeze(m2c.serverNow())")
-        live = set(page.evaluate("Object.keys(m2c.state.bodies).map(Number)"))
-        # where the ball is drawn in the frozen frame (a brick under it is not probed)
-        balls = page.evaluate(f"""Object.values(m2c.state.bodies).filter((b) => b.kind === "dynamic")
-            .map((b) => [...m2c.toPixel(...m2c.poseAt(b.id, {t!r}).slice(0, 2)),
-                         b.shape.r * (m2c.toPixel(1, 0)[0] - m2c.toPixel(0, 0)[0]) + 8])""")
+        # the frozen frame, the bodies it drew and where it drew the ball, in one evaluation:
+        # messages go on arriving after the freeze (a brick removed then is still drawn)
+        t, live, balls = page.evaluate("""(() => {
+            const t = m2c.freeze(m2c.serverNow());
+            const bodies = Object.values(m2c.state.bodies);
+            return [t, bodies.map((b) => b.id),
+                    bodies.filter((b) => b.kind === "dynamic").map((b) => [
+                        ...m2c.toPixel(...m2c.poseAt(b.id, t).slice(0, 2)),
+                        b.shape.r * (m2c.toPixel(1, 0)[0] - m2c.toPixel(0, 0)[0]) + 8])];
+        })()""")
+        live = set(live)
+        # (a brick under the ball is not probed)
 
         def covered(c) -> bool:
             return any(math.hypot(c[0] - x, c[1] - y) < r for x, y, r in balls)
