@@ -345,8 +345,12 @@ class Room:
         """The next queued event, or the end of a change's wait (and of the rate's interval
         when a change waits for it), whichever is first."""
         owed = min(self.due.values(), default=-math.inf if self._waiting() else math.inf)
-        return min(self.world.next_time(), max(owed, self.last_sent + self.gap),
-                   min(self.watch.values(), default=math.inf))
+        queued = self.world.next_time()
+        send = max(owed, self.last_sent + self.gap)
+        if queued > send and queued - send <= 1e-6 * self.step:
+            send = queued   # (the rate's k/60 falls some ulps before the solver's tick 4k:
+                            # stepping it first sends the tick's motions, not the flight before)
+        return min(queued, send, min(self.watch.values(), default=math.inf))
 
     def _broadcast(self, message: dict) -> None:
         """One message to every client; an ev message without its events to those that asked
