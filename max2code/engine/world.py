@@ -843,6 +843,14 @@ class World:
     def asleep(self, body: int) -> bool:
         return bool(self._lib.m2c_world_asleep(self._w, body))
 
+    def has_callbacks(self) -> bool:
+        """True when stepping this world may run Python code of its owner's (collision,
+        pre-solve, timer or input callbacks): a copy stepped ahead (max2code serve's forecast)
+        would run that code twice, so such a world is never copied to look ahead."""
+        h = self._handlers
+        return bool(h.any() or h.pre_solve_body or self._input_callbacks
+                    or any(tm.callback for tm in self._timers.values()))
+
     def solving(self, body: int) -> bool:
         """True while the body is in sustained contact, moved by the contact solver."""
         return bool(self._lib.m2c_world_solving(self._w, body))
