@@ -206,20 +206,30 @@ def _taylor(d: list[tuple[float, float]], degree: int) -> tuple[list[float], flo
     span = max((abs(s) for s, _ in d), default=0.0) or 1.0
     basis = [lambda u, k=k: u ** k / math.factorial(k) for k in range(1, degree + 1)]
     n = len(basis)
-    m = [[sum(f(s / span) * g(s / span) for s, _ in d) for g in basis]
-         + [sum(f(s / span) * v for s, v in d)] for f in basis]
-    for c in range(n):     # (Gauss-Jordan with partial pivoting on an n x n system, n <= 4)
+    sol = solve([[sum(f(s / span) * g(s / span) for s, _ in d) for g in basis]
+                 + [sum(f(s / span) * v for s, v in d)] for f in basis])
+    if sol is None:
+        return [0.0] * n, math.inf
+    coef = [row[0] for row in sol]
+    miss = max(abs(sum(c * f(s / span) for c, f in zip(coef, basis)) - v) for s, v in d)
+    return [c / span ** (k + 1) for k, c in enumerate(coef)], miss
+
+
+def solve(m: list[list[float]]) -> list[list[float]] | None:
+    """Gauss-Jordan with partial pivoting on an augmented n x (n + k) system (normal
+    equations, n <= 4): the solution for each of its k right-hand sides, as n rows of k;
+    None when singular."""
+    n = len(m)
+    for c in range(n):
         p = max(range(c, n), key=lambda r: abs(m[r][c]))
         if m[p][c] == 0:
-            return [0.0] * n, math.inf
+            return None
         m[c], m[p] = m[p], m[c]
         for r in range(n):
             if r != c:
                 f = m[r][c] / m[c][c]
                 m[r] = [a - f * b for a, b in zip(m[r], m[c])]
-    coef = [m[k][n] / m[k][k] for k in range(n)]
-    miss = max(abs(sum(c * f(s / span) for c, f in zip(coef, basis)) - v) for s, v in d)
-    return [c / span ** (k + 1) for k, c in enumerate(coef)], miss
+    return [[v / m[k][k] for v in m[k][n:]] for k in range(n)]
 
 
 @dataclass(frozen=True)

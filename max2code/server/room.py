@@ -26,7 +26,7 @@ from typing import Callable
 
 from ..engine.scenefile import Scene, build_world
 from ..engine.world import EngineError, Event, World
-from . import protocol, reckon, wire
+from . import ahead, protocol, reckon, wire
 
 
 AUTO_PIXELS = 3200
@@ -53,6 +53,8 @@ class Stats:
     events: int = 0
     inputs: int = 0
     bytes_sent: int = 0
+    shadows: int = 0        # copies of the world made to look ahead (ahead.Shadow)
+    diverged: int = 0       # of which dropped because a tick's truth was not their record
 
 
 def _speed(scene: Scene) -> float:
@@ -69,10 +71,12 @@ class Room:
     def __init__(self, name: str, scene: Scene, players: tuple[int, ...],
                  clock: Callable[[], float] | None = None, speed: float | None = None,
                  tolerance: float | None = 0.0, world: World | None = None,
-                 rate: float = RATE) -> None:
+                 rate: float = RATE, lookahead: int = ahead.LOOKAHEAD) -> None:
         """`world`: a World made by the caller (a game with its callbacks) instead of the
         scene's; the scene then gives only the view (and the input speed). `rate`: most event
-        messages a second (0: every step's changes at once)."""
+        messages a second (0: every step's changes at once). `lookahead`: solver ticks a copy
+        of the world runs ahead to fit held bodies' segments to (ahead.py; 0: none, and never
+        for a world with Python callbacks)."""
         self.name = name
         self.scene = scene
         self.world = world if world is not None else build_world(scene)
@@ -100,6 +104,9 @@ class Room:
         self.watch: dict[int, float] = {}
         # each held body's last tick poses (time, x, y, angle), for its quadratic (reckon.fitted)
         self.history: dict[int, list[tuple[float, float, float, float]]] = {}
+        # a copy of the world run `lookahead` ticks ahead, made again after every edit (ahead.py)
+        self.lookahead = lookahead if self.step > 0 and ahead.Shadow.possible(self.world) else 0
+        self.shadow: ahead.Shadow | None = None
         self.reach: list[float] = []
         self.gravity: list[tuple[float, float]] = []
         self._grow()
@@ -162,7 +169,21 @@ class Room:
             return
         self.stats.steps += 1
         self.stats.events += len(events)
+        self._look_ahead()
         self._send_changes(events, None)
+
+    def _look_ahead(self) -> None:
+        """Keep the world's copy `lookahead` ticks ahead of it (a new copy after an edit)."""
+        if not self.lookahead:
+            return
+        if self.shadow is None or self.shadow.world.time < self.world.time:
+            # (behind after a long sleep: a new copy costs less than the ticks it missed)
+            self.shadow = ahead.Shadow(self.world, self.step, self.lookahead)
+            self.stats.shadows += 1
+        try:
+            self.shadow.run_to(self.world.time)
+        except EngineError:     # its future fails (the room will say so when it gets there)
+            self.shadow, self.lookahead = None, 0
 
     def _grow(self) -> None:
         """Per-body tables for bodies the world gained (a game adds them while it runs)."""
@@ -217,6 +238,9 @@ class Room:
                 if not poses or poses[-1][0] < motions[i][0]:
                     poses.append(tuple(motions[i][:4]))
                     del poses[:-reckon.HISTORY]
+                    if self.shadow is not None and not self.shadow.agrees(i, motions[i]):
+                        self.shadow = None      # it went another way: a new copy next step
+                        self.stats.diverged += 1
                 d = self._held_deadline(i, motions[i], now)
                 if d is None:
                     self.due[i] = now
@@ -303,11 +327,16 @@ class Room:
         its recent tick poses (reckon.fitted, when that history is smooth), each fit only when
         it stays within the bound until the solver's next tick (as a chord does) and counted
         at 1/reckon.CHEAPER of its bytes (their lives are estimated optimistically), each
-        re-sent at most once a rate interval (a longer segment must last that much longer)."""
+        re-sent at most once a rate interval (a longer segment must last that much longer).
+        With the world's copy ahead of it, by their lives against its record instead, the fits
+        to the ticks ahead among them (_cheapest_ahead)."""
         chord = reckon.chord(truth, t, self.step)
         now = self.world.time
         eps = self._held_bound(truth)
         fit = reckon.fitted(self.history.get(i, []), truth, t, self.step, eps / 2, self.reach[i])
+        flights = self.shadow.ahead(i, now) if self.shadow is not None else []
+        if flights:
+            return self._cheapest_ahead(i, truth, t, chord, fit, flights, eps)
         if fit is None:
             return chord
         best, cost = chord, self._bytes_a_second(i, chord, t, fit.chord_life)
@@ -318,6 +347,27 @@ class Room:
                 continue
             c = self._bytes_a_second(i, m, t, life) / cheaper
             if c < cost:
+                best, cost = m, c
+        return best
+
+    def _cheapest_ahead(self, i: int, truth: tuple[float, ...], t: float, chord: tuple[float, ...],
+                        fit: reckon.Fit | None, flights: list[tuple[float, ...]],
+                        eps: float) -> tuple[float, ...]:
+        """_held_motion with the copy's record of the ticks ahead: the fewest bytes a second
+        of the chord, the history's fits and the fits to the ticks ahead (ahead.forecast),
+        each by how long it stays within the bound of the record (ahead.life), not by an
+        estimate, and each only when it stays within the bound until the solver's next tick."""
+        now, reach = self.world.time, self.reach[i]
+        path = ahead.Ahead.of(truth, flights, t, eps / 2, reach, self.step)
+        candidates = [(m, path.life(m)) for m in (chord, fit and fit.motion, fit and fit.cubic)
+                      if m is not None]
+        if candidates[0][1] < path.end:     # (a chord that lasts as far as is known is cheapest)
+            candidates += path.forecast(reckon.state_at(truth, t)[:3])
+        tick = reckon.next_tick(now, self.step)
+        best, cost = chord, math.inf
+        for m, lasts in candidates:
+            c = self._bytes_a_second(i, m, t, lasts)
+            if c < cost and (m is chord or reckon.deadline(m, truth, now, eps, reach, soon=0.0) > tick):
                 best, cost = m, c
         return best
 
@@ -460,6 +510,7 @@ class Room:
         except EngineError as exc:
             return str(exc)
         self.stats.inputs += 1
+        self.shadow = None      # (the copy did not get the input: a new one next step)
         self._send_changes([], (protocol.EVENT_CODES["input"], body, -1))
         self._wake.set()
         return None
@@ -472,6 +523,7 @@ class Room:
         except EngineError as exc:
             return str(exc)
         self.stats.inputs += 1
+        self.shadow = None      # (the copy did not get the input: a new one next step)
         self._send_changes([], (protocol.EVENT_CODES["input"], body, -1))
         self._wake.set()
         return None
