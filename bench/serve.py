@@ -187,12 +187,14 @@ def bytes_table(quick: bool, tolerance: float | None, rate: float | None = None)
                      "snapshot_numbers": sum(3 * len(json.loads(t)["p"]) for t in snaps),
                      "msgpack_Bps": ev_mp / until, "snapshot_msgpack_Bps": snap_mp / until,
                      "ratio_msgpack": snap_mp / max(ev_mp, 1), "ratio_msgpack_json_snapshots": snap_bytes / max(ev_mp, 1),
-                     "page_msgpack_Bps": page_mp / until, "page_ratio_msgpack": snap_mp / max(page_mp, 1)})
+                     "page_msgpack_Bps": page_mp / until, "page_ratio_msgpack": snap_mp / max(page_mp, 1),
+                     "room_cpu": cpu})
     lines = ["| scene | bodies | s | engine events | messages | segments | events sent | join B "
              "| events B/s | 60 Hz snapshots B/s | ratio "
              "| deflated: events B/s | snapshots B/s | ratio | B per message "
-             "| page (no event lists) B/s | ratio | deflated B/s | ratio | exact bound B/s | best ratio |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "| page (no event lists) B/s | ratio | deflated B/s | ratio | exact bound B/s | best ratio "
+             "| room CPU s |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         lines.append(f"| {r['scene']} | {r['bodies']} | {r['seconds']:.3g} | {r['engine_events']} | "
                      f"{r['messages']} | {r['segments']} | {r['events']} | "
@@ -202,7 +204,7 @@ def bytes_table(quick: bool, tolerance: float | None, rate: float | None = None)
                      f"{r['bytes_per_message']:.0f} | {r['page_Bps']:.0f} | "
                      f"{ratio(r['page_ratio'], r['sent'])} | {r['page_Bps_deflate']:.0f} | "
                      f"{ratio(r['page_ratio_deflate'], r['sent'])} | {r['bound_Bps']:.0f} | "
-                     f"{ratio(r['bound_ratio'], r['sent'])} |")
+                     f"{ratio(r['bound_ratio'], r['sent'])} | {r['room_cpu']:.2f} |")
     lines += ["", "The same runs in MessagePack (hello's `enc: \"msgpack\"`: the same values, binary "
               "frames), against snapshots in MessagePack too (the same encoding) and in JSON:", "",
               "| scene | events JSON B/s | MessagePack B/s | MessagePack snapshots B/s | ratio "
