@@ -107,6 +107,7 @@ class Room:
         # a copy of the world run `lookahead` ticks ahead, made again after every edit (ahead.py)
         self.lookahead = lookahead if self.step > 0 and ahead.Shadow.possible(self.world) else 0
         self.shadow: ahead.Shadow | None = None
+        self.copied = -math.inf     # the world's time when the last copy was made
         self.reach: list[float] = []
         self.gravity: list[tuple[float, float]] = []
         self._grow()
@@ -178,7 +179,11 @@ class Room:
             return
         if self.shadow is None or self.shadow.world.time < self.world.time:
             # (behind after a long sleep: a new copy costs less than the ticks it missed)
+            if self.world.time < self.copied + self.lookahead * self.step:
+                self.shadow = None      # at most one new copy a horizon (each steps one
+                return                  # horizon at once): frequent input costs no more
             self.shadow = ahead.Shadow(self.world, self.step, self.lookahead)
+            self.copied = self.world.time
             self.stats.shadows += 1
         try:
             self.shadow.run_to(self.world.time)

@@ -84,7 +84,7 @@ def run(make, until: float, inputs=(), lookahead: int = ahead.LOOKAHEAD, seed: i
                 room.shadow.world.set_velocity(i, (vx + 0.2, vy), spin)
             corrupted = True
         deliver()
-        after = min(room.next_wake(), until)
+        after = min(room.next_wake(), pending[0][0] if pending else until, until)
         for s in sorted((t, t + rng.random() * (after - t), t + rng.random() * (after - t))):
             check(s)
     return held, room
@@ -159,3 +159,17 @@ def test_a_plain_scene_world_is_copied():
                 tolerance=0.0, world=w)
     assert room.lookahead == ahead.LOOKAHEAD
     assert not World(gravity=(0.0, -G)).has_callbacks()
+
+
+def test_frequent_input_makes_at_most_one_copy_a_horizon():
+    """The player pressing and releasing a key every 50 ms (20 inputs a second): each input
+    leaves the copy behind, but a new one (which steps a whole horizon at once) is made at
+    most once a horizon (48 ticks, 0.2 s), so the copies' work stays within about the
+    world's own; 20 copies in 1 s without that bound. Every pose within the bound of the
+    oracle given the same inputs."""
+    make = lambda: tipping("box", 0.6, 0.25, 0.5)   # noqa: E731
+    box = next(iter(make()[1]))
+    presses = tuple((0.05 * k, box, "right", k % 2 == 1) for k in range(1, 20))
+    _, room = run(make, 1.0, inputs=presses)
+    assert room.stats.inputs == len(presses)
+    assert room.stats.shadows <= 1 + 1.0 / (ahead.LOOKAHEAD * H) + 1, room.stats
