@@ -20,7 +20,6 @@ from __future__ import annotations
 
 import copy
 import math
-from dataclasses import dataclass
 
 from ..engine.world import World
 from . import reckon
@@ -31,6 +30,7 @@ LOOKAHEAD = 48      # solver ticks the copy runs ahead (0.2 s at 240 Hz): a tipp
 MARGIN = 0.95       # of the bound: what a forecast candidate may use (the rest: rounding, and
                     # the flight between the instants checked)
 TRIES = 4           # windows tried per degree, besides the first two
+FIRST = 12          # samples in the first window (4 ticks: the rate's interval at 60 a second)
 
 
 class Shadow:
@@ -100,38 +100,38 @@ class Shadow:
         return out
 
 
-@dataclass(frozen=True)
 class Ahead:
     """A held body's path from t as the copy recorded it (the truth now, then its motion at
     each tick ahead), sampled at the start, middle and end of each motion (the flight between
-    two ticks is a parabola, a candidate a low polynomial): each sample's time from t and its
-    pose less the pose at t (the angle wrapped). Every candidate starts at the pose at t."""
-    t: float
-    bound: float        # along x and y, and through rotation at `reach`
-    reach: float
-    h: float
-    s: tuple[float, ...]
-    d: tuple[tuple[float, float, float], ...]
+    two ticks is a parabola, a candidate a low polynomial): each sample's time from t (`s`)
+    and its pose less the pose at t (`d`, the angle wrapped; evaluated as far as asked: a
+    jittering body's candidates fail within a tick or two). Every candidate starts at the
+    pose at t."""
 
-    @classmethod
-    def of(cls, truth: Motion, flights: list[Motion], t: float, bound: float, reach: float,
-           h: float) -> "Ahead":
-        now = state_at(truth, t)
+    def __init__(self, truth: Motion, flights: list[Motion], t: float, bound: float,
+                 reach: float, h: float) -> None:
+        self.t, self.h = t, h
+        self.bound = bound      # along x and y, and through rotation at `reach`
+        self.reach = reach
+        self.now = state_at(truth, t)[:3]
         path = [truth] + flights
-        s, d = [], []
+        self._at: list[tuple[float, Motion]] = []
         for k, f in enumerate(path):
             start = max(f[0], t)
             stop = path[k + 1][0] if k + 1 < len(path) else f[0] + h
-            if stop <= start:
-                continue
-            for u in (start, (start + stop) / 2, stop):
-                if u > t:
-                    p = state_at(f, u)
-                    turn = p[2] - now[2]
-                    s.append(u - t)
-                    d.append((p[0] - now[0], p[1] - now[1],
-                              turn - 2 * math.pi * round(turn / (2 * math.pi))))
-        return cls(t, bound, reach, h, tuple(s), tuple(d))
+            if stop > start:
+                self._at += [(u, f) for u in (start, (start + stop) / 2, stop) if u > t]
+        self.s = [u - t for u, _ in self._at]
+        self.d: list[tuple[float, float, float]] = []
+
+    def poses(self, n: int) -> list[tuple[float, float, float]]:
+        """`d` evaluated for at least the first n samples (a dozen more at a time)."""
+        x0, y0, a0 = self.now
+        for u, f in self._at[len(self.d):max(n, len(self.d) + 12)]:
+            p = state_at(f, u)
+            turn = p[2] - a0
+            self.d.append((p[0] - x0, p[1] - y0, turn - 2 * math.pi * round(turn / (2 * math.pi))))
+        return self.d
 
     @property
     def end(self) -> float:
@@ -145,7 +145,8 @@ class Ahead:
         vx, vy, w, ax, ay, al, jx, jy, ja = (tuple(m[4:13]) + (0.0,) * 9)[:9]
         e, r = MARGIN * self.bound, self.reach
         ok = 0.0
-        for s, (dx, dy, da) in zip(self.s, self.d):
+        for k, s in enumerate(self.s):
+            dx, dy, da = (self.d if k < len(self.d) else self.poses(k + 1))[k]
             if (abs(s * (vx + s * (0.5 * ax + jx * s / 6)) - dx) > e
                     or abs(s * (vy + s * (0.5 * ay + jy * s / 6)) - dy) > e
                     or r * abs(s * (w + s * (0.5 * al + ja * s / 6)) - da) > e):
@@ -153,8 +154,8 @@ class Ahead:
             ok = s
         return ok
 
-    def forecast(self, now: tuple[float, float, float], upto: int = 3) -> list[tuple[Motion, float]]:
-        """Segments from t (through the pose `now`) fitted to the path, each with its life:
+    def forecast(self, upto: int = 3) -> list[tuple[Motion, float]]:
+        """Segments from t (through the pose at t) fitted to the path, each with its life:
         for each degree up to `upto` (1: a straight line, 2: quadratic, 3: cubic; per x, y and
         the angle), least squares over the samples of a window from t, the window doubled
         from 4 ticks while the fit lasts it, then halved back once (a lower degree that lasts
@@ -169,7 +170,7 @@ class Ahead:
         def sums(n: int) -> None:
             sm = mom[-1] if mom else (0.0,) * 7
             sr = rhs[-1] if rhs else ((0.0, 0.0, 0.0),) * 4
-            for s, (dx, dy, da) in zip(self.s[len(mom):n], self.d[len(mom):n]):
+            for s, (dx, dy, da) in zip(self.s[len(mom):n], self.poses(n)[len(mom):n]):
                 u = s / h
                 u2 = u * u
                 pw = (1.0, u, u2, u2 * u, u2 * u2, u2 * u2 * u, u2 * u2 * u2)
@@ -197,12 +198,12 @@ class Ahead:
                 out.append((k[0], reckon._short(k[1], bound / (8 * span * span * r)),
                             reckon._short(k[2], 3 * bound / (8 * span ** 3 * r))))
             (vx, ax, jx), (vy, ay, jy), (w, al, ja) = out
-            full = (self.t, now[0], now[1], now[2], vx, vy, w, ax, ay, al, jx, jy, ja)
+            full = (self.t, *self.now, vx, vy, w, ax, ay, al, jx, jy, ja)
             return full[:9] if degree == 1 else full[:10] if degree == 2 else full
 
         out = []
         for degree in range(1, upto + 1):
-            best, good, bad, n = None, 0, len(self.s) + 1, min(len(self.s), 12)
+            best, good, bad, n = None, 0, len(self.s) + 1, min(len(self.s), FIRST)
             for _ in range(TRIES + 2):
                 m = fit(degree, n) if n >= degree else None
                 if m is None:

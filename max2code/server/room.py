@@ -363,11 +363,11 @@ class Room:
         each by how long it stays within the bound of the record (ahead.life), not by an
         estimate, and each only when it stays within the bound until the solver's next tick."""
         now, reach = self.world.time, self.reach[i]
-        path = ahead.Ahead.of(truth, flights, t, eps / 2, reach, self.step)
+        path = ahead.Ahead(truth, flights, t, eps / 2, reach, self.step)
         candidates = [(m, path.life(m)) for m in (chord, fit and fit.motion, fit and fit.cubic)
                       if m is not None]
         if candidates[0][1] < path.end:     # (a chord that lasts as far as is known is cheapest)
-            candidates += path.forecast(reckon.state_at(truth, t)[:3])
+            candidates += path.forecast()
         tick = reckon.next_tick(now, self.step)
         best, cost = chord, math.inf
         for m, lasts in candidates:
