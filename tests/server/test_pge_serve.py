@@ -44,7 +44,7 @@ def live(world: GameWorld) -> set[int]:
 def test_the_program_goes_on_after_each_run(tmp_path):
     """Code after a run() runs at that run's end, in the room's time: an object added at 0.3
     (a PGE rebuild) reaches the client as an addition, its removal at 0.6 as a removal, and the
-    program's end stops the room with an error frame."""
+    program's end stops the room with an error frame. No copy of it runs ahead."""
     from .test_membership import Clock
 
     game = tmp_path / "sequence.py"
@@ -76,6 +76,9 @@ def test_the_program_goes_on_after_each_run(tmp_path):
                 assert c.pose(i, clock.t)[:2] == pytest.approx(room.world.pose(i)[:2], abs=1e-9)
     assert added == (pytest.approx(0.3), ["box-2"]) and removed == (pytest.approx(0.6), [2])
     assert room.failed and "ended" in room.failed and set(c.bodies) == {0, 1}
+    # a game's world is never copied to look ahead (ahead.py): its callbacks, and the program
+    # itself, must run once
+    assert room.lookahead == 0 and room.shadow is None
 
 
 @corpus
