@@ -1,7 +1,7 @@
 """`max2code serve SCENE_OR_GAME`: a scene's world (or a PGE game's), authoritative on this machine, played from browsers.
 
     max2code serve examples/scenes/arena.toml            # then open http://127.0.0.1:8036/
-    max2code serve SCENE_OR_GAME [--host 127.0.0.1] [--port 8036] [--player NAME ...] [--rooms N] [--workers N] [--speed V] [--tolerance EPS] [--rate HZ]
+    max2code serve SCENE_OR_GAME [--host 127.0.0.1] [--port 8036] [--player NAME ...] [--rooms N] [--workers N] [--speed V] [--tolerance EPS] [--rate HZ] [--lookahead TICKS]
 
 Each browser that joins a room (the page's ?room=NAME, default "main") gets the world and then
 only events (docs/server.md). A joining client controls the first player body nobody else
@@ -49,6 +49,8 @@ def _game(path: str, player: list[str]):
 
 
 def _parser() -> argparse.ArgumentParser:
+    from ..server.ahead import LOOKAHEAD
+
     ap = argparse.ArgumentParser(prog="max2code serve", description=__doc__.split("\n\n")[0])
     ap.add_argument("scene", metavar="SCENE_OR_GAME",
                     help="a scene file (.toml or .json), or a PGE program (GAME.py)")
@@ -72,6 +74,10 @@ def _parser() -> argparse.ArgumentParser:
                     help="most event messages a second per room (default 60: changes within 1/60 s "
                          "of the last message wait for the next, each body's latest segment only); "
                          "0: every step's changes at once")
+    ap.add_argument("--lookahead", type=int, default=LOOKAHEAD, metavar="TICKS",
+                    help="contact solver ticks a copy of each room's world runs ahead, to fit "
+                         f"held bodies' segments to (default {LOOKAHEAD}: fewer bytes for about twice the "
+                         "engine's CPU; 0: no copy; never for a PGE game)")
     return ap
 
 
@@ -88,7 +94,7 @@ def _options(args):
             return made
         scene, players, make, wanted = made
         return Options(scene, players, max_rooms=args.rooms, tolerance=tolerance, world=make,
-                       rate=args.rate), scene.name, wanted
+                       rate=args.rate, lookahead=args.lookahead), scene.name, wanted
     try:
         scene = load(args.scene)
     except SceneError as exc:
@@ -103,7 +109,7 @@ def _options(args):
         print(f"{args.scene}: error: --player {bad[0]!r}: no dynamic body of that name", file=sys.stderr)
         return 1
     return Options(scene, tuple(names[n] for n in wanted), max_rooms=args.rooms, speed=args.speed,
-                   tolerance=tolerance, rate=args.rate), scene.name, wanted
+                   tolerance=tolerance, rate=args.rate, lookahead=args.lookahead), scene.name, wanted
 
 
 async def _until_signal(coro) -> int:
@@ -141,9 +147,10 @@ def main(argv: list[str]) -> int:
     count = cluster.cores() if args.workers is None else args.workers
     if not 0 <= args.port <= 65535 or args.rooms < 1 or (args.speed is not None and not 0 < args.speed < 1e300) \
             or (args.tolerance is not None and args.tolerance != -1 and not 0 <= args.tolerance < 1e300) \
-            or not 0 <= args.rate < 1e300 or not 1 <= count <= 256:
+            or not 0 <= args.rate < 1e300 or not 0 <= args.lookahead <= 2400 or not 1 <= count <= 256:
         print("max2code serve: error: --port must be 0..65535, --rooms at least 1, --speed positive, "
-              "--tolerance finite and >= 0 (or -1), --rate finite and >= 0, --workers 1..256",
+              "--tolerance finite and >= 0 (or -1), --rate finite and >= 0, --lookahead 0..2400, "
+              "--workers 1..256",
               file=sys.stderr)
         return 2
     if count == 1:

@@ -26,6 +26,7 @@ from ..engine.scenefile import Scene
 from ..engine.world import World
 from . import protocol
 from .protocol import Hello, Key, Ping, Point, ProtocolError, RateLimit
+from .ahead import LOOKAHEAD
 from .room import RATE as ROOM_RATE, Room
 from . import workers as cluster
 
@@ -49,6 +50,7 @@ class Options:
     tolerance: float | None = 0.0    # 0: exact; None: a quarter pixel (room.AUTO_PIXELS)
     world: Callable[[], World] | None = None   # each room's world (a game's), else the scene's
     rate: float = ROOM_RATE     # most event messages a second per room (0: every step at once)
+    lookahead: int = LOOKAHEAD  # solver ticks each room's copy of its world runs ahead (0: none)
 
 
 class Server:
@@ -70,7 +72,7 @@ class Server:
             make = self.options.world
             room = Room(name, self.options.scene, self.options.players, speed=self.options.speed,
                         tolerance=self.options.tolerance, world=make() if make else None,
-                        rate=self.options.rate)
+                        rate=self.options.rate, lookahead=self.options.lookahead)
             room.start()
             self.rooms[name] = room
         return room

@@ -173,3 +173,24 @@ def test_frequent_input_makes_at_most_one_copy_a_horizon():
     _, room = run(make, 1.0, inputs=presses)
     assert room.stats.inputs == len(presses)
     assert room.stats.shadows <= 1 + 1.0 / (ahead.LOOKAHEAD * H) + 1, room.stats
+
+
+def test_serve_lookahead_reaches_each_room():
+    """`max2code serve --lookahead TICKS`: each room's copy runs that far ahead (0: none)."""
+    import asyncio
+    from pathlib import Path
+
+    from max2code.commands.serve import _options, _parser
+    from max2code.server.app import Server
+
+    arena = str(Path(__file__).resolve().parents[2] / "examples" / "scenes" / "arena.toml")
+
+    async def rooms() -> list[int]:
+        out = []
+        for ticks in ([], ["--lookahead", "0"], ["--lookahead", "12"]):
+            server = Server(_options(_parser().parse_args([arena, *ticks]))[0])
+            out.append(server.room("main").lookahead)
+            await server.close()
+        return out
+
+    assert asyncio.run(rooms()) == [ahead.LOOKAHEAD, 0, 12]

@@ -41,3 +41,6 @@ def test_bad_scene_and_options(tmp_path):
     r = subprocess.run([sys.executable, "-m", "max2code", "serve", str(ARENA), "--rate", "-1"],
                        capture_output=True, text=True)
     assert r.returncode == 2 and "--rate" in r.stderr
+    r = subprocess.run([sys.executable, "-m", "max2code", "serve", str(ARENA), "--lookahead", "-1"],
+                       capture_output=True, text=True)
+    assert r.returncode == 2 and "--lookahead" in r.stderr
