@@ -75,6 +75,20 @@ def overlaps(p: list[Pt], q: list[Pt]) -> list[tuple[Q, Q]] | None:
     return out
 
 
+def cross(o: Pt, a: Pt, b: Pt) -> Q:
+    return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+
+
+def segments_meet(p: list[Pt], q: list[Pt]) -> bool:
+    """Do two segments (or points) cross or touch, exactly? Two capsules' cores can cross
+    with every end point farther than the radii from the other segment (a capsule stuck
+    through a wall): their distance is 0, which the end points' distances do not show."""
+    a, b = p[0], p[-1]
+    c, d = q[0], q[-1]
+    d1, d2, d3, d4 = cross(a, b, c), cross(a, b, d), cross(c, d, a), cross(c, d, b)
+    return d1 * d2 < 0 and d3 * d4 < 0
+
+
 def too_close(p: list[Pt], rp: float, q: list[Pt], rq: float, tol: Q = TOL) -> bool:
     """Do two rounded convex shapes overlap by more than tol?"""
     R = Q(rp) + Q(rq)
@@ -85,6 +99,8 @@ def too_close(p: list[Pt], rp: float, q: list[Pt], rq: float, tol: Q = TOL) -> b
     need = R - tol
     if need <= 0:
         return False
+    if len(p) < 3 and len(q) < 3 and segments_meet(p, q):
+        return True        # the cores cross: the overlap is at least R
     d2 = min(min(dist2_point_segment(v, a, b) for a, b in edges(q)) for v in p)
     d2 = min(d2, min(min(dist2_point_segment(v, a, b) for a, b in edges(p)) for v in q))
     return d2 < need * need
@@ -268,6 +284,10 @@ def test_the_exact_checks_see_an_overlap_and_an_escape():
     seg = world_points([(-1, 0), (1, 0)], (0.0, 0.0, 0.0))
     assert too_close(seg, 0.1, world_points([(0, 0)], (0.0, 0.15, 0.0)), 0.1)
     assert not too_close(seg, 0.1, world_points([(0, 0)], (0.0, 0.25, 0.0)), 0.1)
+    # two capsules whose cores cross, every end point 1 m from the other core
+    upright = world_points([(-1, 0), (1, 0)], (0.0, 0.0, math.pi / 2))
+    assert too_close(seg, 0.1, upright, 0.1)
+    assert not too_close(seg, 0.1, world_points([(-1, 0), (1, 0)], (0.0, 1.21, math.pi / 2)), 0.1)
     # polygons (no radius): a small square inside a big one, and two squares 1e-3 deep
     small = world_points([(-0.1, -0.1), (0.1, -0.1), (0.1, 0.1), (-0.1, 0.1)], (0.0, 0.0, 0.0))
     assert too_close(square, 0.0, small, 0.0)
