@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 
 import pytest
-from hypothesis import assume, given, settings, strategies as st
+from hypothesis import assume, example, given, settings, strategies as st
 
 from max2code.server.reckon import (SMOOTH, SOON, state_at, _first_exceed, chord, deadline, fitted, hop_bound,
                                     next_tick)
@@ -100,6 +100,7 @@ def test_first_exceed_of_subnormal_rate_and_acceleration():
 @settings(max_examples=200, deadline=None)
 @given(st.floats(-1, 1, allow_subnormal=False), st.floats(-20, 20, allow_subnormal=False),
        st.floats(0.05, 1), st.floats(1e-5, 1e-3))
+@example(9.06e-4, 9.06e-4, 1.0, 9.06e-4)   # the drift touches eps/2 at s = 1 and turns back
 def test_deadline_of_a_held_quadratic_against_sampling(w, alpha, reach, eps):
     """A quadratic's angle (angle + omega s + alpha s^2/2, protocol version 5) against a truth
     turning at a constant spin from the same pose: the drift at the reach first reaches eps/2 at
@@ -107,13 +108,26 @@ def test_deadline_of_a_held_quadratic_against_sampling(w, alpha, reach, eps):
     the truth's spin less the quadratic's). A sign error in alpha moves it. (Normal numbers
     only: with a subnormal alpha the truth's spin w + 0.1 alpha is rounded to a few digits, so
     the drift the deadline sees is not the one this closed form is given; subnormal
-    coefficients are checked on _first_exceed's own inputs above.)"""
+    coefficients are checked on _first_exceed's own inputs above.)
+
+    Where the drift only touches eps/2 and turns back (w^2 = 2 alpha eps/2: the example), the
+    rounding of the numbers decides whether it reaches it: the deadline may come at the touch
+    or at the next crossing, never before the drift is within a billionth of eps/2 nor after it
+    has passed it. (helper-53 drew that example: a closed form taken to the exact level gave the
+    next crossing, 2.414, and the deadline the touch, 1.)"""
     held = (0.9, 0.0, 0.0, 0.3, 0.0, 0.0, 0.0, 0.0, 0.0, alpha)    # (held since 0.9: at 1.0 it
     truth = (1.0, 0.0, 0.0, 0.3 + alpha * 0.01 / 2, 0.0, 0.0, w + alpha * 0.1, 0.0, 0.0)  # is here)
     d = deadline(held, truth, 1.0, eps, reach, soon=0.0) - 1.0
     e = eps / 2 / reach
-    roots = [s for level in (e, -e) for s in _roots(-alpha / 2, w, -level) if s > 0]
-    assert d == pytest.approx(min(roots, default=math.inf), rel=1e-9)
+
+    def first(level: float) -> float:
+        return min((s for lv in (level, -level) for s in _roots(-alpha / 2, w, -lv) if s > 0),
+                   default=math.inf)
+    earliest, latest = first(e * (1 - 1e-9)), first(e * (1 + 1e-9))
+    if latest == earliest:   # (no root near: the same crossing at both levels, or none)
+        assert d == pytest.approx(first(e), rel=1e-9)
+    else:
+        assert earliest * (1 - 1e-9) <= d <= latest * (1 + 1e-9)
 
 
 def _roots(a: float, b: float, c: float) -> list[float]:
