@@ -72,6 +72,7 @@
 #define PUSH_OUT 0.8          /* of an overlap pushed out per tick (push_sweep) */
 #define PUSH_CONVERGED 1e-6   /* the push-out's sweeps stop at this of m |g| h (push_sweep) */
 #define LOCAL_BODIES 64       /* bodies solved together at a soft contact between ticks */
+#define INSTANT_CONTACTS 8    /* soft contacts remembered through one instant (remember_instant) */
 
 typedef struct {
     int a, b;                 /* a: in the solve; b: in the solve too when free_b */
@@ -107,6 +108,12 @@ struct solver {
     int nc, capc, nprev, capprev;
     int *hash;                /* open addressing over prev: warm starting */
     int hcap;
+    struct {                  /* the soft contacts met at the instant inst_t, by the features */
+        int a, b;             /* the prediction met (remember_instant): a ring of the last few */
+        event ev;
+    } inst[INSTANT_CONTACTS];
+    int ninst, next_inst;
+    double inst_t;
 };
 
 static double cross(const double a[2], const double b[2])
@@ -350,6 +357,10 @@ void solver_save(const m2c_world *w, void (*put)(void *, const void *, size_t), 
         put(ctx, &s->pc[s->list[m]], sizeof(unsigned));
     }
     put(ctx, s->c, sizeof(cp) * (size_t)s->nc);
+    put(ctx, &s->ninst, sizeof s->ninst);
+    put(ctx, &s->next_inst, sizeof s->next_inst);
+    put(ctx, &s->inst_t, sizeof s->inst_t);
+    put(ctx, s->inst, sizeof s->inst[0] * (size_t)s->ninst);
 }
 
 int solver_load(m2c_world *w, int (*get)(void *, void *, size_t), void *ctx)
@@ -385,6 +396,14 @@ int solver_load(m2c_world *w, int (*get)(void *, void *, size_t), void *ctx)
             || push_contact(w, &c) != 0)
             return -1;
     }
+    if (get(ctx, &s->ninst, sizeof s->ninst) != 0 || get(ctx, &s->next_inst, sizeof s->next_inst) != 0
+        || get(ctx, &s->inst_t, sizeof s->inst_t) != 0 || s->ninst < 0 || s->ninst > INSTANT_CONTACTS
+        || s->next_inst < 0 || s->next_inst >= INSTANT_CONTACTS
+        || get(ctx, s->inst, sizeof s->inst[0] * (size_t)s->ninst) != 0)
+        return -1;
+    for (int m = 0; m < s->ninst; m++)
+        if (s->inst[m].a < 0 || s->inst[m].a >= w->n || s->inst[m].b < 0 || s->inst[m].b >= w->n)
+            return -1;
     return 0;
 }
 
@@ -1508,6 +1527,69 @@ static void store_mean(m2c_world *w, int k, double H)
     B->m.w = s->v[3 * k + 2];
 }
 
+/* Remember soft contact (i, j) by the feature the prediction met, for the rest of this instant
+ * (one instant as solver_wedged's), in a ring of the last INSTANT_CONTACTS. Returns 1 when it
+ * was met already at this instant: a pair that the solves part comes back. */
+static int remember_instant(m2c_world *w, int i, int j, const event *ev)
+{
+    struct solver *s = w->solver;
+    if (!(w->now - s->inst_t <= 64 * DBL_EPSILON * (1 + fabs(w->now))))
+        s->ninst = s->next_inst = 0;
+    s->inst_t = w->now;
+    for (int m = 0; m < s->ninst; m++)
+        if (s->inst[m].a == i && s->inst[m].b == j && s->inst[m].ev.feature == ev->feature
+            && s->inst[m].ev.fa == ev->fa && s->inst[m].ev.fb == ev->fb
+            && s->inst[m].ev.side == ev->side)
+            return 1;
+    int m = s->next_inst;
+    s->next_inst = (m + 1) % INSTANT_CONTACTS;
+    if (s->ninst < INSTANT_CONTACTS)
+        s->ninst++;
+    s->inst[m].a = i;
+    s->inst[m].b = j;
+    s->inst[m].ev = *ev;
+    return 0;
+}
+
+/* Can remembered contact m join the local solve? Its first body is in it (mark) and its second
+ * in it too or held (not a body in flight, nor a solver body beyond the solve's cap, nor one
+ * removed since). */
+static int instant_in_solve(const m2c_world *w, int m)
+{
+    const struct solver *s = w->solver;
+    const body *B = &w->b[s->inst[m].b];
+    return s->mark[s->inst[m].a] && B->kind != KIND_REMOVED
+           && (B->kind != M2C_DYNAMIC || s->mark[s->inst[m].b] || B->state == ASLEEP);
+}
+
+/* A soft contact met again at one instant: every one met at this instant joins the local solve
+ * as the prediction meets it (its feature's normal and point), with no friction, since the
+ * solver's own contacts may meet the same two bodies by other features, and a solve with
+ * friction may not meet them at all (solver_soft_response). Returns how many rows it added at
+ * the end of the solver's contacts; a contact met for the first time at this instant adds
+ * none (a pile's bodies meet several at one instant, and the solve parts them). */
+static int add_instant_rows(m2c_world *w, int i, int j, const event *ev)
+{
+    struct solver *s = w->solver;
+    int added = 0;
+    if (!remember_instant(w, i, j, ev))
+        return 0;
+    /* (two round bodies, or one on a wall: one contact, the solver's own; a pile of discs
+     * solves as before) */
+    const body *B = &w->b[j];
+    if (centred_circle(w, &w->b[i]) && (B->kind == M2C_STATIC || centred_circle(w, B)))
+        return 0;
+    for (int m = 0; m < s->ninst; m++)
+        if (instant_in_solve(w, m)) {
+            double n[2], p[2];
+            contact_geometry(w, s->inst[m].a, s->inst[m].b, &s->inst[m].ev, n, p);
+            add_one(w, s->inst[m].a, s->inst[m].b, n, p, 0.0, ~0u);
+            s->c[s->nc - 1].mu = 0.0;
+            added++;
+        }
+    return added;
+}
+
 int solver_soft_response(m2c_world *w, int i, int j, const event *ev, double closing, int pair_only,
                          m2c_event *out, int *moved, int cap, int *nmoved)
 {
@@ -1564,6 +1646,7 @@ int solver_soft_response(m2c_world *w, int i, int j, const event *ev, double clo
             load_mean(w, b, H);
         }
     }
+    int ninst = add_instant_rows(w, i, j, ev);
     cp *c = s->c + keep;
     int nc = s->nc - keep;
     for (int k = 0; k < nc; k++) {
@@ -1583,6 +1666,20 @@ int solver_soft_response(m2c_world *w, int i, int j, const event *ev, double clo
     for (int k = 0; k < nc; k++)
         scale = fmax(scale, w->b[c[k].a].mass * glen(&w->b[c[k].a]) * s->h);
     pgs(s, w, c, nc, MAX_ITERATIONS, CONVERGED * scale, TICK_OMEGA);
+    /* ... then the contacts of this instant alone, with no friction, from where that solve
+     * left the bodies: impulses that only part them. A triangle's corner pressed 1e-5 m into
+     * a bin's corner (friction 0.64) met the floor's end by the floor's normal and the wall's
+     * end by its own side's, at one point, 120 degrees apart: the solve with friction ran its
+     * 2,000 sweeps, its impulses grew to 10 N s (a wedge that friction locks), and left the
+     * floor's pair closing at 0.0095 m/s; each event's own parting then drove the other pair
+     * in, 100,000 events at one instant ('stuck'), the wedge rule's stop no help. Without
+     * friction the two meet their bound in a few sweeps (K is positive definite). */
+    if (ninst) {
+        cp *r = c + nc - ninst;
+        for (int k = 0; k < ninst; k++)
+            r[k].ln = 0.0;
+        pgs(s, w, r, ninst, MAX_ITERATIONS, CONVERGED * scale, 1.0);
+    }
     s->nc = keep;
     for (int m = 0; m < nid; m++)
         s->mark[ids[m]] = 0;

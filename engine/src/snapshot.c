@@ -14,7 +14,8 @@
 #include "engine.h"
 
 #define MAGIC 0x4d324357u /* "M2CW" */
-#define VERSION 3u /* 2: the contact solver's state; 3: bodies' parts (compound bodies) */
+#define VERSION 4u /* 2: the contact solver's state; 3: bodies' parts (compound bodies); 4: the
+                           solver's soft contacts of the instant */
 
 typedef struct {
     uint32_t magic, version, body_size, event_size, timer_size, world_size;
