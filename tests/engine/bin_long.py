@@ -47,6 +47,12 @@ FRAME = 1 / 60
 # some 20 roundings of quantities up to 100 (m^2), an absolute error below 1e-12 m: MARGIN is
 # a thousand times that, and every pair closer to its limit goes to the exact rationals.
 MARGIN = 1e-9
+# The engine decides its events by its own double evaluation of the gaps on these poses; the
+# exact oracle differs from it by that rounding. A pair the solver holds at the slop, the exact
+# event due there, was measured 1e-14 to 1e-13 m beyond slop + tolerance (seed 1, world 9, t =
+# 3.1667: a box on a disc). ROUNDING, a thousandth of the tolerance, is allowed beyond every
+# limit: no tunnelling hides in it.
+ROUNDING = Q(1, 10**12)
 
 
 @dataclass(frozen=True)
@@ -239,7 +245,7 @@ class Checker:
                     pts[i] = float_points(self.shape[i][0], poses[i])
             depth = float_overlap(pts[a], self.shape[a][1], pts[b], self.shape[b][1])
             held = self.pair_held(a, b)
-            limit = self.tol + (self.slop if held or (a, b) in self.kept else 0)
+            limit = self.tol + ROUNDING + (self.slop if held or (a, b) in self.kept else 0)
             if held and depth > self.tol - MARGIN:
                 self.kept.add((a, b))
             elif depth <= self.tol - MARGIN:
@@ -250,8 +256,8 @@ class Checker:
             if too_close(world_points(self.shape[a][0], pa), self.shape[a][1],
                          world_points(self.shape[b][0], pb), self.shape[b][1], limit):
                 raise AssertionError(
-                    f"{when}: {self.flags(a)} and {self.flags(b)} overlap {depth:.3e} m "
-                    f"(allowed {float(limit):.3e}: pair held {held}, kept {(a, b) in self.kept}); "
+                    f"{when}: {self.flags(a)} and {self.flags(b)} overlap {depth:.7e} m "
+                    f"(allowed {float(limit):.7e}: pair held {held}, kept {(a, b) in self.kept}); "
                     f"poses {pa} {pb}; the events before: {list(self.recent)}")
         self.counts["checks"] += 1
 
