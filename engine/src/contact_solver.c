@@ -322,7 +322,6 @@ static void release(m2c_world *w, int k)
     K->m.ax = K->gx;
     K->m.ay = K->gy;
     K->counter++;
-    K->solved = 1;
 }
 
 /* Body k leaves the solver (an edit: removed, kind or motion changed): exact flight again. */
@@ -1219,7 +1218,6 @@ static void island_sleep(m2c_world *w, int root, const int *bodies, int nb)
         m2c_event e = {w->now, M2C_EVENT_REST, k, -1, 0, 0, 0, 0, 0, 0};
         world_emit(w, &e);
         w->b[k].state = AWAKE;
-        w->b[k].solved = 1;
         fall_asleep(w, k);
         w->b[k].m.ax = w->b[k].m.ay = 0.0;
     }

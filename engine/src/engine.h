@@ -101,9 +101,6 @@ typedef struct {
     int burst;                  /* collisions in a row, each within t_c of the last */
     int elastic;                /* its burst's cluster rests on nothing: rule 2 applies */
     int instant;                /* collisions in a row at one identical time (rule 5) */
-    int solved;                 /* left the contact solver (flying or asleep) and no impact since:
-                                   an overlap it has when it is predicted may be the solver's
-                                   slop (predict.c feature_slop) */
     event ev;
 } body;
 

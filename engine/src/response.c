@@ -281,7 +281,6 @@ int respond(m2c_world *w, int i, int j, const event *ev)
 {
     body *A = &w->b[i], *B = &w->b[j];
     int woken = 0;
-    A->solved = B->solved = 0; /* an impact: exact from here on (predict.c feature_slop) */
     body_commit(A, w->now);
     if (B->kind == M2C_DYNAMIC)
         body_commit(B, w->now);
