@@ -1,13 +1,13 @@
 """The long fuzz of piles in a bin: 2-9 discs, boxes, triangles, polygons and capsules (random
 sizes, masses, restitutions, frictions, spins) thrown into a bin with a tilted rail under
 gravity, where the contact solver holds what settles, checked at every reported event and
-every frame (1/60 s) for 4 s:
+half-way between the solver's ticks (every 1/240 s) for 4 s:
 
 * every pair's overlap (bodies and walls), in exact rational geometry on the poses the engine
   reports (test_no_tunnelling_fuzz's oracle), is within the tolerance, or within the contact
   solver's slop (`World.contact_slop`) for a pair it holds -- one side solving or asleep, the
-  other solving, asleep or static -- or for a pair that overlapped while held (a body let go
-  keeps the overlap it has then: docs/engine-contact.md, "The slop");
+  other solving, asleep or static -- or for a pair held at its last check and overlapping
+  since (a body let go keeps the overlap it has then: docs/engine-contact.md, "The slop");
 * no step ends in an EngineError (nothing squeezes anything: the walls are static);
 * the energy never exceeds its start plus the documented bound (docs/engine-contact.md,
   "Energy"): a hop m (|g| h / 2)^2 / 2 per body and solver tick, and per body of each event
@@ -40,7 +40,7 @@ from .test_no_tunnelling_fuzz import STEP, T_C, too_close, world_points
 
 G = 9.81
 UNTIL = 4.0
-FRAME = 1 / 60
+FRAME = 1 / 240   # the contact solver's step h: the checks fall half-way between its ticks
 # Rounding margin of the float filter: a pair whose float overlap is below its limit by more
 # than MARGIN passes without the exact check. Every coordinate here is below 10 m in
 # magnitude; the float overlap (rotation, cross products, one square root, a division) takes
@@ -199,7 +199,7 @@ class Checker:
     w: object
     walls: list[int]
     ids: list[int]
-    kept: set = field(default_factory=set)      # pairs that overlapped while held
+    kept: set = field(default_factory=set)      # pairs held, or let go overlapping
     recent: deque = field(default_factory=lambda: deque(maxlen=8))
     counts: dict = field(default_factory=lambda: {"events": 0, "checks": 0, "exact": 0})
     allowance: float = 0.0
@@ -246,9 +246,11 @@ class Checker:
             depth = float_overlap(pts[a], self.shape[a][1], pts[b], self.shape[b][1])
             held = self.pair_held(a, b)
             limit = self.tol + ROUNDING + (self.slop if held or (a, b) in self.kept else 0)
-            if held and depth > self.tol - MARGIN:
+            # kept: held at its last check (a body let go at this instant keeps the overlap it
+            # has), or kept then and overlapping still
+            if held or ((a, b) in self.kept and depth > self.tol - MARGIN):
                 self.kept.add((a, b))
-            elif depth <= self.tol - MARGIN:
+            else:
                 self.kept.discard((a, b))
             if depth <= float(limit) - MARGIN:
                 continue
@@ -298,8 +300,11 @@ def run_bin_world(World, bw: BinWorld, until: float = UNTIL, frame: float = FRAM
         ck.check_pairs("at t = 0")
     except AssertionError as exc:
         raise OverlapAtStart(str(exc)) from None
-    for n in range(1, int(round(until / frame)) + 1):
-        t = min(n * frame, until)
+    # half-way between the solver's ticks (at multiples of h): a pair let go at a tick that
+    # sinks in is deepest just before the next tick solves it again (a check at every 1/60 s
+    # frame missed seed 3's world 212, 2e-4 m deep a quarter tick after the tick)
+    for n in range(1, int(round(until / frame)) + 2):
+        t = min((n - 0.5) * frame, until)
         try:
             w.step_to(t, events=False)
         except EngineError as exc:
