@@ -1444,6 +1444,13 @@ static void halt_island(m2c_world *w, int k)
         mark[w->members[m]] = 0;
 }
 
+/* Is t the present instant, within the rounding of the time (collisions in a row at one
+ * instant: the wedge rule's count, the soft contacts remembered through it)? */
+static int same_instant(const m2c_world *w, double t)
+{
+    return w->now - t <= 64 * DBL_EPSILON * (1 + fabs(w->now));
+}
+
 /* After a soft contact of solver body k: pairwise impulses between contacts at a small angle
  * (a ball wedged between a floor and a corner just above it) converge only geometrically, at
  * one instant; after WEDGE_INSTANT of them in a row the body stops (the motion it loses is
@@ -1452,7 +1459,7 @@ static void halt_island(m2c_world *w, int k)
 void solver_wedged(m2c_world *w, int k)
 {
     body *K = &w->b[k];
-    K->instant = w->now - K->last_contact <= 64 * DBL_EPSILON * (1 + fabs(w->now)) ? K->instant + 1 : 0;
+    K->instant = same_instant(w, K->last_contact) ? K->instant + 1 : 0;
     K->last_contact = w->now;
     if (K->instant < WEDGE_INSTANT)
         return;
@@ -1526,12 +1533,12 @@ static void store_mean(m2c_world *w, int k, double H)
 }
 
 /* Remember soft contact (i, j) by the feature the prediction met, for the rest of this instant
- * (one instant as solver_wedged's), in a ring of the last INSTANT_CONTACTS. Returns 1 when it
+ * (same_instant), in a ring of the last INSTANT_CONTACTS. Returns 1 when it
  * was met already at this instant: a pair that the solves part comes back. */
 static int remember_instant(m2c_world *w, int i, int j, const event *ev)
 {
     struct solver *s = w->solver;
-    if (!(w->now - s->inst_t <= 64 * DBL_EPSILON * (1 + fabs(w->now))))
+    if (!same_instant(w, s->inst_t))
         s->ninst = s->next_inst = 0;
     s->inst_t = w->now;
     for (int m = 0; m < s->ninst; m++)
@@ -1581,9 +1588,12 @@ static int add_instant_rows(m2c_world *w, int i, int j, const event *ev)
         if (instant_in_solve(w, m)) {
             double n[2], p[2];
             contact_geometry(w, s->inst[m].a, s->inst[m].b, &s->inst[m].ev, n, p);
+            int before = s->nc;
             add_one(w, s->inst[m].a, s->inst[m].b, n, p, 0.0, ~0u);
-            s->c[s->nc - 1].mu = 0.0;
-            added++;
+            if (s->nc > before) { /* (out of memory: the row is not there) */
+                s->c[s->nc - 1].mu = 0.0;
+                added++;
+            }
         }
     return added;
 }
